@@ -1,0 +1,31 @@
+// Finite element library: 2D frame (Euler-Bernoulli beam with axial stiffness)
+// element matrices in global coordinates. DOF order per element:
+// [u1 v1 theta1 u2 v2 theta2] with u, v global x, y translations (m) and theta
+// the rotation about z (rad). SI units: E (Pa), A (m^2), I (m^4), rho (kg/m^3).
+#pragma once
+
+#include <Eigen/Core>
+
+namespace femup {
+
+struct BeamSection {
+  double E = 0;    // Young's modulus (Pa)
+  double A = 0;    // area (m^2)
+  double I = 0;    // second moment of area (m^4)
+  double rho = 0;  // density (kg/m^3)
+};
+
+using Matrix6 = Eigen::Matrix<double, 6, 6>;
+
+// Element stiffness between nodes (x1, y1) and (x2, y2).
+Matrix6 Frame2dStiffness(const BeamSection& s, double x1, double y1, double x2, double y2);
+// Consistent mass (axial linear + cubic Hermitian transverse), mass rho*A*L.
+Matrix6 Frame2dConsistentMass(const BeamSection& s, double x1, double y1, double x2,
+                              double y2);
+// The transverse part of the consistent mass only (no axial inertia): the
+// physically right basis for water added mass, which acts on motion normal to
+// the member. `mass_per_length` (kg/m) replaces rho*A.
+Matrix6 Frame2dTransverseMass(double mass_per_length, double x1, double y1, double x2,
+                              double y2);
+
+}  // namespace femup

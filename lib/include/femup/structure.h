@@ -1,0 +1,67 @@
+// Structure: an assembled finite element model with its elements kept apart, so
+// that correction factors can be attached to elements or groups of elements.
+// Builders (chain, 2D frame, Matrix Market import) produce a Structure; a
+// ParameterPlan turns it into a ParametrisedModel.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "femup/model.h"
+
+namespace femup {
+
+// One element (or substructure) in global free DOFs.
+struct ElementMatrices {
+  int id = 0;              // 1-based element number
+  std::string label;       // used in parameter names: "3" (chain), "e3" (frame)
+  SparseMatrix stiffness;  // K_e, num_dofs x num_dofs
+  SparseMatrix mass;       // M_e (structural mass of the element)
+  SparseMatrix added_mass_basis;  // Mw_e: the basis for water added mass
+  bool wet = false;        // below the water line
+  double x0 = 0, x1 = 0;   // position along the structure (m), where it applies
+};
+
+struct Structure {
+  std::string description;
+  SparseMatrix stiffness;  // baseline K (includes supports, springs)
+  SparseMatrix mass;       // baseline M (includes lumped masses)
+  std::vector<std::string> dof_labels;
+  std::vector<ElementMatrices> elements;
+  double length = 0;       // overall length where it applies (m), 0 otherwise
+  // Positions along the structure of each DOF (for plots), may be empty.
+  std::vector<double> dof_positions;
+  // Index of the element with the given id, or -1.
+  int FindElement(int id) const;
+};
+
+// How one family of factors (mass, stiffness or added mass) is laid out.
+struct ParameterFamily {
+  enum class Scope {
+    kNone,        // no factors of this kind
+    kPerElement,  // one factor per selected element
+    kSingle,      // one factor for all selected elements together
+    kGroups,      // one factor per listed group of element ids
+  };
+  enum class Selection { kAll, kWet, kDry };
+  Scope scope = Scope::kNone;
+  Selection selection = Selection::kAll;
+  std::vector<std::vector<int>> groups;  // used when scope == kGroups
+};
+
+struct ParameterPlan {
+  ParameterFamily mass;
+  ParameterFamily stiffness;
+  ParameterFamily added_mass;  // only wet elements can carry added mass
+};
+
+// The paper's plan: mass and stiffness per element, added mass per wet element.
+ParameterPlan PaperParameterPlan();
+
+// Builds the parametrised model. Parameter order: mass, stiffness, added mass,
+// each in element order. Names: "<kind>[<label>]", groups "<kind>[<l1>+<l2>+...]"
+// and single factors "<kind>[all]" / "<kind>[wet]" / "<kind>[dry]".
+// Throws InputError for unknown element ids or an empty selection.
+ParametrisedModel BuildModel(const Structure& structure, const ParameterPlan& plan);
+
+}  // namespace femup
