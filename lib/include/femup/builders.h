@@ -41,8 +41,9 @@ struct CantileverSpec {
   BeamSection section;
   double water_depth = 0;  // m above the base; an element is wet when its midpoint is below
   AddedMassBasis added_mass_basis = AddedMassBasis::kElementMass;
-  // Support springs at the base: when all are zero the base is clamped,
-  // otherwise the base node is free and held by these springs (N/m, N m/rad).
+  // Support springs at the base node (N/m, N m/rad). A value of 0 (the default)
+  // makes that base DOF rigid; a positive value frees it and holds it by the
+  // spring. All three zero: the paper's clamped base.
   double support_transverse = 0;
   double support_axial = 0;
   double support_rotation = 0;

@@ -1,0 +1,32 @@
+// Private: the sparse path of the modal analysis (shift-invert Lanczos on a
+// sparse Cholesky factorisation). SolveModes (modal.cc) dispatches here.
+#pragma once
+
+#include "femup/modal.h"
+#include "femup/model.h"
+
+namespace femup {
+namespace internal {
+
+// Lowest `options.num_modes` eigenpairs of K phi = lambda M phi nearest above
+// options.shift, by shift-invert Lanczos (Spectra SymGEigsShiftSolver,
+// GEigsMode::ShiftInvert) on a sparse Cholesky factorisation of K - shift*M
+// (CHOLMOD supernodal LLT; SimplicialLDLT when K - shift*M is not positive
+// definite, i.e. when the shift lies inside the spectrum).
+//
+// Only the lower triangles of K and M are read. Eigenvalues are ascending; the
+// shapes are M-normalised (phi' M phi = 1) with the sign fixed so that the entry
+// of largest magnitude is positive. Uses options.num_modes (1 <= k <= n - 1),
+// shift, tolerance and max_iterations; the Krylov dimension is
+// min(n, max(2k + 1, 20)).
+//
+// Throws InputError("modal analysis", ...) when the sizes differ, k is out of
+// range, an entry is not finite, M is not positive definite ("mass matrix is not
+// positive definite"), K - shift*M is singular to working precision (the shift
+// is an eigenvalue, e.g. shift = 0 on a free-free model) or cannot be
+// factorised stably, or the iteration does not converge.
+Modes SolveModesSparse(const SparseMatrix& K, const SparseMatrix& M,
+                       const EigenOptions& options);
+
+}  // namespace internal
+}  // namespace femup

@@ -1,0 +1,33 @@
+// Measurement noise for simulated studies. The paper's corruption model
+// (method.md section 4): each measured eigenvalue and each mode-shape entry is
+// multiplied by (1 + level * r), r an independent draw per entry.
+#pragma once
+
+#include <random>
+#include <string>
+
+#include "femup/measurement.h"
+
+namespace femup {
+
+enum class NoiseDistribution {
+  kGaussian,  // r ~ N(0, 1): level is the relative standard deviation
+  kUniform,   // r ~ U(-1, 1): level is the largest relative error
+};
+const char* ToString(NoiseDistribution d);  // "gaussian", "uniform"
+bool NoiseDistributionFromString(const std::string& text, NoiseDistribution* d);
+
+struct NoiseModel {
+  double level = 0;  // Nl, relative (0.05 = 5 %)
+  NoiseDistribution distribution = NoiseDistribution::kGaussian;
+  bool eigenvalues = true;  // corrupt lambda = (2 pi f)^2
+  bool shapes = true;       // corrupt every mode-shape entry
+  std::string Validate() const;  // empty when valid
+};
+
+// A corrupted copy of `data`. Draws eigenvalues first (mode order), then shape
+// entries (column-major), so a given generator state gives one result. Throws
+// InputError if a corrupted eigenvalue would be <= 0.
+ModalData Corrupt(const ModalData& data, const NoiseModel& noise, std::mt19937_64* rng);
+
+}  // namespace femup

@@ -1,0 +1,58 @@
+#include "femup/problems/noise.h"
+
+#include <cmath>
+
+#include "femup/errors.h"
+
+namespace femup {
+
+const char* ToString(NoiseDistribution d) {
+  return d == NoiseDistribution::kUniform ? "uniform" : "gaussian";
+}
+
+bool NoiseDistributionFromString(const std::string& text, NoiseDistribution* d) {
+  if (text == "gaussian") {
+    *d = NoiseDistribution::kGaussian;
+  } else if (text == "uniform") {
+    *d = NoiseDistribution::kUniform;
+  } else {
+    return false;
+  }
+  return true;
+}
+
+std::string NoiseModel::Validate() const {
+  if (!(level >= 0) || !std::isfinite(level)) return "level must be finite and >= 0";
+  if (level >= 1) return "level must be below 1 (it is relative: 0.05 is 5 %)";
+  return "";
+}
+
+ModalData Corrupt(const ModalData& data, const NoiseModel& noise, std::mt19937_64* rng) {
+  const std::string invalid = noise.Validate();
+  if (!invalid.empty()) throw InputError("noise", invalid);
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  auto draw = [&]() {
+    return noise.distribution == NoiseDistribution::kGaussian ? gauss(*rng) : uniform(*rng);
+  };
+  ModalData out = data;
+  if (noise.eigenvalues) {
+    for (Eigen::Index j = 0; j < out.frequencies_hz.size(); ++j) {
+      const double factor = 1.0 + noise.level * draw();
+      if (!(factor > 0)) {
+        throw InputError("noise", "a corrupted eigenvalue is not positive (level too high)");
+      }
+      out.frequencies_hz[j] *= std::sqrt(factor);  // lambda scales by factor
+    }
+  }
+  if (noise.shapes) {
+    for (Eigen::Index j = 0; j < out.shapes.cols(); ++j) {
+      for (Eigen::Index i = 0; i < out.shapes.rows(); ++i) {
+        out.shapes(i, j) *= 1.0 + noise.level * draw();
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace femup

@@ -1,0 +1,45 @@
+// Identifiability of a linear problem: singular values, numerical rank, and the
+// directions the data cannot see, described in terms of named parameters.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace femup {
+
+struct NullDirection {
+  Eigen::VectorXd coefficients;  // unit vector over the analysed unknowns
+  double singular_value = 0;     // of the column-scaled matrix
+  // In words, e.g. "common scaling: all mass, stiffness and added_mass factors
+  // move together (0.28 mass[1] + ...)".
+  std::string description;
+  bool common_scaling = false;   // every mass and stiffness unknown, one sign
+  // The unknown with the largest component: fixing it to a known value
+  // removes this direction best.
+  std::string best_to_fix;
+};
+
+struct Identifiability {
+  Eigen::VectorXd singular_values;  // of A with unit-norm columns, descending
+  double tolerance = 0;             // absolute threshold applied to them
+  int rank = 0;
+  double condition_number = 0;      // s_max / s_min over all (inf when s_min = 0)
+  double condition_number_in_rank = 0;  // s_max / s_rank
+  double condition_number_unscaled = 0; // of A itself, before column scaling
+  std::vector<NullDirection> null_directions;   // one per singular value below tolerance
+  std::vector<std::string> unseen;  // unknowns whose column is exactly zero
+  std::vector<std::string> warnings;
+};
+
+// Analyses A (m x n) with columns scaled to unit norm. `names`/`groups` (may be
+// empty) label the columns; groups "mass" and "stiffness" are used to recognise
+// the common scaling of K and M. `relative_tolerance` times the largest
+// singular value is the rank threshold.
+Identifiability AnalyseIdentifiability(const Eigen::MatrixXd& a,
+                                       const std::vector<std::string>& names,
+                                       const std::vector<std::string>& groups,
+                                       double relative_tolerance);
+
+}  // namespace femup

@@ -1,0 +1,30 @@
+// Modal analysis of a study's model: the nominal model in air (dry) and, when
+// it has wet elements and a truth, the "real" structure's modes per state.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "femup/modal.h"
+#include "femup/output_dir.h"
+#include "femup/studies/study.h"
+
+namespace femup {
+
+struct ModesResult {
+  std::string study_name;
+  std::string model_description;
+  Modes nominal;                       // lowest modes of (K, M)
+  std::vector<std::string> dof_labels;
+  std::vector<double> dof_positions;
+  double max_residual = 0;             // max_j ||K phi - lambda M phi|| / ||K phi||
+  double max_orthogonality_error = 0;  // max |Phi' M Phi - I|
+};
+
+// `num_modes` <= 0: every mode for models up to 1500 DOFs, else 10.
+ModesResult RunModes(const Study& study, int num_modes);
+void WriteModesOutputs(const ModesResult& result, bool plots, OutputDir* out,
+                       std::vector<std::string>* warnings);
+std::string ModesReport(const ModesResult& result);
+
+}  // namespace femup

@@ -1,0 +1,42 @@
+// The paper's noise study (Figs. 4-5): the measured modes are corrupted at a
+// series of levels, many draws per level, and the added-mass error
+// Rm = |ea_est - ea| / |ea| * 100 % is summarised per factor and level.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "femup/output_dir.h"
+#include "femup/studies/study.h"
+
+namespace femup {
+
+struct RmStatistics {
+  double mean = 0, std_dev = 0, median = 0, p90 = 0;
+};
+
+struct NoiseStudyResult {
+  std::string study_name;
+  NoiseStudySpec spec;
+  std::vector<std::string> parameter_names;
+  Eigen::VectorXd preset;
+  std::vector<int> added_mass_indices;       // parameters with an Rm
+  // rm[level][k]: statistics of added-mass factor k (in added_mass_indices order).
+  std::vector<std::vector<RmStatistics>> rm;
+  std::vector<double> rm_average;            // mean over factors of the mean Rm, per level
+  std::vector<int> usable_draws;             // per level: draws the solver could solve
+  // Estimates at spec.figure_level (or the nearest level): mean and std per parameter.
+  double figure_level = 0;
+  Eigen::VectorXd figure_mean, figure_std, figure_first_draw;
+};
+
+// Runs the study described by study.noise_study (throws InputError if absent).
+// Draw d at level l uses a generator seeded with (seed, l, d): results do not
+// depend on the order of evaluation.
+NoiseStudyResult RunNoiseStudy(const Study& study);
+
+void WriteNoiseOutputs(const NoiseStudyResult& result, bool plots, OutputDir* out,
+                       std::vector<std::string>* warnings);
+std::string NoiseReport(const NoiseStudyResult& result);
+
+}  // namespace femup

@@ -1,0 +1,60 @@
+// The linear correction-factor update (the paper's steps 1-4): FEM modes,
+// Z d = F from the measured states, solve, the added-mass matrix and the
+// updated model, and the comparison with measurement.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "femup/output_dir.h"
+#include "femup/problems/linear_problem.h"
+#include "femup/solvers/linear_solver.h"
+#include "femup/studies/study.h"
+
+namespace femup {
+
+struct StateComparison {
+  std::string state;
+  Immersion immersion = Immersion::kDry;
+  Eigen::VectorXd measured_hz;
+  Eigen::VectorXd model_hz;    // nominal model (no factors), paired to each measured mode
+  Eigen::VectorXd updated_hz;  // updated model, paired to each measured mode
+  Eigen::VectorXd model_mac;   // MAC at the sensors (NaN without measured shapes)
+  Eigen::VectorXd updated_mac;
+  // Shapes for plots, at the measurement DOFs (rows) per measured mode.
+  Eigen::MatrixXd measured_shapes, updated_shapes;
+  std::vector<int> shape_dofs;  // model DOF of each shape row
+};
+
+struct UpdateResult {
+  std::string study_name;
+  std::string model_description;
+  int num_dofs = 0;
+  std::vector<Parameter> parameters;   // without basis matrices
+  std::optional<Eigen::VectorXd> preset;
+  std::vector<bool> fixed;
+  LinearProblem problem;               // Z, F (fixed values recorded)
+  SystemForm form = SystemForm::kStacked;
+  int num_fem_modes = 0;
+  Identifiability identifiability_unconstrained;  // of the full Z, before fixing
+  LinearSolution solution;
+  std::vector<StateComparison> states;
+  SparseMatrix added_mass, updated_stiffness, updated_dry_mass;
+  std::vector<double> dof_positions;
+  std::vector<std::string> dof_labels;
+};
+
+// Runs the update. Throws InputError for unusable input; a rank-deficient or
+// failed solve is reported in result.solution.summary.
+UpdateResult RunUpdate(const Study& study);
+
+// Writes result.json, the updated matrices (Matrix Market) and, when `plots`,
+// factors.png, frequencies.png and shapes_<state>.png into `out`.
+void WriteUpdateOutputs(const UpdateResult& result, bool plots, OutputDir* out,
+                        std::vector<std::string>* warnings);
+
+// Human-readable summary for the terminal.
+std::string UpdateReport(const UpdateResult& result);
+
+}  // namespace femup

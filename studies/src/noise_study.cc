@@ -1,0 +1,241 @@
+#include "femup/studies/noise_study.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <sstream>
+
+#include "femup/errors.h"
+#include "femup/modal.h"
+#include "femup/problems/correction_system.h"
+#include "femup/problems/noise.h"
+#include "json_util.h"
+#include "render_staged.h"
+
+namespace femup {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+RmStatistics Summarise(std::vector<double> v) {
+  RmStatistics s;
+  v.erase(std::remove_if(v.begin(), v.end(), [](double x) { return !std::isfinite(x); }),
+          v.end());
+  if (v.empty()) return {kNaN, kNaN, kNaN, kNaN};
+  double sum = 0;
+  for (double x : v) sum += x;
+  s.mean = sum / v.size();
+  double ss = 0;
+  for (double x : v) ss += (x - s.mean) * (x - s.mean);
+  s.std_dev = v.size() > 1 ? std::sqrt(ss / (v.size() - 1)) : 0.0;
+  std::sort(v.begin(), v.end());
+  auto quantile = [&](double q) {
+    const double pos = q * (v.size() - 1);
+    const std::size_t lo = static_cast<std::size_t>(std::floor(pos));
+    const std::size_t hi = std::min(lo + 1, v.size() - 1);
+    return v[lo] + (pos - lo) * (v[hi] - v[lo]);
+  };
+  s.median = quantile(0.5);
+  s.p90 = quantile(0.9);
+  return s;
+}
+
+}  // namespace
+
+NoiseStudyResult RunNoiseStudy(const Study& study) {
+  if (!study.noise_study) {
+    throw InputError(study.path, "noise_study: the study has no noise_study section");
+  }
+  if (!study.truth) throw InputError(study.path, "truth: a noise study needs preset factors");
+  const NoiseStudySpec& spec = *study.noise_study;
+  NoiseStudyResult r;
+  r.study_name = study.name;
+  r.spec = spec;
+  r.parameter_names = study.model.ParameterNames();
+  r.preset = *study.truth;
+  r.added_mass_indices = study.model.ParametersOfKind(ParameterKind::kAddedMass);
+  if (r.added_mass_indices.empty()) {
+    throw InputError(study.path, "noise_study: the model has no added-mass factor to score");
+  }
+  for (int k : r.added_mass_indices) {
+    if (r.preset[k] == 0) {
+      throw InputError(study.path, "truth." + r.parameter_names[k] +
+                                       ": Rm divides by the preset added-mass factor; it "
+                                       "must not be 0");
+    }
+  }
+
+  const Modes fem = SolveModes(study.model.stiffness(), study.model.mass());
+  const std::vector<ModalData> clean = MeasuredStates(study);
+  const auto solver = CreateLinearSolver(study.solver_name, study.solver_options);
+
+  // The level shown in the estimated-vs-preset figure: the nearest one.
+  std::size_t figure_index = 0;
+  for (std::size_t l = 0; l < spec.levels.size(); ++l) {
+    if (std::abs(spec.levels[l] - spec.figure_level) <
+        std::abs(spec.levels[figure_index] - spec.figure_level)) {
+      figure_index = l;
+    }
+  }
+  r.figure_level = spec.levels[figure_index];
+  const int np = study.model.num_parameters();
+  Eigen::MatrixXd figure_estimates(np, spec.draws);
+
+  for (std::size_t l = 0; l < spec.levels.size(); ++l) {
+    NoiseModel noise;
+    noise.level = spec.levels[l];
+    noise.distribution = spec.distribution;
+    std::vector<std::vector<double>> rm(r.added_mass_indices.size());
+    int usable = 0;
+    for (int draw = 0; draw < spec.draws; ++draw) {
+      std::seed_seq seq{static_cast<unsigned long long>(spec.seed & 0xffffffffu),
+                        static_cast<unsigned long long>(spec.seed >> 32),
+                        static_cast<unsigned long long>(l),
+                        static_cast<unsigned long long>(draw)};
+      std::mt19937_64 rng(seq);
+      std::vector<ModalData> noisy;
+      for (const ModalData& m : clean) noisy.push_back(Corrupt(m, noise, &rng));
+      LinearProblem p = BuildCorrectionSystem(study.model, fem, noisy, study.system);
+      for (const auto& [name, value] : study.fixed) p.Fix(name, value);
+      const LinearSolution sol = solver->Solve(p);
+      const bool ok = sol.summary.usable() && sol.x.allFinite();
+      usable += ok ? 1 : 0;
+      for (std::size_t k = 0; k < r.added_mass_indices.size(); ++k) {
+        const int i = r.added_mass_indices[k];
+        rm[k].push_back(ok ? std::abs(sol.x[i] - r.preset[i]) / std::abs(r.preset[i]) * 100.0
+                           : kNaN);
+      }
+      if (l == figure_index) {
+        figure_estimates.col(draw) = ok ? sol.x : Eigen::VectorXd::Constant(np, kNaN);
+      }
+    }
+    std::vector<RmStatistics> stats;
+    double average = 0;
+    for (const auto& v : rm) {
+      stats.push_back(Summarise(v));
+      average += stats.back().mean;
+    }
+    r.rm.push_back(stats);
+    r.rm_average.push_back(average / rm.size());
+    r.usable_draws.push_back(usable);
+  }
+  r.figure_mean.resize(np);
+  r.figure_std.resize(np);
+  for (int i = 0; i < np; ++i) {
+    std::vector<double> row(spec.draws);
+    for (int d = 0; d < spec.draws; ++d) row[d] = figure_estimates(i, d);
+    const RmStatistics s = Summarise(row);
+    r.figure_mean[i] = s.mean;
+    r.figure_std[i] = s.std_dev;
+  }
+  r.figure_first_draw = figure_estimates.col(0);
+  return r;
+}
+
+void WriteNoiseOutputs(const NoiseStudyResult& r, bool plots, OutputDir* out,
+                       std::vector<std::string>* warnings) {
+  nlohmann::json j;
+  j["femup_version"] = "0.1.0";
+  j["command"] = "noise";
+  j["study"] = r.study_name;
+  j["noise_model"] = {
+      {"description",
+       "each measured eigenvalue and mode-shape entry multiplied by (1 + level * r), r an "
+       "independent draw per entry"},
+      {"distribution", ToString(r.spec.distribution)},
+      {"draws_per_level", r.spec.draws},
+      {"seed", r.spec.seed}};
+  j["levels"] = r.spec.levels;
+  j["usable_draws"] = r.usable_draws;
+  j["rm_average_percent"] = nlohmann::json::array();
+  for (double v : r.rm_average) j["rm_average_percent"].push_back(json_util::Number(v));
+  j["rm_percent"] = nlohmann::json::array();
+  for (std::size_t k = 0; k < r.added_mass_indices.size(); ++k) {
+    nlohmann::json f = {{"parameter", r.parameter_names[r.added_mass_indices[k]]},
+                        {"preset", r.preset[r.added_mass_indices[k]]}};
+    for (const char* key : {"mean", "std", "median", "p90"}) f[key] = nlohmann::json::array();
+    for (std::size_t l = 0; l < r.rm.size(); ++l) {
+      f["mean"].push_back(json_util::Number(r.rm[l][k].mean));
+      f["std"].push_back(json_util::Number(r.rm[l][k].std_dev));
+      f["median"].push_back(json_util::Number(r.rm[l][k].median));
+      f["p90"].push_back(json_util::Number(r.rm[l][k].p90));
+    }
+    j["rm_percent"].push_back(f);
+  }
+  j["estimates_at_level"] = {{"level", r.figure_level}, {"parameters", nlohmann::json::array()}};
+  for (std::size_t i = 0; i < r.parameter_names.size(); ++i) {
+    j["estimates_at_level"]["parameters"].push_back(
+        {{"name", r.parameter_names[i]},
+         {"preset", r.preset[i]},
+         {"mean", json_util::Number(r.figure_mean[i])},
+         {"std", json_util::Number(r.figure_std[i])},
+         {"first_draw", json_util::Number(r.figure_first_draw[i])}});
+  }
+  out->WriteText("noise.json", j.dump(2) + "\n");
+  if (!plots) return;
+
+  // Fig. 4: estimated (mean +- std over draws) vs preset at one level.
+  Figure f4;
+  f4.width_px = std::max(900, 40 * static_cast<int>(r.parameter_names.size()) + 200);
+  Plot p4;
+  std::ostringstream title;
+  title << r.study_name << ": factors at " << r.figure_level * 100 << " % corruption ("
+        << r.spec.draws << " draws, mean and 1 std)";
+  p4.title = title.str();
+  p4.x_label = "parameter";
+  p4.y_label = "factor";
+  PlotSeries preset{"preset", PlotSeries::Style::kBars, {}, {}, {}, {}};
+  PlotSeries est{"estimated", PlotSeries::Style::kErrorBars, {}, {}, {}, {}};
+  for (std::size_t i = 0; i < r.parameter_names.size(); ++i) {
+    p4.x_tick_labels.push_back(r.parameter_names[i]);
+    preset.x.push_back(i + 1.0);
+    preset.y.push_back(r.preset[i]);
+    est.x.push_back(i + 1.0);
+    est.y.push_back(r.figure_mean[i]);
+    est.y_low.push_back(r.figure_mean[i] - r.figure_std[i]);
+    est.y_high.push_back(r.figure_mean[i] + r.figure_std[i]);
+  }
+  p4.series = {preset, est};
+  f4.panels.push_back(p4);
+  RenderStaged(f4, "factors_at_level", out, warnings);
+
+  // Fig. 5: Rm against corruption level, per added-mass factor and the average.
+  Figure f5;
+  Plot p5;
+  p5.title = r.study_name + ": added-mass error Rm against corruption level";
+  p5.x_label = "corruption level (%)";
+  p5.y_label = "mean Rm (%)";
+  std::vector<double> x;
+  for (double l : r.spec.levels) x.push_back(l * 100);
+  for (std::size_t k = 0; k < r.added_mass_indices.size(); ++k) {
+    PlotSeries s{r.parameter_names[r.added_mass_indices[k]], PlotSeries::Style::kLinesPoints,
+                 x, {}, {}, {}};
+    for (std::size_t l = 0; l < r.rm.size(); ++l) s.y.push_back(r.rm[l][k].mean);
+    p5.series.push_back(s);
+  }
+  p5.series.push_back({"average", PlotSeries::Style::kLines, x, r.rm_average, {}, {}});
+  f5.panels.push_back(p5);
+  RenderStaged(f5, "rm_vs_level", out, warnings);
+}
+
+std::string NoiseReport(const NoiseStudyResult& r) {
+  std::ostringstream o;
+  o << "noise study: " << r.study_name << " (" << r.spec.draws << " draws per level, "
+    << ToString(r.spec.distribution) << " r, seed " << r.spec.seed << ")\n";
+  o << "mean Rm (%) per added-mass factor\n  level_%";
+  for (int k : r.added_mass_indices) o << std::setw(16) << r.parameter_names[k];
+  o << std::setw(12) << "average" << std::setw(8) << "usable" << "\n";
+  o << std::fixed;
+  for (std::size_t l = 0; l < r.rm.size(); ++l) {
+    o << std::setw(9) << std::setprecision(1) << r.spec.levels[l] * 100;
+    for (const auto& s : r.rm[l]) o << std::setw(16) << std::setprecision(3) << s.mean;
+    o << std::setw(12) << std::setprecision(3) << r.rm_average[l] << std::setw(8)
+      << r.usable_draws[l] << "\n";
+  }
+  return o.str();
+}
+
+}  // namespace femup

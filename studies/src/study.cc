@@ -1,0 +1,555 @@
+#include "femup/studies/study.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <Eigen/SparseCholesky>
+#include <cmath>
+#include <filesystem>
+#include <set>
+#include <sstream>
+
+#include "femup/builders.h"
+#include "femup/errors.h"
+#include "femup/matrix_market.h"
+
+namespace femup {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A YAML node with its field path, for messages like
+// "study.yaml:12:5: model.section.E: expected a number, found 'abc'".
+class Field {
+ public:
+  Field(YAML::Node node, std::string file, std::string path)
+      : node_(std::move(node)), file_(std::move(file)), path_(std::move(path)) {}
+
+  const YAML::Node& node() const { return node_; }
+  const std::string& path() const { return path_; }
+  bool IsMap() const { return node_.IsMap(); }
+  bool IsSequence() const { return node_.IsSequence(); }
+  bool IsScalar() const { return node_.IsScalar(); }
+
+  std::string Where() const {
+    std::ostringstream w;
+    w << file_;
+    if (!node_.Mark().is_null()) w << ":" << node_.Mark().line + 1 << ":" << node_.Mark().column + 1;
+    return w.str();
+  }
+  [[noreturn]] void Fail(const std::string& what) const {
+    throw InputError(Where(), (path_.empty() ? std::string("") : path_ + ": ") + what);
+  }
+
+  // Keys must be among `allowed`.
+  void ExpectKeys(std::initializer_list<const char*> allowed) const {
+    if (!node_.IsMap()) Fail("expected a mapping of keys to values");
+    for (const auto& kv : node_) {
+      const std::string key = kv.first.as<std::string>();
+      bool ok = false;
+      for (const char* a : allowed) ok = ok || key == a;
+      if (!ok) {
+        std::string list;
+        for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+        Field(kv.first, file_, Join(key)).Fail("unknown key (expected one of: " + list + ")");
+      }
+    }
+  }
+  bool Has(const std::string& key) const { return node_.IsMap() && node_[key]; }
+  Field operator[](const std::string& key) const {
+    if (!Has(key)) Fail("missing required key '" + key + "'");
+    return Field(node_[key], file_, Join(key));
+  }
+  std::vector<Field> Items() const {
+    if (!node_.IsSequence()) Fail("expected a list");
+    std::vector<Field> out;
+    for (std::size_t i = 0; i < node_.size(); ++i) {
+      out.emplace_back(node_[i], file_, path_ + "[" + std::to_string(i + 1) + "]");
+    }
+    return out;
+  }
+
+  std::string Str() const {
+    if (!node_.IsScalar()) Fail("expected a text value");
+    return node_.Scalar();
+  }
+  double Num() const {
+    if (!node_.IsScalar()) Fail("expected a number");
+    const std::string s = node_.Scalar();
+    std::size_t used = 0;
+    double v = 0;
+    try {
+      v = std::stod(s, &used);
+    } catch (...) {
+      used = 0;
+    }
+    if (used == 0 || used != s.size()) Fail("expected a number, found '" + s + "'");
+    if (!std::isfinite(v)) Fail("expected a finite number, found '" + s + "'");
+    return v;
+  }
+  double Positive() const {
+    const double v = Num();
+    if (!(v > 0)) Fail("expected a positive number, found " + node_.Scalar());
+    return v;
+  }
+  double NonNegative() const {
+    const double v = Num();
+    if (!(v >= 0)) Fail("expected a number >= 0, found " + node_.Scalar());
+    return v;
+  }
+  int Int() const {
+    const double v = Num();
+    if (v != std::floor(v) || std::abs(v) > 1e9) Fail("expected a whole number");
+    return static_cast<int>(v);
+  }
+  bool Bool() const {
+    const std::string s = Str();
+    if (s == "true" || s == "yes" || s == "on") return true;
+    if (s == "false" || s == "no" || s == "off") return false;
+    Fail("expected true or false, found '" + s + "'");
+  }
+  std::vector<double> Numbers() const {
+    std::vector<double> out;
+    for (const Field& f : Items()) out.push_back(f.Num());
+    return out;
+  }
+  const std::string& file() const { return file_; }
+
+ private:
+  std::string Join(const std::string& key) const {
+    return path_.empty() ? key : path_ + "." + key;
+  }
+  YAML::Node node_;
+  std::string file_;
+  std::string path_;
+};
+
+std::vector<int> ElementIds(const Field& f) {
+  std::vector<int> ids;
+  for (const Field& item : f.Items()) {
+    const int id = item.Int();
+    if (id < 1) item.Fail("element ids start at 1");
+    ids.push_back(id);
+  }
+  return ids;
+}
+
+Structure ReadChain(const Field& m) {
+  m.ExpectKeys({"type", "masses", "springs", "wet"});
+  ChainSpec spec;
+  spec.masses = m["masses"].Numbers();
+  spec.springs = m["springs"].Numbers();
+  if (spec.springs.size() != spec.masses.size()) {
+    m["springs"].Fail("has " + std::to_string(spec.springs.size()) + " values; expected " +
+                      std::to_string(spec.masses.size()) + " (one spring below each mass)");
+  }
+  for (std::size_t i = 0; i < spec.masses.size(); ++i) {
+    if (!(spec.masses[i] > 0)) m["masses"].Items()[i].Fail("expected a positive mass (kg)");
+    if (!(spec.springs[i] > 0)) m["springs"].Items()[i].Fail("expected a positive stiffness (N/m)");
+  }
+  spec.wet.assign(spec.masses.size(), false);
+  if (m.Has("wet")) {
+    for (const Field& item : m["wet"].Items()) {
+      const int id = item.Int();
+      if (id < 1 || id > static_cast<int>(spec.masses.size())) {
+        item.Fail("mass " + std::to_string(id) + " does not exist (masses are 1.." +
+                  std::to_string(spec.masses.size()) + ")");
+      }
+      spec.wet[id - 1] = true;
+    }
+  }
+  return BuildSpringMassChain(spec);
+}
+
+Structure ReadCantilever(const Field& m) {
+  m.ExpectKeys({"type", "length", "elements", "node_heights", "section", "water_depth",
+                "added_mass_basis", "support", "lumped_masses"});
+  CantileverSpec spec;
+  if (m.Has("node_heights")) {
+    if (m.Has("length") || m.Has("elements")) {
+      m.Fail("give either node_heights or length and elements, not both");
+    }
+    spec.node_heights = m["node_heights"].Numbers();
+  } else {
+    const int elements = m["elements"].Int();
+    if (elements < 1) m["elements"].Fail("expected at least one element");
+    spec.node_heights = UniformHeights(m["length"].Positive(), elements);
+  }
+  const Field s = m["section"];
+  s.ExpectKeys({"E", "A", "I", "rho"});
+  spec.section = {s["E"].Positive(), s["A"].Positive(), s["I"].Positive(), s["rho"].Positive()};
+  if (m.Has("water_depth")) spec.water_depth = m["water_depth"].NonNegative();
+  if (m.Has("added_mass_basis")) {
+    const Field f = m["added_mass_basis"];
+    if (!AddedMassBasisFromString(f.Str(), &spec.added_mass_basis)) {
+      f.Fail("unknown basis '" + f.Str() + "' (expected element_mass or transverse)");
+    }
+  }
+  if (m.Has("support")) {
+    const Field f = m["support"];
+    f.ExpectKeys({"transverse", "axial", "rotation"});
+    if (f.Has("transverse")) spec.support_transverse = f["transverse"].NonNegative();
+    if (f.Has("axial")) spec.support_axial = f["axial"].NonNegative();
+    if (f.Has("rotation")) spec.support_rotation = f["rotation"].NonNegative();
+  }
+  if (m.Has("lumped_masses")) {
+    for (const Field& f : m["lumped_masses"].Items()) {
+      f.ExpectKeys({"node", "mass", "rotary_inertia"});
+      LumpedMass lm;
+      lm.node = f["node"].Int();
+      if (lm.node < 0 || lm.node >= static_cast<int>(spec.node_heights.size())) {
+        f["node"].Fail("node " + std::to_string(lm.node) + " is not in 0.." +
+                       std::to_string(spec.node_heights.size() - 1) + " (0 is the base)");
+      }
+      lm.mass = f["mass"].NonNegative();
+      if (f.Has("rotary_inertia")) lm.rotary_inertia = f["rotary_inertia"].NonNegative();
+      spec.lumped_masses.push_back(lm);
+    }
+  }
+  try {
+    return BuildCantilever(spec);
+  } catch (const InputError& e) {
+    m.Fail(e.what());
+  }
+}
+
+Structure ReadMatrixMarketModel(const Field& m) {
+  m.ExpectKeys({"type", "stiffness", "mass", "dof_labels", "elements"});
+  MatrixMarketModelSpec spec;
+  if (m.Has("stiffness")) spec.stiffness_file = m["stiffness"].Str();
+  if (m.Has("mass")) spec.mass_file = m["mass"].Str();
+  if (m.Has("dof_labels")) {
+    for (const Field& f : m["dof_labels"].Items()) spec.dof_labels.push_back(f.Str());
+  }
+  for (const Field& f : m["elements"].Items()) {
+    f.ExpectKeys({"id", "label", "stiffness", "mass", "added_mass", "dofs", "wet"});
+    MatrixMarketElement e;
+    e.id = f["id"].Int();
+    if (f.Has("label")) e.label = f["label"].Str();
+    if (f.Has("stiffness")) e.stiffness_file = f["stiffness"].Str();
+    if (f.Has("mass")) e.mass_file = f["mass"].Str();
+    if (f.Has("added_mass")) e.added_mass_file = f["added_mass"].Str();
+    if (f.Has("dofs")) {
+      for (const Field& d : f["dofs"].Items()) {
+        const int dof = d.Int();
+        if (dof < 1) d.Fail("DOF numbers start at 1");
+        e.dofs.push_back(dof - 1);
+      }
+    }
+    if (f.Has("wet")) e.wet = f["wet"].Bool();
+    spec.elements.push_back(e);
+  }
+  const std::string base = fs::path(m.file()).parent_path().string();
+  try {
+    return ImportMatrixMarketStructure(spec, base.empty() ? "." : base);
+  } catch (const InputError& e) {
+    m.Fail(e.what());
+  }
+}
+
+ParameterFamily ReadFamily(const Field& f) {
+  ParameterFamily family;
+  using Scope = ParameterFamily::Scope;
+  using Selection = ParameterFamily::Selection;
+  auto scope_of = [&](const Field& s) {
+    const std::string v = s.Str();
+    if (v == "none") return Scope::kNone;
+    if (v == "per_element") return Scope::kPerElement;
+    if (v == "single") return Scope::kSingle;
+    if (v == "groups") return Scope::kGroups;
+    s.Fail("unknown layout '" + v + "' (expected none, per_element, single or groups)");
+  };
+  if (f.IsScalar()) {
+    family.scope = scope_of(f);
+    if (family.scope == Scope::kGroups) f.Fail("groups need a list: {groups: [[1, 2], [3]]}");
+    return family;
+  }
+  f.ExpectKeys({"layout", "select", "groups"});
+  family.scope = f.Has("layout") ? scope_of(f["layout"])
+                                 : (f.Has("groups") ? Scope::kGroups : Scope::kPerElement);
+  if (f.Has("select")) {
+    const std::string v = f["select"].Str();
+    if (v == "all") {
+      family.selection = Selection::kAll;
+    } else if (v == "wet") {
+      family.selection = Selection::kWet;
+    } else if (v == "dry") {
+      family.selection = Selection::kDry;
+    } else {
+      f["select"].Fail("unknown selection '" + v + "' (expected all, wet or dry)");
+    }
+  }
+  if (family.scope == Scope::kGroups) {
+    for (const Field& g : f["groups"].Items()) family.groups.push_back(ElementIds(g));
+  } else if (f.Has("groups")) {
+    f["groups"].Fail("groups are only used with layout: groups");
+  }
+  return family;
+}
+
+std::vector<int> ReadSensors(const Field& f, const ParametrisedModel& model) {
+  std::vector<int> dofs;
+  for (const Field& item : f.Items()) {
+    const std::string label = item.Str();
+    const int dof = model.FindDof(label);
+    if (dof < 0) {
+      std::string some;
+      for (int i = 0; i < std::min(model.num_dofs(), 6); ++i) {
+        some += (i ? ", " : "") + model.dof_labels()[i];
+      }
+      item.Fail("no model DOF is labelled '" + label + "' (labels look like: " + some +
+                (model.num_dofs() > 6 ? ", ..." : "") + ")");
+    }
+    dofs.push_back(dof);
+  }
+  return dofs;
+}
+
+MeasurementSpec ReadMeasurement(const Field& f, const ParametrisedModel& model,
+                                bool have_truth) {
+  f.ExpectKeys({"state", "immersion", "simulate_modes", "frequencies_hz", "shapes", "sensors"});
+  MeasurementSpec m;
+  m.state = f["state"].Str();
+  m.immersion = m.state == "water" ? Immersion::kWet : Immersion::kDry;
+  if (f.Has("immersion")) {
+    const std::string v = f["immersion"].Str();
+    if (v == "wet") {
+      m.immersion = Immersion::kWet;
+    } else if (v == "dry") {
+      m.immersion = Immersion::kDry;
+    } else {
+      f["immersion"].Fail("expected wet or dry, found '" + v + "'");
+    }
+  }
+  if (f.Has("simulate_modes")) {
+    if (f.Has("frequencies_hz") || f.Has("shapes")) {
+      f.Fail("give either simulate_modes or measured frequencies_hz/shapes, not both");
+    }
+    if (!have_truth) {
+      f["simulate_modes"].Fail("simulated measurements need a 'truth' section with the "
+                               "factors of the real structure");
+    }
+    m.simulate_modes = f["simulate_modes"].Int();
+    if (m.simulate_modes < 1 || m.simulate_modes > model.num_dofs()) {
+      f["simulate_modes"].Fail("expected 1.." + std::to_string(model.num_dofs()) + " modes");
+    }
+    return m;
+  }
+  m.data.state = m.state;
+  m.data.immersion = m.immersion;
+  const std::vector<double> freq = f["frequencies_hz"].Numbers();
+  m.data.frequencies_hz = Eigen::Map<const Eigen::VectorXd>(freq.data(), freq.size());
+  if (f.Has("sensors")) m.data.sensor_dofs = ReadSensors(f["sensors"], model);
+  if (f.Has("shapes")) {
+    const auto modes = f["shapes"].Items();
+    const int rows = m.data.sensor_dofs.empty() ? model.num_dofs()
+                                                : static_cast<int>(m.data.sensor_dofs.size());
+    if (modes.size() != freq.size()) {
+      f["shapes"].Fail("has " + std::to_string(modes.size()) + " shapes for " +
+                       std::to_string(freq.size()) + " frequencies (one shape per mode)");
+    }
+    m.data.shapes.resize(rows, static_cast<Eigen::Index>(modes.size()));
+    for (std::size_t j = 0; j < modes.size(); ++j) {
+      const std::vector<double> v = modes[j].Numbers();
+      if (static_cast<int>(v.size()) != rows) {
+        modes[j].Fail("has " + std::to_string(v.size()) + " entries; expected " +
+                      std::to_string(rows) +
+                      (m.data.sensor_dofs.empty() ? " (one per model DOF, or list the sensors)"
+                                                  : " (one per sensor)"));
+      }
+      for (int i = 0; i < rows; ++i) m.data.shapes(i, j) = v[i];
+    }
+  } else if (f.Has("sensors")) {
+    f["sensors"].Fail("sensors are listed but no shapes are given");
+  }
+  try {
+    m.data.Validate(model.num_dofs(), f.path());
+  } catch (const InputError& e) {
+    f.Fail(e.what());
+  }
+  return m;
+}
+
+void CheckMassPositiveDefinite(const Field& model_field, const ParametrisedModel& model) {
+  Eigen::SimplicialLLT<SparseMatrix> llt(model.mass());
+  if (llt.info() != Eigen::Success) {
+    model_field.Fail("the mass matrix is not positive definite (every DOF needs mass or "
+                     "rotary inertia, and no mass may be negative)");
+  }
+}
+
+}  // namespace
+
+Study LoadStudy(const std::string& path) {
+  if (!fs::exists(path)) throw InputError(path, "study file not found");
+  if (!fs::is_regular_file(path)) throw InputError(path, "is not a file");
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(path);
+  } catch (const YAML::Exception& e) {
+    std::ostringstream w;
+    w << path << ":" << e.mark.line + 1 << ":" << e.mark.column + 1;
+    throw InputError(w.str(), "not valid YAML/JSON: " + e.msg);
+  }
+  const Field top(root, path, "");
+  top.ExpectKeys({"name", "description", "model", "parameters", "truth", "measurements",
+                  "system", "solver", "noise_study", "output"});
+  Study study;
+  study.path = path;
+  study.name = top.Has("name") ? top["name"].Str() : fs::path(path).stem().string();
+  if (top.Has("description")) study.description = top["description"].Str();
+
+  const Field mf = top["model"];
+  const std::string type = mf["type"].Str();
+  if (type == "chain") {
+    study.structure = ReadChain(mf);
+  } else if (type == "cantilever") {
+    study.structure = ReadCantilever(mf);
+  } else if (type == "matrix_market") {
+    study.structure = ReadMatrixMarketModel(mf);
+  } else {
+    mf["type"].Fail("unknown model type '" + type +
+                    "' (expected chain, cantilever or matrix_market)");
+  }
+
+  ParameterPlan plan = PaperParameterPlan();
+  if (top.Has("parameters")) {
+    const Field pf = top["parameters"];
+    pf.ExpectKeys({"mass", "stiffness", "added_mass", "fix"});
+    if (pf.Has("mass")) plan.mass = ReadFamily(pf["mass"]);
+    if (pf.Has("stiffness")) plan.stiffness = ReadFamily(pf["stiffness"]);
+    if (pf.Has("added_mass")) plan.added_mass = ReadFamily(pf["added_mass"]);
+  }
+  try {
+    study.model = BuildModel(study.structure, plan);
+  } catch (const InputError& e) {
+    (top.Has("parameters") ? top["parameters"] : mf).Fail(e.what());
+  }
+  CheckMassPositiveDefinite(mf, study.model);
+
+  auto parameter_index = [&](const Field& key_field, const std::string& name) {
+    const int i = study.model.FindParameter(name);
+    if (i < 0) {
+      std::string names;
+      for (const auto& n : study.model.ParameterNames()) names += (names.empty() ? "" : ", ") + n;
+      key_field.Fail("no parameter is called '" + name + "' (parameters: " + names + ")");
+    }
+    return i;
+  };
+  if (top.Has("parameters") && top["parameters"].Has("fix")) {
+    const Field ff = top["parameters"]["fix"];
+    if (!ff.IsMap()) ff.Fail("expected a mapping of parameter names to known values");
+    for (const auto& kv : ff.node()) {
+      const std::string name = kv.first.as<std::string>();
+      const Field value(kv.second, ff.file(), ff.path() + "." + name);
+      parameter_index(value, name);
+      study.fixed[name] = value.Num();
+    }
+  }
+  if (top.Has("truth")) {
+    const Field tf = top["truth"];
+    if (!tf.IsMap()) tf.Fail("expected a mapping of parameter names to factor values");
+    Eigen::VectorXd truth = Eigen::VectorXd::Zero(study.model.num_parameters());
+    for (const auto& kv : tf.node()) {
+      const std::string name = kv.first.as<std::string>();
+      const Field value(kv.second, tf.file(), tf.path() + "." + name);
+      truth[parameter_index(value, name)] = value.Num();
+    }
+    study.truth = truth;
+  }
+
+  for (const Field& f : top["measurements"].Items()) {
+    study.measurements.push_back(ReadMeasurement(f, study.model, study.truth.has_value()));
+  }
+  if (study.measurements.empty()) top["measurements"].Fail("expected at least one state");
+  {
+    std::set<std::string> seen;
+    for (std::size_t i = 0; i < study.measurements.size(); ++i) {
+      if (!seen.insert(study.measurements[i].state).second) {
+        top["measurements"].Items()[i]["state"].Fail("state '" + study.measurements[i].state +
+                                                     "' is listed twice");
+      }
+    }
+  }
+
+  if (top.Has("system")) {
+    const Field sf = top["system"];
+    sf.ExpectKeys({"form", "fem_modes"});
+    if (sf.Has("form") && !SystemFormFromString(sf["form"].Str(), &study.system.form)) {
+      sf["form"].Fail("unknown form '" + sf["form"].Str() + "' (expected stacked or summed)");
+    }
+    if (sf.Has("fem_modes")) {
+      const Field f = sf["fem_modes"];
+      if (f.IsScalar() && f.node().Scalar() == "all") {
+        study.system.num_fem_modes = -1;
+      } else {
+        study.system.num_fem_modes = f.Int();
+        if (study.system.num_fem_modes < 1 ||
+            study.system.num_fem_modes > study.model.num_dofs()) {
+          f.Fail("expected 'all' or 1.." + std::to_string(study.model.num_dofs()));
+        }
+      }
+    }
+  }
+  if (top.Has("solver")) {
+    const Field sf = top["solver"];
+    sf.ExpectKeys({"name", "rank_tolerance", "scale_columns"});
+    if (sf.Has("name")) study.solver_name = sf["name"].Str();
+    if (sf.Has("rank_tolerance")) {
+      study.solver_options.relative_rank_tolerance = sf["rank_tolerance"].Positive();
+    }
+    if (sf.Has("scale_columns")) study.solver_options.scale_columns = sf["scale_columns"].Bool();
+    try {
+      CreateLinearSolver(study.solver_name, study.solver_options);
+    } catch (const InputError& e) {
+      sf.Fail(e.what());
+    }
+  }
+  if (top.Has("noise_study")) {
+    const Field nf = top["noise_study"];
+    nf.ExpectKeys({"levels", "draws", "seed", "distribution", "figure_level"});
+    NoiseStudySpec spec;
+    spec.levels = nf["levels"].Numbers();
+    for (std::size_t i = 0; i < spec.levels.size(); ++i) {
+      if (!(spec.levels[i] >= 0 && spec.levels[i] < 1)) {
+        nf["levels"].Items()[i].Fail("a corruption level is relative: expected 0 <= level < 1");
+      }
+    }
+    if (spec.levels.empty()) nf["levels"].Fail("expected at least one level");
+    if (nf.Has("draws")) {
+      spec.draws = nf["draws"].Int();
+      if (spec.draws < 1) nf["draws"].Fail("expected at least one draw");
+    }
+    if (nf.Has("seed")) {
+      const double s = nf["seed"].NonNegative();
+      spec.seed = static_cast<unsigned long long>(s);
+    }
+    if (nf.Has("distribution") &&
+        !NoiseDistributionFromString(nf["distribution"].Str(), &spec.distribution)) {
+      nf["distribution"].Fail("expected gaussian or uniform");
+    }
+    if (nf.Has("figure_level")) spec.figure_level = nf["figure_level"].NonNegative();
+    if (!study.truth) nf.Fail("a noise study needs a 'truth' section (the preset factors)");
+    study.noise_study = spec;
+  }
+  if (top.Has("output")) {
+    const Field of = top["output"];
+    of.ExpectKeys({"plots"});
+    if (of.Has("plots")) study.plots = of["plots"].Bool();
+  }
+  return study;
+}
+
+std::vector<ModalData> MeasuredStates(const Study& study) {
+  std::vector<ModalData> out;
+  for (const MeasurementSpec& m : study.measurements) {
+    if (m.simulate_modes > 0) {
+      out.push_back(PredictModes(study.model, *study.truth, m.immersion, m.simulate_modes,
+                                 m.state));
+    } else {
+      out.push_back(m.data);
+    }
+  }
+  return out;
+}
+
+}  // namespace femup

@@ -1,0 +1,376 @@
+#include "femup/studies/update_study.h"
+
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "femup/errors.h"
+#include "femup/matrix_market.h"
+#include "femup/modal.h"
+#include "femup/plot.h"
+#include "json_util.h"
+#include "render_staged.h"
+
+namespace femup {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// Pairs predicted modes with the measured ones (by MAC when shapes exist,
+// otherwise by order) and fills frequencies, MACs and shapes at the sensors.
+void Compare(const ModalData& measured, const ModalData& predicted, int num_dofs,
+             Eigen::VectorXd* hz, Eigen::VectorXd* mac, Eigen::MatrixXd* shapes_out,
+             std::vector<int>* dofs_out) {
+  const int nm = measured.num_modes();
+  hz->setConstant(nm, kNaN);
+  mac->setConstant(nm, kNaN);
+  std::vector<int> dofs = measured.sensor_dofs;
+  if (dofs.empty()) {
+    for (int i = 0; i < num_dofs; ++i) dofs.push_back(i);
+  }
+  Eigen::MatrixXd at_sensors(dofs.size(), predicted.num_modes());
+  for (std::size_t i = 0; i < dofs.size(); ++i) at_sensors.row(i) = predicted.shapes.row(dofs[i]);
+  shapes_out->setConstant(static_cast<Eigen::Index>(dofs.size()), nm, kNaN);
+  *dofs_out = dofs;
+  if (measured.HasShapes()) {
+    const auto pairs = PairModesByMac(measured.shapes, at_sensors, 0.0);
+    for (int j = 0; j < nm; ++j) {
+      const int c = pairs[j].candidate;
+      if (c < 0) continue;
+      (*hz)[j] = predicted.frequencies_hz[c];
+      (*mac)[j] = pairs[j].mac;
+      Eigen::VectorXd s = at_sensors.col(c);
+      // Scale to the measured shape for plotting (least squares).
+      const double ss = s.squaredNorm();
+      if (ss > 0) s *= s.dot(measured.shapes.col(j)) / ss;
+      shapes_out->col(j) = s;
+    }
+  } else {
+    for (int j = 0; j < nm && j < predicted.num_modes(); ++j) {
+      (*hz)[j] = predicted.frequencies_hz[j];
+    }
+  }
+}
+
+}  // namespace
+
+UpdateResult RunUpdate(const Study& study) {
+  UpdateResult r;
+  r.study_name = study.name;
+  r.model_description = study.structure.description;
+  r.num_dofs = study.model.num_dofs();
+  r.dof_positions = study.structure.dof_positions;
+  r.dof_labels = study.model.dof_labels();
+  for (const Parameter& p : study.model.parameters()) {
+    Parameter copy = p;
+    copy.basis = SparseMatrix();
+    r.parameters.push_back(copy);
+  }
+  r.preset = study.truth;
+  r.form = study.system.form;
+
+  // Step 1: FEM modes of the nominal model.
+  const Modes fem = SolveModes(study.model.stiffness(), study.model.mass());
+  r.num_fem_modes = study.system.num_fem_modes < 0 ? fem.size() : study.system.num_fem_modes;
+
+  // Step 2: Z d = F, and its solution.
+  const std::vector<ModalData> measured = MeasuredStates(study);
+  r.problem = BuildCorrectionSystem(study.model, fem, measured, study.system);
+  r.identifiability_unconstrained =
+      AnalyseIdentifiability(r.problem.A, r.problem.names, r.problem.groups,
+                             study.solver_options.relative_rank_tolerance);
+  for (const auto& [name, value] : study.fixed) r.problem.Fix(name, value);
+  r.fixed.assign(r.parameters.size(), false);
+  for (const auto& f : r.problem.fixed) r.fixed[f.first] = true;
+  const auto solver = CreateLinearSolver(study.solver_name, study.solver_options);
+  r.solution = solver->Solve(r.problem);
+
+  // Steps 3-4: the added-mass matrix, the updated model and the comparison.
+  const Eigen::VectorXd& d = r.solution.x;
+  r.added_mass = study.model.AddedMass(d);
+  r.updated_stiffness = study.model.UpdatedStiffness(d);
+  r.updated_dry_mass = study.model.UpdatedDryMass(d);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(study.model.num_parameters());
+  for (const ModalData& m : measured) {
+    StateComparison c;
+    c.state = m.state;
+    c.immersion = m.immersion;
+    c.measured_hz = m.frequencies_hz;
+    const int count = std::min(study.model.num_dofs(), m.num_modes() + 4);
+    const ModalData nominal = PredictModes(study.model, zero, m.immersion, count, "model");
+    Eigen::MatrixXd unused;
+    std::vector<int> dofs;
+    Compare(m, nominal, r.num_dofs, &c.model_hz, &c.model_mac, &unused, &dofs);
+    if (r.solution.summary.usable() && d.allFinite()) {
+      try {
+        const ModalData updated = PredictModes(study.model, d, m.immersion, count, "updated");
+        Compare(m, updated, r.num_dofs, &c.updated_hz, &c.updated_mac, &c.updated_shapes,
+                &c.shape_dofs);
+      } catch (const InputError& e) {
+        // The estimated factors can make the updated mass indefinite: a result.
+        r.solution.summary.message += " | updated model has no valid modes: " +
+                                      std::string(e.what());
+        c.updated_hz.setConstant(m.num_modes(), kNaN);
+        c.updated_mac.setConstant(m.num_modes(), kNaN);
+      }
+    }
+    c.shape_dofs = dofs;
+    c.measured_shapes = m.HasShapes() ? m.shapes : Eigen::MatrixXd();
+    r.states.push_back(c);
+  }
+  return r;
+}
+
+namespace {
+
+}  // namespace
+
+void RenderStaged(const Figure& figure, const std::string& name, OutputDir* out,
+                  std::vector<std::string>* warnings) {
+  out->Stage(name + ".dat");
+  out->Stage(name + ".gp");
+  const std::string png = out->Stage(name + ".png");
+  const PlotStatus st = RenderFigure(figure, png.substr(0, png.size() - 4));
+  if (!st.rendered) warnings->push_back(name + ".png: " + st.message);
+}
+
+namespace {
+
+nlohmann::json IdentifiabilityJson(const Identifiability& id) {
+  nlohmann::json j;
+  j["singular_values"] = json_util::Vector(id.singular_values);
+  j["rank"] = id.rank;
+  j["rank_tolerance"] = id.tolerance;
+  j["condition_number"] = json_util::Number(id.condition_number);
+  j["condition_number_in_rank"] = json_util::Number(id.condition_number_in_rank);
+  j["condition_number_unscaled"] = json_util::Number(id.condition_number_unscaled);
+  j["null_directions"] = nlohmann::json::array();
+  for (const auto& nd : id.null_directions) {
+    j["null_directions"].push_back({{"description", nd.description},
+                                    {"common_scaling", nd.common_scaling},
+                                    {"best_to_fix", nd.best_to_fix},
+                                    {"singular_value", nd.singular_value},
+                                    {"coefficients", json_util::Vector(nd.coefficients)}});
+  }
+  j["unseen"] = id.unseen;
+  j["warnings"] = id.warnings;
+  return j;
+}
+
+double ErrorPercent(double model, double measured) {
+  return std::isfinite(model) ? (model - measured) / measured * 100.0 : kNaN;
+}
+
+std::vector<double> Positions(const UpdateResult& r, const std::vector<int>& dofs) {
+  std::vector<double> x;
+  for (int d : dofs) {
+    x.push_back(d < static_cast<int>(r.dof_positions.size()) ? r.dof_positions[d] : d + 1);
+  }
+  return x;
+}
+
+}  // namespace
+
+void WriteUpdateOutputs(const UpdateResult& r, bool plots, OutputDir* out,
+                        std::vector<std::string>* warnings) {
+  nlohmann::json j;
+  j["femup_version"] = "0.1.0";
+  j["command"] = "run";
+  j["study"] = r.study_name;
+  j["model"] = {{"description", r.model_description}, {"dofs", r.num_dofs}};
+  j["parameters"] = nlohmann::json::array();
+  for (std::size_t i = 0; i < r.parameters.size(); ++i) {
+    const Parameter& p = r.parameters[i];
+    nlohmann::json pj = {{"name", p.name},
+                         {"kind", ToString(p.kind)},
+                         {"tags", p.tags},
+                         {"elements", p.elements},
+                         {"estimate", json_util::Number(r.solution.x[i])},
+                         {"fixed", static_cast<bool>(r.fixed[i])}};
+    if (r.preset) {
+      pj["preset"] = (*r.preset)[i];
+      pj["error"] = json_util::Number(r.solution.x[i] - (*r.preset)[i]);
+    }
+    j["parameters"].push_back(pj);
+  }
+  j["system"] = {{"form", ToString(r.form)},
+                 {"rows", r.problem.num_rows()},
+                 {"unknowns", r.problem.num_unknowns()},
+                 {"fem_modes", r.num_fem_modes},
+                 {"unconstrained", IdentifiabilityJson(r.identifiability_unconstrained)},
+                 {"solved", IdentifiabilityJson(r.solution.identifiability)}};
+  j["rank"] = r.identifiability_unconstrained.rank;
+  j["singular_values"] = json_util::Vector(r.identifiability_unconstrained.singular_values);
+  j["solver"] = {{"status", ToString(r.solution.summary.status)},
+                 {"message", r.solution.summary.message},
+                 {"iterations", r.solution.summary.iterations},
+                 {"cost", r.solution.summary.cost},
+                 {"time_seconds", r.solution.summary.time_seconds},
+                 {"residual_norm", r.solution.residual.norm()},
+                 {"rhs_norm", r.problem.b.norm()}};
+  j["states"] = nlohmann::json::array();
+  for (const StateComparison& c : r.states) {
+    nlohmann::json sj = {{"state", c.state}, {"immersion", ToString(c.immersion)}};
+    sj["measured_hz"] = json_util::Vector(c.measured_hz);
+    sj["model_hz"] = json_util::Vector(c.model_hz);
+    sj["updated_hz"] = json_util::Vector(c.updated_hz);
+    Eigen::VectorXd e0(c.measured_hz.size()), e1(c.measured_hz.size());
+    for (Eigen::Index k = 0; k < c.measured_hz.size(); ++k) {
+      e0[k] = ErrorPercent(c.model_hz[k], c.measured_hz[k]);
+      e1[k] = ErrorPercent(c.updated_hz[k], c.measured_hz[k]);
+    }
+    sj["model_error_percent"] = json_util::Vector(e0);
+    sj["updated_error_percent"] = json_util::Vector(e1);
+    sj["model_mac"] = json_util::Vector(c.model_mac);
+    sj["updated_mac"] = json_util::Vector(c.updated_mac);
+    j["states"].push_back(sj);
+  }
+  j["files"] = {"added_mass.mtx", "updated_stiffness.mtx", "updated_dry_mass.mtx",
+                "system_Z.mtx", "system_F.mtx"};
+  out->WriteText("result.json", j.dump(2) + "\n");
+  WriteMatrixMarket(out->Stage("added_mass.mtx"), r.added_mass, true);
+  WriteMatrixMarket(out->Stage("updated_stiffness.mtx"), r.updated_stiffness, true);
+  WriteMatrixMarket(out->Stage("updated_dry_mass.mtx"), r.updated_dry_mass, true);
+  WriteMatrixMarket(out->Stage("system_Z.mtx"), r.problem.A);
+  WriteMatrixMarket(out->Stage("system_F.mtx"), Eigen::MatrixXd(r.problem.b));
+  if (!plots) return;
+
+  // Estimated vs preset factors (the paper's Figs. 2-3).
+  Figure factors;
+  factors.width_px = std::max(900, 40 * static_cast<int>(r.parameters.size()) + 200);
+  Plot fp;
+  fp.title = r.study_name + ": correction factors";
+  fp.x_label = "parameter";
+  fp.y_label = "factor";
+  PlotSeries est{"estimated", PlotSeries::Style::kBars, {}, {}, {}, {}};
+  PlotSeries pre{"preset", PlotSeries::Style::kBars, {}, {}, {}, {}};
+  for (std::size_t i = 0; i < r.parameters.size(); ++i) {
+    fp.x_tick_labels.push_back(r.parameters[i].name);
+    est.x.push_back(i + 1.0);
+    est.y.push_back(r.solution.x[i]);
+    if (r.preset) {
+      pre.x.push_back(i + 1.0);
+      pre.y.push_back((*r.preset)[i]);
+    }
+  }
+  fp.series.push_back(est);
+  if (r.preset) fp.series.push_back(pre);
+  factors.panels.push_back(fp);
+  const std::vector<std::pair<std::string, Figure>> figures_head = {{"factors", factors}};
+
+  // Frequencies per state: measured, nominal model, updated.
+  Figure freq;
+  freq.columns = static_cast<int>(r.states.size());
+  freq.width_px = 450 * freq.columns + 100;
+  for (const StateComparison& c : r.states) {
+    Plot p;
+    p.title = c.state + " (" + ToString(c.immersion) + ")";
+    p.x_label = "mode";
+    p.y_label = "frequency error vs measured (%)";
+    PlotSeries m0{"nominal model", PlotSeries::Style::kBars, {}, {}, {}, {}};
+    PlotSeries m1{"updated model", PlotSeries::Style::kBars, {}, {}, {}, {}};
+    for (Eigen::Index k = 0; k < c.measured_hz.size(); ++k) {
+      m0.x.push_back(k + 1.0);
+      m0.y.push_back(ErrorPercent(c.model_hz[k], c.measured_hz[k]));
+      m1.x.push_back(k + 1.0);
+      m1.y.push_back(ErrorPercent(c.updated_hz[k], c.measured_hz[k]));
+      std::ostringstream label;
+      label << "mode " << k + 1 << " (" << std::fixed << std::setprecision(2)
+            << c.measured_hz[k] << " Hz)";
+      p.x_tick_labels.push_back(label.str());
+    }
+    p.series = {m0, m1};
+    freq.panels.push_back(p);
+  }
+  std::vector<std::pair<std::string, Figure>> figures = figures_head;
+  figures.emplace_back("frequencies", freq);
+
+  // Mode shapes per state with shapes: measured points, updated lines.
+  for (const StateComparison& c : r.states) {
+    if (c.measured_shapes.cols() == 0) continue;
+    Figure shapes;
+    shapes.columns = static_cast<int>(std::min<Eigen::Index>(c.measured_shapes.cols(), 4));
+    shapes.width_px = 380 * shapes.columns + 100;
+    shapes.height_px = 500;
+    // Plot only the transverse DOFs of a frame ("...:ux"), else every DOF.
+    std::vector<int> rows;
+    for (std::size_t i = 0; i < c.shape_dofs.size(); ++i) {
+      const std::string& label = r.dof_labels[c.shape_dofs[i]];
+      if (label.size() > 3 && label.compare(label.size() - 3, 3, ":ux") == 0) rows.push_back(i);
+    }
+    if (rows.empty()) {
+      for (std::size_t i = 0; i < c.shape_dofs.size(); ++i) rows.push_back(i);
+    }
+    std::vector<int> dofs;
+    for (int i : rows) dofs.push_back(c.shape_dofs[i]);
+    const std::vector<double> x = Positions(r, dofs);
+    for (Eigen::Index k = 0; k < c.measured_shapes.cols(); ++k) {
+      Plot p;
+      p.title = c.state + " mode " + std::to_string(k + 1);
+      p.x_label = "position along the structure";
+      p.y_label = "shape (measured scale)";
+      PlotSeries meas{"measured", PlotSeries::Style::kPoints, x, {}, {}, {}};
+      PlotSeries upd{"updated model", PlotSeries::Style::kLines, x, {}, {}, {}};
+      for (int i : rows) {
+        meas.y.push_back(c.measured_shapes(i, k));
+        upd.y.push_back(c.updated_shapes.rows() > i ? c.updated_shapes(i, k) : kNaN);
+      }
+      p.series = {meas, upd};
+      shapes.panels.push_back(p);
+    }
+    figures.emplace_back("shapes_" + c.state, shapes);
+  }
+  for (const auto& [name, figure] : figures) {
+    RenderStaged(figure, name, out, warnings);
+  }
+}
+
+std::string UpdateReport(const UpdateResult& r) {
+  std::ostringstream o;
+  o << std::fixed;
+  o << "study: " << r.study_name << "\nmodel: " << r.model_description << " (" << r.num_dofs
+    << " DOFs)\n";
+  const Identifiability& u = r.identifiability_unconstrained;
+  o << "system: " << ToString(r.form) << " form, " << r.problem.num_rows() << " x "
+    << r.problem.num_unknowns() << ", " << r.num_fem_modes << " FEM modes, rank " << u.rank
+    << " of " << r.problem.num_unknowns() << "\n";
+  for (const auto& nd : u.null_directions) o << "  null direction: " << nd.description << "\n";
+  for (const auto& w : u.warnings) o << "  note: " << w << "\n";
+  if (!r.problem.fixed.empty()) {
+    o << "fixed:";
+    for (const auto& f : r.problem.fixed) {
+      o << " " << r.problem.names[f.first] << " = " << std::setprecision(6) << f.second;
+    }
+    o << "\n";
+  }
+  const Identifiability& s = r.solution.identifiability;
+  o << "solver: " << ToString(r.solution.summary.status) << " (rank " << s.rank
+    << ", condition " << std::setprecision(1) << s.condition_number_in_rank << "): "
+    << r.solution.summary.message << "\n\n";
+  o << std::left << std::setw(22) << "parameter" << std::right << std::setw(14) << "estimate"
+    << std::setw(14) << (r.preset ? "preset" : "") << "\n";
+  for (std::size_t i = 0; i < r.parameters.size(); ++i) {
+    o << std::left << std::setw(22) << r.parameters[i].name << std::right << std::setw(14)
+      << std::setprecision(6) << r.solution.x[i];
+    if (r.preset) o << std::setw(14) << (*r.preset)[i];
+    if (r.fixed[i]) o << "  (fixed)";
+    o << "\n";
+  }
+  for (const StateComparison& c : r.states) {
+    o << "\nstate " << c.state << " (" << ToString(c.immersion) << ")\n";
+    o << "  mode  measured_Hz   model_Hz  err_%   updated_Hz  err_%   MAC_upd\n";
+    for (Eigen::Index k = 0; k < c.measured_hz.size(); ++k) {
+      o << "  " << std::setw(4) << k + 1 << std::setw(12) << std::setprecision(4)
+        << c.measured_hz[k] << std::setw(11) << c.model_hz[k] << std::setw(7)
+        << std::setprecision(2) << ErrorPercent(c.model_hz[k], c.measured_hz[k])
+        << std::setw(13) << std::setprecision(4) << c.updated_hz[k] << std::setw(7)
+        << std::setprecision(2) << ErrorPercent(c.updated_hz[k], c.measured_hz[k])
+        << std::setw(10) << std::setprecision(6) << c.updated_mac[k] << "\n";
+    }
+  }
+  return o.str();
+}
+
+}  // namespace femup

@@ -1,0 +1,314 @@
+#include "sparse_eigen.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "femup/errors.h"
+
+namespace femup {
+namespace internal {
+namespace {
+
+const double kPi = std::acos(-1.0);
+
+SparseMatrix FromTriplets(int n, const std::vector<Eigen::Triplet<double>>& triplets) {
+  SparseMatrix a(n, n);
+  a.setFromTriplets(triplets.begin(), triplets.end());
+  return a;
+}
+
+SparseMatrix Identity(int n) {
+  SparseMatrix a(n, n);
+  a.setIdentity();
+  return a;
+}
+
+// Chain of n unit springs between n unit masses; `grounded` adds a spring from
+// the first mass to the ground (fixed-free), otherwise the chain is free-free.
+SparseMatrix ChainStiffness(int n, bool grounded) {
+  std::vector<Eigen::Triplet<double>> t;
+  for (int i = 0; i + 1 < n; ++i) {  // spring between masses i and i + 1
+    t.emplace_back(i, i, 1.0);
+    t.emplace_back(i + 1, i + 1, 1.0);
+    t.emplace_back(i, i + 1, -1.0);
+    t.emplace_back(i + 1, i, -1.0);
+  }
+  if (grounded) t.emplace_back(0, 0, 1.0);
+  return FromTriplets(n, t);
+}
+
+// Random SPD pencil: K is a grid Laplacian with random edge stiffnesses plus
+// small random ground springs; M is diagonal plus a diagonally dominated
+// tridiagonal coupling.
+void RandomPencil(int nx, int ny, unsigned seed, SparseMatrix* K, SparseMatrix* M) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> edge(0.5, 2.0);
+  std::uniform_real_distribution<double> ground(0.01, 0.1);
+  std::uniform_real_distribution<double> mass(1.0, 2.0);
+  std::uniform_real_distribution<double> coupling(-0.2, 0.2);
+  const int n = nx * ny;
+  auto id = [nx](int x, int y) { return y * nx + x; };
+  std::vector<Eigen::Triplet<double>> k;
+  auto spring = [&k](int a, int b, double s) {
+    k.emplace_back(a, a, s);
+    k.emplace_back(b, b, s);
+    k.emplace_back(a, b, -s);
+    k.emplace_back(b, a, -s);
+  };
+  for (int y = 0; y < ny; ++y) {
+    for (int x = 0; x < nx; ++x) {
+      if (x + 1 < nx) spring(id(x, y), id(x + 1, y), edge(rng));
+      if (y + 1 < ny) spring(id(x, y), id(x, y + 1), edge(rng));
+      k.emplace_back(id(x, y), id(x, y), ground(rng));
+    }
+  }
+  std::vector<Eigen::Triplet<double>> m;
+  for (int i = 0; i < n; ++i) m.emplace_back(i, i, mass(rng));
+  for (int i = 0; i + 1 < n; ++i) {
+    const double c = coupling(rng);
+    m.emplace_back(i, i + 1, c);
+    m.emplace_back(i + 1, i, c);
+  }
+  *K = FromTriplets(n, k);
+  *M = FromTriplets(n, m);
+}
+
+double Mac(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  const double ab = a.dot(b);
+  return ab * ab / (a.squaredNorm() * b.squaredNorm());
+}
+
+// Shared checks: ascending, M-orthonormal, small residuals, sign convention.
+void ExpectValidModes(const SparseMatrix& K, const SparseMatrix& M, const Modes& modes,
+                      int k) {
+  ASSERT_EQ(modes.size(), k);
+  ASSERT_EQ(modes.shapes.rows(), K.rows());
+  ASSERT_EQ(modes.shapes.cols(), k);
+  for (int j = 0; j + 1 < k; ++j) {
+    EXPECT_LE(modes.eigenvalues[j], modes.eigenvalues[j + 1]) << "mode " << j;
+  }
+  const Eigen::MatrixXd gram = modes.shapes.transpose() * (M * modes.shapes);
+  EXPECT_LT((gram - Eigen::MatrixXd::Identity(k, k)).cwiseAbs().maxCoeff(), 1e-9);
+  for (int j = 0; j < k; ++j) {
+    const Eigen::VectorXd phi = modes.shapes.col(j);
+    const Eigen::VectorXd k_phi = K * phi;
+    const Eigen::VectorXd residual = k_phi - modes.eigenvalues[j] * (M * phi);
+    if (k_phi.norm() > 1e-8) {
+      EXPECT_LT(residual.norm() / k_phi.norm(), 1e-8) << "mode " << j;
+    } else {  // rigid-body mode
+      EXPECT_LT(residual.norm(), 1e-10) << "mode " << j;
+    }
+    Eigen::Index largest = 0;
+    phi.cwiseAbs().maxCoeff(&largest);
+    EXPECT_GT(phi[largest], 0.0) << "mode " << j;
+  }
+}
+
+// Runs `solve` and returns the InputError's message ("" when nothing is thrown).
+template <typename F>
+std::string InputErrorMessage(F solve) {
+  try {
+    solve();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(SparseEigenTest, FixedFreeChainMatchesAnalyticEigenvalues) {
+  const int n = 200;
+  const int k = 10;
+  const SparseMatrix K = ChainStiffness(n, /*grounded=*/true);
+  const SparseMatrix M = Identity(n);
+  EigenOptions options;
+  options.num_modes = k;
+  const Modes modes = SolveModesSparse(K, M, options);
+  ExpectValidModes(K, M, modes, k);
+  for (int j = 1; j <= k; ++j) {
+    const double s = std::sin((2 * j - 1) * kPi / (2.0 * (2 * n + 1)));
+    const double expected = 4.0 * s * s;
+    EXPECT_NEAR(modes.eigenvalues[j - 1], expected, 1e-10 * expected) << "j = " << j;
+  }
+}
+
+void ExpectMatchesDense(const SparseMatrix& K, const SparseMatrix& M, const Modes& modes,
+                        int first, int k) {
+  const Eigen::MatrixXd kd(K);
+  const Eigen::MatrixXd md(M);
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> dense(kd, md);
+  ASSERT_EQ(dense.info(), Eigen::Success);
+  ExpectValidModes(K, M, modes, k);
+  for (int j = 0; j < k; ++j) {
+    const double expected = dense.eigenvalues()[first + j];
+    EXPECT_NEAR(modes.eigenvalues[j], expected, 1e-9 * std::abs(expected)) << "j = " << j;
+    EXPECT_GT(Mac(modes.shapes.col(j), dense.eigenvectors().col(first + j)), 1.0 - 1e-9)
+        << "j = " << j;
+  }
+}
+
+TEST(SparseEigenTest, RandomPencilMatchesDenseSolver) {
+  SparseMatrix K, M;
+  RandomPencil(20, 25, 20240611u, &K, &M);
+  ASSERT_EQ(K.rows(), 500);
+  EigenOptions options;
+  options.num_modes = 12;
+  const Modes modes = SolveModesSparse(K, M, options);
+  ExpectMatchesDense(K, M, modes, 0, 12);
+}
+
+TEST(SparseEigenTest, ShiftInsideSpectrumUsesLdltAndReturnsModesAboveShift) {
+  SparseMatrix K, M;
+  RandomPencil(20, 25, 20240611u, &K, &M);
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> dense(
+      (Eigen::MatrixXd(K)), (Eigen::MatrixXd(M)), Eigen::EigenvaluesOnly);
+  EigenOptions options;
+  options.num_modes = 6;
+  // K - shift*M is indefinite: the Cholesky fails and LDLT takes over.
+  options.shift = 0.5 * (dense.eigenvalues()[19] + dense.eigenvalues()[20]);
+  const Modes modes = SolveModesSparse(K, M, options);
+  ExpectMatchesDense(K, M, modes, 20, 6);
+}
+
+TEST(SparseEigenTest, FreeFreeChainWithNegativeShiftFindsRigidBodyMode) {
+  const int n = 60;
+  const int k = 5;
+  const SparseMatrix K = ChainStiffness(n, /*grounded=*/false);
+  const SparseMatrix M = Identity(n);
+  EigenOptions options;
+  options.num_modes = k;
+  options.shift = -0.1;
+  const Modes modes = SolveModesSparse(K, M, options);
+  ExpectValidModes(K, M, modes, k);
+  EXPECT_NEAR(modes.eigenvalues[0], 0.0, 1e-10);
+  for (int i = 0; i < n; ++i) {
+    EXPECT_NEAR(modes.shapes(i, 0), 1.0 / std::sqrt(n), 1e-10) << "i = " << i;
+  }
+  for (int j = 1; j < k; ++j) {
+    const double s = std::sin(j * kPi / (2.0 * n));
+    const double expected = 4.0 * s * s;
+    EXPECT_NEAR(modes.eigenvalues[j], expected, 1e-10 * expected) << "j = " << j;
+  }
+}
+
+TEST(SparseEigenTest, FreeFreeChainAtZeroShiftIsReportedAsSingular) {
+  const int n = 60;
+  EigenOptions options;
+  options.num_modes = 3;
+  const std::string message = InputErrorMessage([&] {
+    SolveModesSparse(ChainStiffness(n, /*grounded=*/false), Identity(n), options);
+  });
+  EXPECT_NE(message.find("modal analysis: "), std::string::npos) << message;
+  EXPECT_NE(message.find("singular"), std::string::npos) << message;
+  EXPECT_NE(message.find("negative shift"), std::string::npos) << message;
+}
+
+TEST(SparseEigenTest, ShiftAtRoundedZeroEigenvalueIsReportedAsSingular) {
+  // Free-free chains with inexact spring constants: K has a pivot of the order of
+  // 1e-16, negative for the first (the Cholesky fails and LDLT takes over) and
+  // positive for the second (the Cholesky succeeds).
+  const int n = 60;
+  for (int period : {7, 11}) {
+    std::vector<Eigen::Triplet<double>> t;
+    for (int i = 0; i + 1 < n; ++i) {
+      const double s = 1.0 / (3 + i % period);
+      t.emplace_back(i, i, s);
+      t.emplace_back(i + 1, i + 1, s);
+      t.emplace_back(i, i + 1, -s);
+      t.emplace_back(i + 1, i, -s);
+    }
+    const SparseMatrix K = FromTriplets(n, t);
+    EigenOptions options;
+    options.num_modes = 3;
+    const std::string message =
+        InputErrorMessage([&] { SolveModesSparse(K, Identity(n), options); });
+    EXPECT_NE(message.find("singular to working precision"), std::string::npos)
+        << message;
+    EXPECT_NE(message.find("negative shift"), std::string::npos) << message;
+    // With a negative shift the same model solves, rigid-body mode first.
+    options.shift = -0.01;
+    const Modes modes = SolveModesSparse(K, Identity(n), options);
+    ExpectValidModes(K, Identity(n), modes, 3);
+    EXPECT_NEAR(modes.eigenvalues[0], 0.0, 1e-12);
+  }
+}
+
+TEST(SparseEigenTest, TooFewEigenvaluesAboveShiftThrows) {
+  const int n = 40;
+  EigenOptions options;
+  options.num_modes = 3;
+  options.shift = 10.0;  // above the whole spectrum (< 4)
+  const std::string message = InputErrorMessage([&] {
+    SolveModesSparse(ChainStiffness(n, /*grounded=*/true), Identity(n), options);
+  });
+  EXPECT_NE(message.find("only 0 eigenvalues lie above the shift"), std::string::npos)
+      << message;
+}
+
+TEST(SparseEigenTest, MassNotPositiveDefiniteThrows) {
+  const int n = 50;
+  const SparseMatrix K = ChainStiffness(n, /*grounded=*/true);
+  EigenOptions options;
+  options.num_modes = 4;
+  for (double bad : {0.0, -1.0}) {
+    SparseMatrix M = Identity(n);
+    M.coeffRef(17, 17) = bad;
+    const std::string message =
+        InputErrorMessage([&] { SolveModesSparse(K, M, options); });
+    EXPECT_NE(message.find("modal analysis: mass matrix is not positive definite"),
+              std::string::npos)
+        << message;
+    EXPECT_NE(message.find("DOF 17"), std::string::npos) << message;
+    EXPECT_NE(message.find("n = 50"), std::string::npos) << message;
+  }
+}
+
+TEST(SparseEigenTest, NumModesOutOfRangeThrows) {
+  const int n = 30;
+  const SparseMatrix K = ChainStiffness(n, /*grounded=*/true);
+  const SparseMatrix M = Identity(n);
+  for (int k : {-1, 0, n, n + 5}) {
+    EigenOptions options;
+    options.num_modes = k;
+    const std::string message =
+        InputErrorMessage([&] { SolveModesSparse(K, M, options); });
+    EXPECT_NE(message.find("num_modes = " + std::to_string(k) + " is out of range"),
+              std::string::npos)
+        << message;
+    EXPECT_NE(message.find("n - 1 = 29"), std::string::npos) << message;
+  }
+  // k = n - 1 is the largest accepted.
+  EigenOptions options;
+  options.num_modes = n - 1;
+  ExpectValidModes(K, M, SolveModesSparse(K, M, options), n - 1);
+}
+
+TEST(SparseEigenTest, SizeMismatchThrows) {
+  EigenOptions options;
+  options.num_modes = 2;
+  const std::string message = InputErrorMessage(
+      [&] { SolveModesSparse(ChainStiffness(10, true), Identity(9), options); });
+  EXPECT_NE(message.find("stiffness is 10x10 and mass is 9x9"), std::string::npos)
+      << message;
+}
+
+TEST(SparseEigenTest, NonConvergenceThrowsWithIterationCount) {
+  SparseMatrix K, M;
+  RandomPencil(20, 25, 7u, &K, &M);
+  EigenOptions options;
+  options.num_modes = 12;
+  options.max_iterations = 1;
+  options.tolerance = 1e-15;
+  const std::string message = InputErrorMessage([&] { SolveModesSparse(K, M, options); });
+  EXPECT_NE(message.find("did not converge"), std::string::npos) << message;
+  EXPECT_NE(message.find("restarts"), std::string::npos) << message;
+  EXPECT_NE(message.find("k = 12, n = 500, shift = 0"), std::string::npos) << message;
+}
+
+}  // namespace
+}  // namespace internal
+}  // namespace femup
