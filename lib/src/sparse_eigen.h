@@ -24,7 +24,9 @@ namespace internal {
 // range, an entry is not finite, M is not positive definite ("mass matrix is not
 // positive definite"), K - shift*M is singular to working precision (the shift
 // is an eigenvalue, e.g. shift = 0 on a free-free model) or cannot be
-// factorised stably, or the iteration does not converge.
+// factorised stably, fewer than k eigenvalues lie above the shift (counted by
+// Sylvester's law of inertia), or the iteration does not converge within
+// options.max_iterations restarts.
 Modes SolveModesSparse(const SparseMatrix& K, const SparseMatrix& M,
                        const EigenOptions& options);
 

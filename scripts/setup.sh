@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Installs what femup needs from Debian 12's packages, when it is missing.
+set -euo pipefail
+PACKAGES=(build-essential cmake ninja-build pkg-config python3 clang-format
+          libeigen3-dev libsuitesparse-dev libspectra-dev libyaml-cpp-dev
+          nlohmann-json3-dev libcli11-dev libgtest-dev libbenchmark-dev gnuplot-nox)
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg -s "$p" > /dev/null 2>&1 || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "setup: installing ${missing[*]}"
+  SUDO=""; [ "$(id -u)" = 0 ] || SUDO="sudo"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends \
+    "${missing[@]}" > /dev/null
+fi

@@ -1,0 +1,200 @@
+// Study files: every bad input ends in an InputError naming the file and the
+// field; good files build the model and measurements they describe.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "femup/errors.h"
+#include "femup/studies/study.h"
+
+namespace femup {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string Write(const std::string& name, const std::string& text) {
+  const fs::path dir = fs::path(::testing::TempDir()) / "femup_study_test";
+  fs::create_directories(dir);
+  const std::string path = (dir / name).string();
+  std::ofstream(path) << text;
+  return path;
+}
+
+const char* kChain = R"(
+model:
+  type: chain
+  masses: [50, 50, 50]
+  springs: [2.9e7, 2.9e7, 2.9e7]
+  wet: [1]
+truth: {"added_mass[1]": 0.2}
+measurements:
+  - {state: air, simulate_modes: 2}
+  - {state: water, simulate_modes: 2}
+)";
+
+// Expects LoadStudy to throw an InputError whose message contains every needle.
+void ExpectError(const std::string& name, const std::string& text,
+                 std::vector<std::string> needles) {
+  const std::string path = Write(name, text);
+  try {
+    LoadStudy(path);
+    ADD_FAILURE() << name << ": no error";
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find(path), std::string::npos) << msg;
+    for (const auto& n : needles) EXPECT_NE(msg.find(n), std::string::npos) << n << " in " << msg;
+  }
+}
+
+std::string Replace(std::string text, const std::string& from, const std::string& to) {
+  const auto pos = text.find(from);
+  EXPECT_NE(pos, std::string::npos) << from;
+  return text.replace(pos, from.size(), to);
+}
+
+TEST(Study, LoadsAChainStudy) {
+  const Study s = LoadStudy(Write("ok.yaml", kChain));
+  EXPECT_EQ(s.model.num_dofs(), 3);
+  EXPECT_EQ(s.model.num_parameters(), 7);  // 3 mass, 3 stiffness, 1 added mass
+  ASSERT_TRUE(s.truth.has_value());
+  EXPECT_DOUBLE_EQ((*s.truth)[s.model.FindParameter("added_mass[1]")], 0.2);
+  const auto states = MeasuredStates(s);
+  ASSERT_EQ(states.size(), 2u);
+  EXPECT_EQ(states[1].immersion, Immersion::kWet);  // "water" defaults to wet
+  EXPECT_EQ(s.name, "ok");
+}
+
+TEST(Study, JsonIsAccepted) {
+  const Study s = LoadStudy(Write("ok.json", R"({
+    "model": {"type": "chain", "masses": [1, 1], "springs": [10, 10]},
+    "parameters": {"added_mass": "none"},
+    "measurements": [{"state": "air", "frequencies_hz": [0.3, 0.8],
+                      "shapes": [[1, 1.6], [1, -0.6]]}]})"));
+  EXPECT_EQ(s.model.num_parameters(), 4);
+  EXPECT_EQ(s.measurements[0].data.shapes.rows(), 2);
+}
+
+TEST(Study, MissingFile) {
+  try {
+    LoadStudy("/nonexistent/study.yaml");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/study.yaml: study file not found"),
+              std::string::npos);
+  }
+}
+
+TEST(Study, SyntaxErrorNamesLine) {
+  ExpectError("syntax.yaml", "model: [1, 2\n", {"not valid YAML"});
+}
+
+TEST(Study, UnknownKeysAreRejected) {
+  ExpectError("unknown_top.yaml", std::string(kChain) + "solvr: {name: lstsq}\n",
+              {"solvr", "unknown key", "solver"});
+  ExpectError("unknown_model.yaml", Replace(kChain, "wet: [1]", "wet: [1]\n  colour: red"),
+              {"model.colour", "unknown key"});
+}
+
+TEST(Study, WrongSizes) {
+  ExpectError("springs.yaml", Replace(kChain, "springs: [2.9e7, 2.9e7, 2.9e7]", "springs: [1, 2]"),
+              {"model.springs", "expected 3"});
+  ExpectError("shape_rows.yaml", Replace(kChain, "- {state: air, simulate_modes: 2}",
+                                         "- {state: air, frequencies_hz: [30], shapes: [[1, 2]]}"),
+              {"shapes", "expected 3"});
+  ExpectError("shape_count.yaml",
+              Replace(kChain, "- {state: air, simulate_modes: 2}",
+                      "- {state: air, frequencies_hz: [30, 40], shapes: [[1, 2, 3]]}"),
+              {"1 shapes for 2 frequencies"});
+}
+
+TEST(Study, SensorsMustMatchShapes) {
+  ExpectError("sensors.yaml",
+              Replace(kChain, "- {state: air, simulate_modes: 2}",
+                      "- {state: air, frequencies_hz: [30], sensors: [x1, x2], "
+                      "shapes: [[1, 2, 3]]}"),
+              {"expected 2 (one per sensor)"});
+  ExpectError("sensor_label.yaml",
+              Replace(kChain, "- {state: air, simulate_modes: 2}",
+                      "- {state: air, frequencies_hz: [30], sensors: [x1, x9], "
+                      "shapes: [[1, 2]]}"),
+              {"sensors[2]", "'x9'", "x1, x2, x3"});
+}
+
+TEST(Study, NaNAndBadNumbers) {
+  ExpectError("nan.yaml", Replace(kChain, "masses: [50, 50, 50]", "masses: [50, .nan, 50]"),
+              {"model.masses[2]", "expected a number"});
+  ExpectError("nan2.yaml", Replace(kChain, "masses: [50, 50, 50]", "masses: [50, nan, 50]"),
+              {"model.masses[2]", "finite"});
+  ExpectError("word.yaml", Replace(kChain, "masses: [50, 50, 50]", "masses: [50, heavy, 50]"),
+              {"'heavy'"});
+  ExpectError("negative.yaml", Replace(kChain, "masses: [50, 50, 50]", "masses: [50, -5, 50]"),
+              {"model.masses[2]", "positive"});
+  ExpectError("freq.yaml",
+              Replace(kChain, "- {state: air, simulate_modes: 2}",
+                      "- {state: air, frequencies_hz: [-3], shapes: [[1, 2, 3]]}"),
+              {"frequencies", "positive"});
+}
+
+TEST(Study, NonPositiveDefiniteMassFromMatrixMarket) {
+  const std::string dir = std::string(FEMUP_TEST_DATA_DIR) + "/mm/model/";
+  const std::string bad_m = Write("bad_m.mtx",
+                                  "%%MatrixMarket matrix coordinate real symmetric\n"
+                                  "3 3 3\n1 1 1\n2 2 -1\n3 3 1\n");
+  const std::string text = "model:\n  type: matrix_market\n  stiffness: " + dir +
+                           "k.mtx\n  mass: " + bad_m + "\n  elements:\n    - {id: 1, stiffness: " +
+                           dir + "e3_k.mtx, mass: " + dir + "e3_m.mtx}\n" +
+                           "parameters: {added_mass: none}\n"
+                           "measurements:\n  - {state: air, frequencies_hz: [1]}\n";
+  ExpectError("not_pd.yaml", text, {"model", "not positive definite"});
+}
+
+TEST(Study, NamesMustMatchParameters) {
+  ExpectError("fix.yaml", std::string(kChain) + "parameters: {fix: {\"mass[9]\": 0}}\n",
+              {"parameters.fix.mass[9]", "no parameter is called 'mass[9]'", "mass[1]"});
+  ExpectError("truth.yaml", Replace(kChain, "added_mass[1]", "added_mass[2]"),
+              {"truth.added_mass[2]", "no parameter"});
+}
+
+TEST(Study, SimulationNeedsTruthAndSolverMustExist) {
+  ExpectError("no_truth.yaml", Replace(kChain, "truth: {\"added_mass[1]\": 0.2}", ""),
+              {"simulate_modes", "truth"});
+  ExpectError("solver.yaml", std::string(kChain) + "solver: {name: magic}\n",
+              {"unknown solver 'magic'", "lstsq"});
+  ExpectError("form.yaml", std::string(kChain) + "system: {form: folded}\n",
+              {"system.form", "stacked or summed"});
+}
+
+TEST(Study, CantileverOptions) {
+  const Study s = LoadStudy(Write("beam.yaml", R"(
+model:
+  type: cantilever
+  node_heights: [0, 0.5, 1.0, 1.2, 1.9]
+  section: {E: 206e9, A: 8.8e-4, I: 8.53e-8, rho: 7850}
+  water_depth: 1.1
+  added_mass_basis: transverse
+  support: {rotation: 1e5}
+  lumped_masses: [{node: 4, mass: 0.2, rotary_inertia: 1e-5}]
+parameters:
+  mass: none
+  stiffness: {layout: groups, groups: [[1, 2], [3, 4]]}
+  added_mass: single
+measurements:
+  - {state: water, frequencies_hz: [6.5]}
+)"));
+  // Base rotation is free (held by the spring): 4 nodes x 3 + 1 DOF.
+  EXPECT_EQ(s.model.num_dofs(), 13);
+  EXPECT_EQ(s.model.ParameterNames(),
+            (std::vector<std::string>{"stiffness[e1+e2]", "stiffness[e3+e4]",
+                                      "added_mass[wet]"}));
+  ExpectError("beam_bad.yaml", R"(
+model:
+  type: cantilever
+  node_heights: [0, 0.5, 0.4]
+  section: {E: 206e9, A: 8.8e-4, I: 8.53e-8, rho: 7850}
+measurements: [{state: air, frequencies_hz: [6.5]}]
+)", {"node_heights", "increase"});
+}
+
+}  // namespace
+}  // namespace femup
