@@ -63,13 +63,16 @@ int main(int argc, char** argv) {
   CLI::App* run = app.add_subcommand(
       "run", "identify correction factors (Z d = F), build the updated model, compare");
   AddCommon(run, &run_opts);
-  CLI::App* noise =
-      app.add_subcommand("noise", "the noise study: Rm of the added-mass factors vs corruption");
+  CLI::App* noise = app.add_subcommand(
+      "noise", "the noise study: Rm of the added-mass factors vs corruption");
   AddCommon(noise, &noise_opts);
-  CLI::App* modes = app.add_subcommand("modes", "modal analysis of the study's nominal model");
+  CLI::App* modes =
+      app.add_subcommand("modes", "modal analysis of the study's nominal model");
   AddCommon(modes, &modes_opts);
-  modes->add_option("-n,--modes", num_modes, "number of lowest modes (default: all, or 10)");
-  CLI::App* check = app.add_subcommand("check", "read and check a study file, do no work");
+  modes->add_option("-n,--modes", num_modes,
+                    "number of lowest modes (default: all, or 10)");
+  CLI::App* check =
+      app.add_subcommand("check", "read and check a study file, do no work");
   check->add_option("study", check_opts.study, "study file (YAML or JSON)")->required();
 
   CLI11_PARSE(app, argc, argv);
@@ -87,7 +90,8 @@ int main(int argc, char** argv) {
       const femup::Study study = femup::LoadStudy(run_opts.study);
       const femup::UpdateResult result = femup::RunUpdate(study);
       femup::OutputDir dir(OutputFolder(run_opts, study));
-      femup::WriteUpdateOutputs(result, study.plots && !run_opts.no_plots, &dir, &warnings);
+      femup::WriteUpdateOutputs(result, study.plots && !run_opts.no_plots, &dir,
+                                &warnings);
       if (!run_opts.quiet) std::cout << femup::UpdateReport(result);
       for (const auto& w : result.solution.identifiability.warnings) {
         warnings.push_back("solved system: " + w);
@@ -98,12 +102,14 @@ int main(int argc, char** argv) {
     if (*noise) {
       const femup::Study study = femup::LoadStudy(noise_opts.study);
       if (!study.noise_study) {
-        throw femup::InputError(noise_opts.study, "noise_study: the study has no noise_study "
-                                                  "section (levels, draws, seed)");
+        throw femup::InputError(noise_opts.study,
+                                "noise_study: the study has no noise_study "
+                                "section (levels, draws, seed)");
       }
       const femup::NoiseStudyResult result = femup::RunNoiseStudy(study);
       femup::OutputDir dir(OutputFolder(noise_opts, study));
-      femup::WriteNoiseOutputs(result, study.plots && !noise_opts.no_plots, &dir, &warnings);
+      femup::WriteNoiseOutputs(result, study.plots && !noise_opts.no_plots, &dir,
+                               &warnings);
       if (!noise_opts.quiet) std::cout << femup::NoiseReport(result);
       Finish(&dir, warnings, noise_opts);
       return 0;
@@ -112,7 +118,8 @@ int main(int argc, char** argv) {
       const femup::Study study = femup::LoadStudy(modes_opts.study);
       const femup::ModesResult result = femup::RunModes(study, num_modes);
       femup::OutputDir dir(OutputFolder(modes_opts, study));
-      femup::WriteModesOutputs(result, study.plots && !modes_opts.no_plots, &dir, &warnings);
+      femup::WriteModesOutputs(result, study.plots && !modes_opts.no_plots, &dir,
+                               &warnings);
       if (!modes_opts.quiet) std::cout << femup::ModesReport(result);
       Finish(&dir, warnings, modes_opts);
       return 0;

@@ -17,10 +17,12 @@ void BM_AssembleAndSolve(benchmark::State& state) {
       femup::PredictModes(s.model, s.preset, femup::Immersion::kDry, 2, "air"),
       femup::PredictModes(s.model, s.preset, femup::Immersion::kWet, 2, "water")};
   femup::CorrectionSystemOptions options;
-  options.form = state.range(0) ? femup::SystemForm::kSummed : femup::SystemForm::kStacked;
+  options.form =
+      state.range(0) ? femup::SystemForm::kSummed : femup::SystemForm::kStacked;
   const auto solver = femup::CreateLinearSolver("lstsq");
   for (auto _ : state) {
-    femup::LinearProblem p = femup::BuildCorrectionSystem(s.model, fem, measured, options);
+    femup::LinearProblem p =
+        femup::BuildCorrectionSystem(s.model, fem, measured, options);
     p.Fix("mass[4]", 0.0058);
     benchmark::DoNotOptimize(solver->Solve(p).x);
   }

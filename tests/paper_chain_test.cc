@@ -1,11 +1,12 @@
 // The reference paper's numerical study (method.md section 4), checked against
 // the values in method.md (from an independent implementation).
+#include "femup/problems/paper_chain.h"
+
 #include <gtest/gtest.h>
 
 #include "femup/measurement.h"
 #include "femup/modal.h"
 #include "femup/problems/correction_system.h"
-#include "femup/problems/paper_chain.h"
 #include "femup/solvers/linear_solver.h"
 
 namespace femup {
@@ -43,7 +44,8 @@ TEST_P(PaperSystem, RankDeficientWithCommonScalingNullSpace) {
   const Modes fem = SolveModes(s.model.stiffness(), s.model.mass());
   CorrectionSystemOptions options;
   options.form = GetParam();
-  const LinearProblem p = BuildCorrectionSystem(s.model, fem, PaperMeasurements(s), options);
+  const LinearProblem p =
+      BuildCorrectionSystem(s.model, fem, PaperMeasurements(s), options);
   EXPECT_EQ(p.num_rows(), 20);
   EXPECT_EQ(p.num_unknowns(), 13);
   // The preset factors satisfy every equation (noise-free data).
@@ -89,7 +91,9 @@ TEST_P(PaperSystem, RecoversEveryFactorWithMass4Fixed) {
 
 INSTANTIATE_TEST_SUITE_P(Forms, PaperSystem,
                          ::testing::Values(SystemForm::kSummed, SystemForm::kStacked),
-                         [](const auto& info) { return std::string(ToString(info.param)); });
+                         [](const auto& info) {
+                           return std::string(ToString(info.param));
+                         });
 
 }  // namespace
 }  // namespace femup

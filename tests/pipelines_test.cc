@@ -18,8 +18,8 @@ std::string Example(const std::string& name) {
 }
 
 TEST(UpdatePipeline, PaperFig2BothForms) {
-  for (const char* file : {"paper_chain_masses_1-3_wet.yaml",
-                           "paper_chain_masses_1-3_wet_stacked.yaml"}) {
+  for (const char* file :
+       {"paper_chain_masses_1-3_wet.yaml", "paper_chain_masses_1-3_wet_stacked.yaml"}) {
     const Study study = LoadStudy(Example(file));
     const UpdateResult r = RunUpdate(study);
     EXPECT_EQ(r.problem.num_rows(), 20) << file;
@@ -109,7 +109,8 @@ TEST(ModesPipeline, PaperFemFrequenciesAndChecks) {
   const Study study = LoadStudy(Example("paper_chain_masses_1-3_wet.yaml"));
   const ModesResult r = RunModes(study, 0);
   const double expected[5] = {34.50, 100.70, 158.75, 203.93, 232.60};
-  for (int i = 0; i < 5; ++i) EXPECT_NEAR(r.nominal.FrequenciesHz()[i], expected[i], 0.005);
+  for (int i = 0; i < 5; ++i)
+    EXPECT_NEAR(r.nominal.FrequenciesHz()[i], expected[i], 0.005);
   EXPECT_LT(r.max_residual, 1e-12);
   EXPECT_LT(r.max_orthogonality_error, 1e-12);
 }

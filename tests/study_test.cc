@@ -1,12 +1,13 @@
 // Study files: every bad input ends in an InputError naming the file and the
 // field; good files build the model and measurements they describe.
+#include "femup/studies/study.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 
 #include "femup/errors.h"
-#include "femup/studies/study.h"
 
 namespace femup {
 namespace {
@@ -43,7 +44,8 @@ void ExpectError(const std::string& name, const std::string& text,
   } catch (const InputError& e) {
     const std::string msg = e.what();
     EXPECT_NE(msg.find(path), std::string::npos) << msg;
-    for (const auto& n : needles) EXPECT_NE(msg.find(n), std::string::npos) << n << " in " << msg;
+    for (const auto& n : needles)
+      EXPECT_NE(msg.find(n), std::string::npos) << n << " in " << msg;
   }
 }
 
@@ -92,15 +94,18 @@ TEST(Study, SyntaxErrorNamesLine) {
 TEST(Study, UnknownKeysAreRejected) {
   ExpectError("unknown_top.yaml", std::string(kChain) + "solvr: {name: lstsq}\n",
               {"solvr", "unknown key", "solver"});
-  ExpectError("unknown_model.yaml", Replace(kChain, "wet: [1]", "wet: [1]\n  colour: red"),
+  ExpectError("unknown_model.yaml",
+              Replace(kChain, "wet: [1]", "wet: [1]\n  colour: red"),
               {"model.colour", "unknown key"});
 }
 
 TEST(Study, WrongSizes) {
-  ExpectError("springs.yaml", Replace(kChain, "springs: [2.9e7, 2.9e7, 2.9e7]", "springs: [1, 2]"),
+  ExpectError("springs.yaml",
+              Replace(kChain, "springs: [2.9e7, 2.9e7, 2.9e7]", "springs: [1, 2]"),
               {"model.springs", "expected 3"});
-  ExpectError("shape_rows.yaml", Replace(kChain, "- {state: air, simulate_modes: 2}",
-                                         "- {state: air, frequencies_hz: [30], shapes: [[1, 2]]}"),
+  ExpectError("shape_rows.yaml",
+              Replace(kChain, "- {state: air, simulate_modes: 2}",
+                      "- {state: air, frequencies_hz: [30], shapes: [[1, 2]]}"),
               {"shapes", "expected 3"});
   ExpectError("shape_count.yaml",
               Replace(kChain, "- {state: air, simulate_modes: 2}",
@@ -122,13 +127,17 @@ TEST(Study, SensorsMustMatchShapes) {
 }
 
 TEST(Study, NaNAndBadNumbers) {
-  ExpectError("nan.yaml", Replace(kChain, "masses: [50, 50, 50]", "masses: [50, .nan, 50]"),
+  ExpectError("nan.yaml",
+              Replace(kChain, "masses: [50, 50, 50]", "masses: [50, .nan, 50]"),
               {"model.masses[2]", "expected a number"});
-  ExpectError("nan2.yaml", Replace(kChain, "masses: [50, 50, 50]", "masses: [50, nan, 50]"),
+  ExpectError("nan2.yaml",
+              Replace(kChain, "masses: [50, 50, 50]", "masses: [50, nan, 50]"),
               {"model.masses[2]", "finite"});
-  ExpectError("word.yaml", Replace(kChain, "masses: [50, 50, 50]", "masses: [50, heavy, 50]"),
+  ExpectError("word.yaml",
+              Replace(kChain, "masses: [50, 50, 50]", "masses: [50, heavy, 50]"),
               {"'heavy'"});
-  ExpectError("negative.yaml", Replace(kChain, "masses: [50, 50, 50]", "masses: [50, -5, 50]"),
+  ExpectError("negative.yaml",
+              Replace(kChain, "masses: [50, 50, 50]", "masses: [50, -5, 50]"),
               {"model.masses[2]", "positive"});
   ExpectError("freq.yaml",
               Replace(kChain, "- {state: air, simulate_modes: 2}",
@@ -142,8 +151,9 @@ TEST(Study, NonPositiveDefiniteMassFromMatrixMarket) {
                                   "%%MatrixMarket matrix coordinate real symmetric\n"
                                   "3 3 3\n1 1 1\n2 2 -1\n3 3 1\n");
   const std::string text = "model:\n  type: matrix_market\n  stiffness: " + dir +
-                           "k.mtx\n  mass: " + bad_m + "\n  elements:\n    - {id: 1, stiffness: " +
-                           dir + "e3_k.mtx, mass: " + dir + "e3_m.mtx}\n" +
+                           "k.mtx\n  mass: " + bad_m +
+                           "\n  elements:\n    - {id: 1, stiffness: " + dir +
+                           "e3_k.mtx, mass: " + dir + "e3_m.mtx}\n" +
                            "parameters: {added_mass: none}\n"
                            "measurements:\n  - {state: air, frequencies_hz: [1]}\n";
   ExpectError("not_pd.yaml", text, {"model", "not positive definite"});
@@ -193,7 +203,8 @@ model:
   node_heights: [0, 0.5, 0.4]
   section: {E: 206e9, A: 8.8e-4, I: 8.53e-8, rho: 7850}
 measurements: [{state: air, frequencies_hz: [6.5]}]
-)", {"node_heights", "increase"});
+)",
+              {"node_heights", "increase"});
 }
 
 }  // namespace

@@ -56,7 +56,8 @@ Structure BuildSpringMassChain(const ChainSpec& spec) {
     }
   }
   Structure s;
-  s.description = "spring-mass chain of " + std::to_string(n) + " masses, fixed at x1's end";
+  s.description =
+      "spring-mass chain of " + std::to_string(n) + " masses, fixed at x1's end";
   Triplets kt, mt;
   for (int e = 0; e < n; ++e) {
     ElementMatrices el;
@@ -124,7 +125,8 @@ Structure BuildCantilever(const CantileverSpec& spec) {
   if (num_nodes < 2) {
     throw InputError("model.node_heights", "needs at least two nodes (base and tip)");
   }
-  if (z[0] != 0.0) throw InputError("model.node_heights", "the first height must be 0 (base)");
+  if (z[0] != 0.0)
+    throw InputError("model.node_heights", "the first height must be 0 (base)");
   for (int i = 1; i < num_nodes; ++i) {
     if (!(z[i] > z[i - 1]) || !std::isfinite(z[i])) {
       std::ostringstream msg;
@@ -204,7 +206,8 @@ Structure BuildCantilever(const CantileverSpec& spec) {
     }
     for (int k = 0; k < 3; ++k) {
       const double v = k < 2 ? lm.mass : lm.rotary_inertia;
-      if (dof[lm.node][k] >= 0 && v > 0) mt.emplace_back(dof[lm.node][k], dof[lm.node][k], v);
+      if (dof[lm.node][k] >= 0 && v > 0)
+        mt.emplace_back(dof[lm.node][k], dof[lm.node][k], v);
     }
   }
   s.stiffness = FromTriplets(n, kt);

@@ -46,7 +46,8 @@ void ModalData::Validate(int num_dofs, const std::string& where) const {
         << " frequencies; expected one shape per frequency";
     throw InputError(where + ".shapes", msg.str());
   }
-  const int expected_rows = sensor_dofs.empty() ? num_dofs : static_cast<int>(sensor_dofs.size());
+  const int expected_rows =
+      sensor_dofs.empty() ? num_dofs : static_cast<int>(sensor_dofs.size());
   if (shapes.rows() != expected_rows) {
     std::ostringstream msg;
     msg << "each shape has " << shapes.rows() << " entries; expected " << expected_rows
@@ -66,15 +67,16 @@ void ModalData::Validate(int num_dofs, const std::string& where) const {
     }
     for (std::size_t k = 0; k < i; ++k) {
       if (sensor_dofs[k] == sensor_dofs[i]) {
-        throw InputError(where + ".sensors",
-                         "sensors " + std::to_string(k + 1) + " and " +
-                             std::to_string(i + 1) + " are on the same DOF");
+        throw InputError(where + ".sensors", "sensors " + std::to_string(k + 1) +
+                                                 " and " + std::to_string(i + 1) +
+                                                 " are on the same DOF");
       }
     }
   }
   for (int j = 0; j < num_modes(); ++j) {
     if (shapes.col(j).norm() == 0) {
-      throw InputError(where + ".shapes", "mode " + std::to_string(j + 1) + " is all zero");
+      throw InputError(where + ".shapes",
+                       "mode " + std::to_string(j + 1) + " is all zero");
     }
   }
 }
@@ -93,7 +95,8 @@ Eigen::MatrixXd ModalData::FullShapes(int num_dofs, const std::string& where) co
   }
   if (sensor_dofs.empty()) return shapes;
   Eigen::MatrixXd full(num_dofs, shapes.cols());
-  for (std::size_t i = 0; i < sensor_dofs.size(); ++i) full.row(sensor_dofs[i]) = shapes.row(i);
+  for (std::size_t i = 0; i < sensor_dofs.size(); ++i)
+    full.row(sensor_dofs[i]) = shapes.row(i);
   return full;
 }
 

@@ -23,8 +23,9 @@ Modes SolveDense(const SparseMatrix& k, const SparseMatrix& m, int num_modes) {
   const Eigen::MatrixXd kd(k), md(m);
   Eigen::LLT<Eigen::MatrixXd> llt(md);
   if (llt.info() != Eigen::Success) {
-    throw InputError("modal analysis",
-                     "mass matrix is not positive definite (Cholesky factorisation failed)");
+    throw InputError(
+        "modal analysis",
+        "mass matrix is not positive definite (Cholesky factorisation failed)");
   }
   Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(
       kd, md, Eigen::ComputeEigenvectors | Eigen::Ax_lBx);
@@ -80,9 +81,10 @@ Modes SolveModes(const SparseMatrix& stiffness, const SparseMatrix& mass,
   using Method = EigenOptions::Method;
   Method method = options.method;
   if (method == Method::kAuto) {
-    method = (n <= options.dense_limit || options.num_modes < 0 || options.num_modes >= n - 1)
-                 ? Method::kDense
-                 : Method::kSparseShiftInvert;
+    method =
+        (n <= options.dense_limit || options.num_modes < 0 || options.num_modes >= n - 1)
+            ? Method::kDense
+            : Method::kSparseShiftInvert;
   }
   if (method == Method::kDense) {
     if (options.shift != 0.0) {
@@ -90,8 +92,9 @@ Modes SolveModes(const SparseMatrix& stiffness, const SparseMatrix& mass,
       Modes all = SolveDense(stiffness, mass, -1);
       int first = 0;
       while (first < all.size() && all.eigenvalues[first] < options.shift) ++first;
-      const int count = options.num_modes < 0 ? all.size() - first
-                                              : std::min(options.num_modes, all.size() - first);
+      const int count = options.num_modes < 0
+                            ? all.size() - first
+                            : std::min(options.num_modes, all.size() - first);
       Modes out;
       out.eigenvalues = all.eigenvalues.segment(first, count);
       out.shapes = all.shapes.middleCols(first, count);
@@ -110,8 +113,8 @@ void MassNormalise(const SparseMatrix& mass, Eigen::MatrixXd* shapes) {
   for (Eigen::Index j = 0; j < shapes->cols(); ++j) {
     const double mm = shapes->col(j).dot(mass * shapes->col(j));
     if (!(mm > 0)) {
-      throw InputError("mass normalisation", "mode " + std::to_string(j + 1) +
-                                                 " has phi' M phi <= 0");
+      throw InputError("mass normalisation",
+                       "mode " + std::to_string(j + 1) + " has phi' M phi <= 0");
     }
     shapes->col(j) /= std::sqrt(mm);
   }
@@ -140,7 +143,8 @@ std::vector<ModePair> PairModesByMac(const Eigen::MatrixXd& reference,
                                      const Eigen::MatrixXd& candidate, double min_mac) {
   Eigen::MatrixXd mac = MacMatrix(reference, candidate);
   std::vector<ModePair> pairs(reference.cols());
-  for (Eigen::Index i = 0; i < reference.cols(); ++i) pairs[i].reference = static_cast<int>(i);
+  for (Eigen::Index i = 0; i < reference.cols(); ++i)
+    pairs[i].reference = static_cast<int>(i);
   const Eigen::Index rounds = std::min(reference.cols(), candidate.cols());
   for (Eigen::Index r = 0; r < rounds; ++r) {
     Eigen::Index i = 0, j = 0;

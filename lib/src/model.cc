@@ -102,8 +102,8 @@ int ParametrisedModel::AddParameter(Parameter parameter) {
   }
   if (parameter.basis.rows() != num_dofs() || parameter.basis.cols() != num_dofs()) {
     std::ostringstream msg;
-    msg << "basis matrix is " << parameter.basis.rows() << " x "
-        << parameter.basis.cols() << ", expected " << num_dofs() << " x " << num_dofs();
+    msg << "basis matrix is " << parameter.basis.rows() << " x " << parameter.basis.cols()
+        << ", expected " << num_dofs() << " x " << num_dofs();
     throw InputError(where, msg.str());
   }
   if (!AllFinite(parameter.basis)) {

@@ -14,7 +14,8 @@ OutputDir::OutputDir(const std::string& directory) : directory_(directory) {
   std::error_code ec;
   fs::create_directory(directory_, ec);
   if (ec || !fs::is_directory(directory_)) {
-    throw InputError(directory_, "cannot create the output folder (" + ec.message() + ")");
+    throw InputError(directory_,
+                     "cannot create the output folder (" + ec.message() + ")");
   }
   std::random_device rd;
   for (int attempt = 0; attempt < 100; ++attempt) {
@@ -35,7 +36,8 @@ OutputDir::~OutputDir() {
 
 std::string OutputDir::Stage(const std::string& name) {
   if (name.empty() || name.find('/') != std::string::npos) {
-    throw InputError(directory_, "output file name '" + name + "' is not a plain file name");
+    throw InputError(directory_,
+                     "output file name '" + name + "' is not a plain file name");
   }
   for (const auto& f : files_) {
     if (f == name) return (fs::path(staging_) / name).string();

@@ -437,7 +437,8 @@ PlotStatus RenderFigure(const Figure& figure, const std::string& stem) {
   const std::string png_path = base + ".png";
   // Inside the script, files are named relative to the script's folder.
   const std::size_t slash = base.find_last_of('/');
-  const std::string directory = slash == std::string::npos ? "." : base.substr(0, slash + 1);
+  const std::string directory =
+      slash == std::string::npos ? "." : base.substr(0, slash + 1);
   std::string leaf = slash == std::string::npos ? base : base.substr(slash + 1);
   if (leaf[0] == '<' || leaf[0] == '-' || leaf[0] == '~' || leaf[0] == '|' ||
       leaf[0] == '+') {
@@ -459,7 +460,8 @@ PlotStatus RenderFigure(const Figure& figure, const std::string& stem) {
 
   script
       << "# femup figure: " << panel_count << " panel" << (panel_count == 1 ? "" : "s")
-      << ". Restyle and redraw, in this folder, with: gnuplot " << Quoted(leaf + ".gp") << "\n"
+      << ". Restyle and redraw, in this folder, with: gnuplot " << Quoted(leaf + ".gp")
+      << "\n"
       << "# Text holding one of {}^_@&~ goes through enhanced-text markup, so there\n"
       << "# the special characters are escaped: \\_ prints _, \\[ prints [.\n"
       << "set encoding utf8\n"

@@ -55,7 +55,8 @@ std::string GroupLabel(const Structure& s, const std::vector<int>& idx) {
   for (std::size_t i = 1; i < idx.size() && consecutive; ++i) {
     consecutive = s.elements[idx[i]].id == s.elements[idx[i - 1]].id + 1;
   }
-  if (consecutive) return s.elements[idx.front()].label + "-" + s.elements[idx.back()].label;
+  if (consecutive)
+    return s.elements[idx.front()].label + "-" + s.elements[idx.back()].label;
   std::string out;
   for (std::size_t i = 0; i < idx.size(); ++i) {
     out += (i ? "+" : "") + s.elements[idx[i]].label;
@@ -82,11 +83,13 @@ void AddFamily(const Structure& s, ParameterKind kind, const ParameterFamily& fa
         if (i < 0) {
           throw InputError(field + ".groups", "element " + std::to_string(id) +
                                                   " does not exist (elements are 1.." +
-                                                  std::to_string(s.elements.size()) + ")");
+                                                  std::to_string(s.elements.size()) +
+                                                  ")");
         }
         if (kind == ParameterKind::kAddedMass && !s.elements[i].wet) {
-          throw InputError(field + ".groups", "element " + std::to_string(id) +
-                                                  " is not wet: it cannot carry added mass");
+          throw InputError(field + ".groups",
+                           "element " + std::to_string(id) +
+                               " is not wet: it cannot carry added mass");
         }
         idx.push_back(i);
       }

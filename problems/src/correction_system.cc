@@ -44,7 +44,8 @@ ModeBlock BlockFor(const ParametrisedModel& model, const Eigen::MatrixXd& phi_fe
         block.z.col(k) = phi_fem.transpose() * bphi;
         break;
       case ParameterKind::kAddedMass:
-        if (immersion == Immersion::kWet) block.z.col(k) = -lambda * (phi_fem.transpose() * bphi);
+        if (immersion == Immersion::kWet)
+          block.z.col(k) = -lambda * (phi_fem.transpose() * bphi);
         break;
     }
   }
@@ -55,7 +56,8 @@ ModeBlock BlockFor(const ParametrisedModel& model, const Eigen::MatrixXd& phi_fe
 
 }  // namespace
 
-LinearProblem BuildCorrectionSystem(const ParametrisedModel& model, const Modes& fem_modes,
+LinearProblem BuildCorrectionSystem(const ParametrisedModel& model,
+                                    const Modes& fem_modes,
                                     const std::vector<ModalData>& states,
                                     const CorrectionSystemOptions& options) {
   const int n = model.num_dofs();
@@ -88,7 +90,8 @@ LinearProblem BuildCorrectionSystem(const ParametrisedModel& model, const Modes&
     const Eigen::MatrixXd shapes = st.FullShapes(n, where);
     const Eigen::VectorXd lambdas = st.Eigenvalues();
     for (int j = 0; j < st.num_modes(); ++j) {
-      blocks[s].push_back(BlockFor(model, phi_fem, lambdas[j], shapes.col(j), st.immersion));
+      blocks[s].push_back(
+          BlockFor(model, phi_fem, lambdas[j], shapes.col(j), st.immersion));
       labels[s].push_back(st.state + " mode " + std::to_string(j + 1));
     }
   }
@@ -108,7 +111,8 @@ LinearProblem BuildCorrectionSystem(const ParametrisedModel& model, const Modes&
         problem.A.middleRows(r, nf) = blocks[s][j].z;
         problem.b.segment(r, nf) = blocks[s][j].f;
         for (int i = 0; i < nf; ++i) {
-          problem.row_labels.push_back(labels[s][j] + " / FEM mode " + std::to_string(i + 1));
+          problem.row_labels.push_back(labels[s][j] + " / FEM mode " +
+                                       std::to_string(i + 1));
         }
         r += nf;
       }
@@ -121,16 +125,18 @@ LinearProblem BuildCorrectionSystem(const ParametrisedModel& model, const Modes&
   for (std::size_t s = 0; s < states.size(); ++s) {
     int& slot = states[s].immersion == Immersion::kWet ? wet : dry;
     if (slot >= 0) {
-      throw InputError("form", "the summed form pairs one dry state with one wet state; "
-                               "there are several " +
-                                   std::string(ToString(states[s].immersion)) +
-                                   " states (use form: stacked)");
+      throw InputError("form",
+                       "the summed form pairs one dry state with one wet state; "
+                       "there are several " +
+                           std::string(ToString(states[s].immersion)) +
+                           " states (use form: stacked)");
     }
     slot = static_cast<int>(s);
   }
   if (dry < 0 || wet < 0) {
-    throw InputError("form", "the summed form needs both a dry (air) and a wet (water) "
-                             "state (use form: stacked)");
+    throw InputError("form",
+                     "the summed form needs both a dry (air) and a wet (water) "
+                     "state (use form: stacked)");
   }
   const int na = static_cast<int>(blocks[dry].size());
   const int nw = static_cast<int>(blocks[wet].size());

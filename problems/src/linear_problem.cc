@@ -48,7 +48,8 @@ std::string LinearProblem::Validate() const {
       }
     }
   }
-  if (static_cast<Eigen::Index>(fixed.size()) >= A.cols()) return "every unknown is fixed";
+  if (static_cast<Eigen::Index>(fixed.size()) >= A.cols())
+    return "every unknown is fixed";
   return "";
 }
 
@@ -61,7 +62,8 @@ void LinearProblem::Fix(const std::string& name, double value) {
   }
   std::string known;
   for (std::size_t i = 0; i < names.size(); ++i) known += (i ? ", " : "") + names[i];
-  throw InputError("fix", "no parameter is called '" + name + "' (parameters: " + known + ")");
+  throw InputError("fix",
+                   "no parameter is called '" + name + "' (parameters: " + known + ")");
 }
 
 bool LinearProblem::IsFixed(int index) const {

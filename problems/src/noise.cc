@@ -33,14 +33,16 @@ ModalData Corrupt(const ModalData& data, const NoiseModel& noise, std::mt19937_6
   std::normal_distribution<double> gauss(0.0, 1.0);
   std::uniform_real_distribution<double> uniform(-1.0, 1.0);
   auto draw = [&]() {
-    return noise.distribution == NoiseDistribution::kGaussian ? gauss(*rng) : uniform(*rng);
+    return noise.distribution == NoiseDistribution::kGaussian ? gauss(*rng)
+                                                              : uniform(*rng);
   };
   ModalData out = data;
   if (noise.eigenvalues) {
     for (Eigen::Index j = 0; j < out.frequencies_hz.size(); ++j) {
       const double factor = 1.0 + noise.level * draw();
       if (!(factor > 0)) {
-        throw InputError("noise", "a corrupted eigenvalue is not positive (level too high)");
+        throw InputError("noise",
+                         "a corrupted eigenvalue is not positive (level too high)");
       }
       out.frequencies_hz[j] *= std::sqrt(factor);  // lambda scales by factor
     }

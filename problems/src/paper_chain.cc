@@ -23,7 +23,8 @@ PaperChainScenario PaperChain(int wet_masses) {
   s.model = BuildModel(s.structure, PaperParameterPlan());
   s.preset.resize(s.model.num_parameters());
   for (int i = 0; i < 5; ++i) {
-    s.preset[s.model.FindParameter("mass[" + std::to_string(i + 1) + "]")] = kPaperMassFactors[i];
+    s.preset[s.model.FindParameter("mass[" + std::to_string(i + 1) + "]")] =
+        kPaperMassFactors[i];
     s.preset[s.model.FindParameter("stiffness[" + std::to_string(i + 1) + "]")] =
         kPaperStiffnessFactors[i];
   }

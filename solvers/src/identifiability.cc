@@ -43,7 +43,8 @@ std::string Combination(const Eigen::VectorXd& v, const std::vector<std::string>
   return out.str();
 }
 
-NullDirection Describe(Eigen::VectorXd v, double sigma, const std::vector<std::string>& names,
+NullDirection Describe(Eigen::VectorXd v, double sigma,
+                       const std::vector<std::string>& names,
                        const std::vector<std::string>& groups) {
   v.normalize();
   Eigen::Index imax = 0;
@@ -69,7 +70,8 @@ NullDirection Describe(Eigen::VectorXd v, double sigma, const std::vector<std::s
   d.common_scaling = has_mass && has_stiffness && all_same_sign;
   std::ostringstream text;
   if (d.common_scaling) {
-    text << "common scaling: all mass and stiffness factors" << (added ? " and the added-mass factors" : "")
+    text << "common scaling: all mass and stiffness factors"
+         << (added ? " and the added-mass factors" : "")
          << " move together. K and M scaled by one number leave every eigenvalue and "
             "mode shape unchanged, so measured modes cannot fix the overall scale. "
             "Fix one factor to a known value (best conditioned: "
@@ -89,7 +91,8 @@ Identifiability AnalyseIdentifiability(const Eigen::MatrixXd& a,
                                        const std::vector<std::string>& groups,
                                        double relative_tolerance) {
   if (a.cols() == 0) throw InputError("identifiability", "the matrix has no column");
-  if (!a.allFinite()) throw InputError("identifiability", "the matrix has a NaN or Inf entry");
+  if (!a.allFinite())
+    throw InputError("identifiability", "the matrix has a NaN or Inf entry");
   if (!(relative_tolerance > 0) || !(relative_tolerance < 1)) {
     throw InputError("identifiability", "relative tolerance must be in (0, 1)");
   }
@@ -119,9 +122,8 @@ Identifiability AnalyseIdentifiability(const Eigen::MatrixXd& a,
   }
   const double smin = out.singular_values[n - 1];
   out.condition_number = smin > 0 ? smax / smin : std::numeric_limits<double>::infinity();
-  out.condition_number_in_rank =
-      out.rank > 0 ? smax / out.singular_values[out.rank - 1]
-                   : std::numeric_limits<double>::infinity();
+  out.condition_number_in_rank = out.rank > 0 ? smax / out.singular_values[out.rank - 1]
+                                              : std::numeric_limits<double>::infinity();
   {
     const Eigen::VectorXd raw = Eigen::BDCSVD<Eigen::MatrixXd>(a).singularValues();
     const double raw_min = a.cols() > a.rows() ? 0.0 : raw[raw.size() - 1];

@@ -38,7 +38,8 @@ std::unique_ptr<LinearSolver> CreateLinearSolver(const std::string& name,
   if (name == "lstsq") return std::make_unique<LstsqSolver>(options);
   std::string known;
   for (const auto& n : AvailableLinearSolvers()) known += (known.empty() ? "" : ", ") + n;
-  throw InputError("solver.name", "unknown solver '" + name + "' (available: " + known + ")");
+  throw InputError("solver.name",
+                   "unknown solver '" + name + "' (available: " + known + ")");
 }
 
 }  // namespace femup

@@ -28,8 +28,9 @@ ModesResult RunModes(const Study& study, int num_modes) {
                        std::max(kphi.norm(), 1e-300);
     r.max_residual = std::max(r.max_residual, res);
   }
-  const Eigen::MatrixXd orth = r.nominal.shapes.transpose() * (m * r.nominal.shapes) -
-                               Eigen::MatrixXd::Identity(r.nominal.size(), r.nominal.size());
+  const Eigen::MatrixXd orth =
+      r.nominal.shapes.transpose() * (m * r.nominal.shapes) -
+      Eigen::MatrixXd::Identity(r.nominal.size(), r.nominal.size());
   r.max_orthogonality_error = orth.cwiseAbs().maxCoeff();
   return r;
 }
@@ -71,14 +72,16 @@ void WriteModesOutputs(const ModesResult& r, bool plots, OutputDir* out,
   const Eigen::VectorXd hz = r.nominal.FrequenciesHz();
   for (int k = 0; k < shown; ++k) {
     std::ostringstream t;
-    t << "mode " << k + 1 << " (" << std::fixed << std::setprecision(2) << hz[k] << " Hz)";
+    t << "mode " << k + 1 << " (" << std::fixed << std::setprecision(2) << hz[k]
+      << " Hz)";
     PlotSeries s{t.str(), PlotSeries::Style::kLinesPoints, {}, {}, {}, {}};
     if (rows.size() != r.dof_labels.size()) {
       s.x.push_back(0.0);  // the clamped base
       s.y.push_back(0.0);
     }
     for (int i : rows) {
-      s.x.push_back(i < static_cast<int>(r.dof_positions.size()) ? r.dof_positions[i] : i + 1);
+      s.x.push_back(i < static_cast<int>(r.dof_positions.size()) ? r.dof_positions[i]
+                                                                 : i + 1);
       s.y.push_back(r.nominal.shapes(i, k));
     }
     p.series.push_back(s);
@@ -94,7 +97,8 @@ std::string ModesReport(const ModesResult& r) {
   const Eigen::VectorXd hz = r.nominal.FrequenciesHz();
   o << std::fixed;
   for (int k = 0; k < r.nominal.size(); ++k) {
-    o << "  " << std::setw(4) << k + 1 << std::setw(14) << std::setprecision(4) << hz[k] << "\n";
+    o << "  " << std::setw(4) << k + 1 << std::setw(14) << std::setprecision(4) << hz[k]
+      << "\n";
   }
   o << std::scientific << std::setprecision(2) << "checks: max relative residual "
     << r.max_residual << ", max |Phi'M Phi - I| " << r.max_orthogonality_error << "\n";

@@ -49,7 +49,8 @@ NoiseStudyResult RunNoiseStudy(const Study& study) {
   if (!study.noise_study) {
     throw InputError(study.path, "noise_study: the study has no noise_study section");
   }
-  if (!study.truth) throw InputError(study.path, "truth: a noise study needs preset factors");
+  if (!study.truth)
+    throw InputError(study.path, "truth: a noise study needs preset factors");
   const NoiseStudySpec& spec = *study.noise_study;
   NoiseStudyResult r;
   r.study_name = study.name;
@@ -58,7 +59,8 @@ NoiseStudyResult RunNoiseStudy(const Study& study) {
   r.preset = *study.truth;
   r.added_mass_indices = study.model.ParametersOfKind(ParameterKind::kAddedMass);
   if (r.added_mass_indices.empty()) {
-    throw InputError(study.path, "noise_study: the model has no added-mass factor to score");
+    throw InputError(study.path,
+                     "noise_study: the model has no added-mass factor to score");
   }
   for (int k : r.added_mass_indices) {
     if (r.preset[k] == 0) {
@@ -105,8 +107,8 @@ NoiseStudyResult RunNoiseStudy(const Study& study) {
       usable += ok ? 1 : 0;
       for (std::size_t k = 0; k < r.added_mass_indices.size(); ++k) {
         const int i = r.added_mass_indices[k];
-        rm[k].push_back(ok ? std::abs(sol.x[i] - r.preset[i]) / std::abs(r.preset[i]) * 100.0
-                           : kNaN);
+        rm[k].push_back(
+            ok ? std::abs(sol.x[i] - r.preset[i]) / std::abs(r.preset[i]) * 100.0 : kNaN);
       }
       if (l == figure_index) {
         figure_estimates.col(draw) = ok ? sol.x : Eigen::VectorXd::Constant(np, kNaN);
@@ -141,13 +143,13 @@ void WriteNoiseOutputs(const NoiseStudyResult& r, bool plots, OutputDir* out,
   j["femup_version"] = "0.1.0";
   j["command"] = "noise";
   j["study"] = r.study_name;
-  j["noise_model"] = {
-      {"description",
-       "each measured eigenvalue and mode-shape entry multiplied by (1 + level * r), r an "
-       "independent draw per entry"},
-      {"distribution", ToString(r.spec.distribution)},
-      {"draws_per_level", r.spec.draws},
-      {"seed", r.spec.seed}};
+  j["noise_model"] = {{"description",
+                       "each measured eigenvalue and mode-shape entry multiplied by (1 + "
+                       "level * r), r an "
+                       "independent draw per entry"},
+                      {"distribution", ToString(r.spec.distribution)},
+                      {"draws_per_level", r.spec.draws},
+                      {"seed", r.spec.seed}};
   j["levels"] = r.spec.levels;
   j["usable_draws"] = r.usable_draws;
   j["rm_average_percent"] = nlohmann::json::array();
@@ -156,7 +158,8 @@ void WriteNoiseOutputs(const NoiseStudyResult& r, bool plots, OutputDir* out,
   for (std::size_t k = 0; k < r.added_mass_indices.size(); ++k) {
     nlohmann::json f = {{"parameter", r.parameter_names[r.added_mass_indices[k]]},
                         {"preset", r.preset[r.added_mass_indices[k]]}};
-    for (const char* key : {"mean", "std", "median", "p90"}) f[key] = nlohmann::json::array();
+    for (const char* key : {"mean", "std", "median", "p90"})
+      f[key] = nlohmann::json::array();
     for (std::size_t l = 0; l < r.rm.size(); ++l) {
       f["mean"].push_back(json_util::Number(r.rm[l][k].mean));
       f["std"].push_back(json_util::Number(r.rm[l][k].std_dev));
@@ -165,7 +168,8 @@ void WriteNoiseOutputs(const NoiseStudyResult& r, bool plots, OutputDir* out,
     }
     j["rm_percent"].push_back(f);
   }
-  j["estimates_at_level"] = {{"level", r.figure_level}, {"parameters", nlohmann::json::array()}};
+  j["estimates_at_level"] = {{"level", r.figure_level},
+                             {"parameters", nlohmann::json::array()}};
   for (std::size_t i = 0; i < r.parameter_names.size(); ++i) {
     j["estimates_at_level"]["parameters"].push_back(
         {{"name", r.parameter_names[i]},
@@ -211,8 +215,12 @@ void WriteNoiseOutputs(const NoiseStudyResult& r, bool plots, OutputDir* out,
   std::vector<double> x;
   for (double l : r.spec.levels) x.push_back(l * 100);
   for (std::size_t k = 0; k < r.added_mass_indices.size(); ++k) {
-    PlotSeries s{r.parameter_names[r.added_mass_indices[k]], PlotSeries::Style::kLinesPoints,
-                 x, {}, {}, {}};
+    PlotSeries s{r.parameter_names[r.added_mass_indices[k]],
+                 PlotSeries::Style::kLinesPoints,
+                 x,
+                 {},
+                 {},
+                 {}};
     for (std::size_t l = 0; l < r.rm.size(); ++l) s.y.push_back(r.rm[l][k].mean);
     p5.series.push_back(s);
   }
@@ -227,7 +235,8 @@ std::string NoiseReport(const NoiseStudyResult& r) {
     << ToString(r.spec.distribution) << " r, seed " << r.spec.seed << ")\n";
   o << "mean Rm (%) per added-mass factor\n  level_%";
   for (int k : r.added_mass_indices) o << std::setw(16) << r.parameter_names[k];
-  o << std::setw(12) << "average" << std::setw(8) << "usable" << "\n";
+  o << std::setw(12) << "average" << std::setw(8) << "usable"
+    << "\n";
   o << std::fixed;
   for (std::size_t l = 0; l < r.rm.size(); ++l) {
     o << std::setw(9) << std::setprecision(1) << r.spec.levels[l] * 100;

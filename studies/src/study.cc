@@ -33,7 +33,8 @@ class Field {
   std::string Where() const {
     std::ostringstream w;
     w << file_;
-    if (!node_.Mark().is_null()) w << ":" << node_.Mark().line + 1 << ":" << node_.Mark().column + 1;
+    if (!node_.Mark().is_null())
+      w << ":" << node_.Mark().line + 1 << ":" << node_.Mark().column + 1;
     return w.str();
   }
   [[noreturn]] void Fail(const std::string& what) const {
@@ -50,7 +51,8 @@ class Field {
       if (!ok) {
         std::string list;
         for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
-        Field(kv.first, file_, Join(key)).Fail("unknown key (expected one of: " + list + ")");
+        Field(kv.first, file_, Join(key))
+            .Fail("unknown key (expected one of: " + list + ")");
       }
     }
   }
@@ -139,12 +141,15 @@ Structure ReadChain(const Field& m) {
   spec.masses = m["masses"].Numbers();
   spec.springs = m["springs"].Numbers();
   if (spec.springs.size() != spec.masses.size()) {
-    m["springs"].Fail("has " + std::to_string(spec.springs.size()) + " values; expected " +
-                      std::to_string(spec.masses.size()) + " (one spring below each mass)");
+    m["springs"].Fail("has " + std::to_string(spec.springs.size()) +
+                      " values; expected " + std::to_string(spec.masses.size()) +
+                      " (one spring below each mass)");
   }
   for (std::size_t i = 0; i < spec.masses.size(); ++i) {
-    if (!(spec.masses[i] > 0)) m["masses"].Items()[i].Fail("expected a positive mass (kg)");
-    if (!(spec.springs[i] > 0)) m["springs"].Items()[i].Fail("expected a positive stiffness (N/m)");
+    if (!(spec.masses[i] > 0))
+      m["masses"].Items()[i].Fail("expected a positive mass (kg)");
+    if (!(spec.springs[i] > 0))
+      m["springs"].Items()[i].Fail("expected a positive stiffness (N/m)");
   }
   spec.wet.assign(spec.masses.size(), false);
   if (m.Has("wet")) {
@@ -176,7 +181,8 @@ Structure ReadCantilever(const Field& m) {
   }
   const Field s = m["section"];
   s.ExpectKeys({"E", "A", "I", "rho"});
-  spec.section = {s["E"].Positive(), s["A"].Positive(), s["I"].Positive(), s["rho"].Positive()};
+  spec.section = {s["E"].Positive(), s["A"].Positive(), s["I"].Positive(),
+                  s["rho"].Positive()};
   if (m.Has("water_depth")) spec.water_depth = m["water_depth"].NonNegative();
   if (m.Has("added_mass_basis")) {
     const Field f = m["added_mass_basis"];
@@ -260,12 +266,14 @@ ParameterFamily ReadFamily(const Field& f) {
   };
   if (f.IsScalar()) {
     family.scope = scope_of(f);
-    if (family.scope == Scope::kGroups) f.Fail("groups need a list: {groups: [[1, 2], [3]]}");
+    if (family.scope == Scope::kGroups)
+      f.Fail("groups need a list: {groups: [[1, 2], [3]]}");
     return family;
   }
   f.ExpectKeys({"layout", "select", "groups"});
-  family.scope = f.Has("layout") ? scope_of(f["layout"])
-                                 : (f.Has("groups") ? Scope::kGroups : Scope::kPerElement);
+  family.scope = f.Has("layout")
+                     ? scope_of(f["layout"])
+                     : (f.Has("groups") ? Scope::kGroups : Scope::kPerElement);
   if (f.Has("select")) {
     const std::string v = f["select"].Str();
     if (v == "all") {
@@ -306,7 +314,8 @@ std::vector<int> ReadSensors(const Field& f, const ParametrisedModel& model) {
 
 MeasurementSpec ReadMeasurement(const Field& f, const ParametrisedModel& model,
                                 bool have_truth) {
-  f.ExpectKeys({"state", "immersion", "simulate_modes", "frequencies_hz", "shapes", "sensors"});
+  f.ExpectKeys(
+      {"state", "immersion", "simulate_modes", "frequencies_hz", "shapes", "sensors"});
   MeasurementSpec m;
   m.state = f["state"].Str();
   m.immersion = m.state == "water" ? Immersion::kWet : Immersion::kDry;
@@ -325,12 +334,14 @@ MeasurementSpec ReadMeasurement(const Field& f, const ParametrisedModel& model,
       f.Fail("give either simulate_modes or measured frequencies_hz/shapes, not both");
     }
     if (!have_truth) {
-      f["simulate_modes"].Fail("simulated measurements need a 'truth' section with the "
-                               "factors of the real structure");
+      f["simulate_modes"].Fail(
+          "simulated measurements need a 'truth' section with the "
+          "factors of the real structure");
     }
     m.simulate_modes = f["simulate_modes"].Int();
     if (m.simulate_modes < 1 || m.simulate_modes > model.num_dofs()) {
-      f["simulate_modes"].Fail("expected 1.." + std::to_string(model.num_dofs()) + " modes");
+      f["simulate_modes"].Fail("expected 1.." + std::to_string(model.num_dofs()) +
+                               " modes");
     }
     return m;
   }
@@ -341,8 +352,9 @@ MeasurementSpec ReadMeasurement(const Field& f, const ParametrisedModel& model,
   if (f.Has("sensors")) m.data.sensor_dofs = ReadSensors(f["sensors"], model);
   if (f.Has("shapes")) {
     const auto modes = f["shapes"].Items();
-    const int rows = m.data.sensor_dofs.empty() ? model.num_dofs()
-                                                : static_cast<int>(m.data.sensor_dofs.size());
+    const int rows = m.data.sensor_dofs.empty()
+                         ? model.num_dofs()
+                         : static_cast<int>(m.data.sensor_dofs.size());
     if (modes.size() != freq.size()) {
       f["shapes"].Fail("has " + std::to_string(modes.size()) + " shapes for " +
                        std::to_string(freq.size()) + " frequencies (one shape per mode)");
@@ -353,8 +365,9 @@ MeasurementSpec ReadMeasurement(const Field& f, const ParametrisedModel& model,
       if (static_cast<int>(v.size()) != rows) {
         modes[j].Fail("has " + std::to_string(v.size()) + " entries; expected " +
                       std::to_string(rows) +
-                      (m.data.sensor_dofs.empty() ? " (one per model DOF, or list the sensors)"
-                                                  : " (one per sensor)"));
+                      (m.data.sensor_dofs.empty()
+                           ? " (one per model DOF, or list the sensors)"
+                           : " (one per sensor)"));
       }
       for (int i = 0; i < rows; ++i) m.data.shapes(i, j) = v[i];
     }
@@ -372,8 +385,9 @@ MeasurementSpec ReadMeasurement(const Field& f, const ParametrisedModel& model,
 void CheckMassPositiveDefinite(const Field& model_field, const ParametrisedModel& model) {
   Eigen::SimplicialLLT<SparseMatrix> llt(model.mass());
   if (llt.info() != Eigen::Success) {
-    model_field.Fail("the mass matrix is not positive definite (every DOF needs mass or "
-                     "rotary inertia, and no mass may be negative)");
+    model_field.Fail(
+        "the mass matrix is not positive definite (every DOF needs mass or "
+        "rotary inertia, and no mass may be negative)");
   }
 }
 
@@ -430,7 +444,8 @@ Study LoadStudy(const std::string& path) {
     const int i = study.model.FindParameter(name);
     if (i < 0) {
       std::string names;
-      for (const auto& n : study.model.ParameterNames()) names += (names.empty() ? "" : ", ") + n;
+      for (const auto& n : study.model.ParameterNames())
+        names += (names.empty() ? "" : ", ") + n;
       key_field.Fail("no parameter is called '" + name + "' (parameters: " + names + ")");
     }
     return i;
@@ -458,15 +473,16 @@ Study LoadStudy(const std::string& path) {
   }
 
   for (const Field& f : top["measurements"].Items()) {
-    study.measurements.push_back(ReadMeasurement(f, study.model, study.truth.has_value()));
+    study.measurements.push_back(
+        ReadMeasurement(f, study.model, study.truth.has_value()));
   }
   if (study.measurements.empty()) top["measurements"].Fail("expected at least one state");
   {
     std::set<std::string> seen;
     for (std::size_t i = 0; i < study.measurements.size(); ++i) {
       if (!seen.insert(study.measurements[i].state).second) {
-        top["measurements"].Items()[i]["state"].Fail("state '" + study.measurements[i].state +
-                                                     "' is listed twice");
+        top["measurements"].Items()[i]["state"].Fail(
+            "state '" + study.measurements[i].state + "' is listed twice");
       }
     }
   }
@@ -475,7 +491,8 @@ Study LoadStudy(const std::string& path) {
     const Field sf = top["system"];
     sf.ExpectKeys({"form", "fem_modes"});
     if (sf.Has("form") && !SystemFormFromString(sf["form"].Str(), &study.system.form)) {
-      sf["form"].Fail("unknown form '" + sf["form"].Str() + "' (expected stacked or summed)");
+      sf["form"].Fail("unknown form '" + sf["form"].Str() +
+                      "' (expected stacked or summed)");
     }
     if (sf.Has("fem_modes")) {
       const Field f = sf["fem_modes"];
@@ -497,7 +514,8 @@ Study LoadStudy(const std::string& path) {
     if (sf.Has("rank_tolerance")) {
       study.solver_options.relative_rank_tolerance = sf["rank_tolerance"].Positive();
     }
-    if (sf.Has("scale_columns")) study.solver_options.scale_columns = sf["scale_columns"].Bool();
+    if (sf.Has("scale_columns"))
+      study.solver_options.scale_columns = sf["scale_columns"].Bool();
     try {
       CreateLinearSolver(study.solver_name, study.solver_options);
     } catch (const InputError& e) {
@@ -511,7 +529,8 @@ Study LoadStudy(const std::string& path) {
     spec.levels = nf["levels"].Numbers();
     for (std::size_t i = 0; i < spec.levels.size(); ++i) {
       if (!(spec.levels[i] >= 0 && spec.levels[i] < 1)) {
-        nf["levels"].Items()[i].Fail("a corruption level is relative: expected 0 <= level < 1");
+        nf["levels"].Items()[i].Fail(
+            "a corruption level is relative: expected 0 <= level < 1");
       }
     }
     if (spec.levels.empty()) nf["levels"].Fail("expected at least one level");
@@ -528,7 +547,8 @@ Study LoadStudy(const std::string& path) {
       nf["distribution"].Fail("expected gaussian or uniform");
     }
     if (nf.Has("figure_level")) spec.figure_level = nf["figure_level"].NonNegative();
-    if (!study.truth) nf.Fail("a noise study needs a 'truth' section (the preset factors)");
+    if (!study.truth)
+      nf.Fail("a noise study needs a 'truth' section (the preset factors)");
     study.noise_study = spec;
   }
   if (top.Has("output")) {

@@ -31,7 +31,8 @@ void Compare(const ModalData& measured, const ModalData& predicted, int num_dofs
     for (int i = 0; i < num_dofs; ++i) dofs.push_back(i);
   }
   Eigen::MatrixXd at_sensors(dofs.size(), predicted.num_modes());
-  for (std::size_t i = 0; i < dofs.size(); ++i) at_sensors.row(i) = predicted.shapes.row(dofs[i]);
+  for (std::size_t i = 0; i < dofs.size(); ++i)
+    at_sensors.row(i) = predicted.shapes.row(dofs[i]);
   shapes_out->setConstant(static_cast<Eigen::Index>(dofs.size()), nm, kNaN);
   *dofs_out = dofs;
   if (measured.HasShapes()) {
@@ -73,7 +74,8 @@ UpdateResult RunUpdate(const Study& study) {
 
   // Step 1: FEM modes of the nominal model.
   const Modes fem = SolveModes(study.model.stiffness(), study.model.mass());
-  r.num_fem_modes = study.system.num_fem_modes < 0 ? fem.size() : study.system.num_fem_modes;
+  r.num_fem_modes =
+      study.system.num_fem_modes < 0 ? fem.size() : study.system.num_fem_modes;
 
   // Step 2: Z d = F, and its solution.
   const std::vector<ModalData> measured = MeasuredStates(study);
@@ -99,19 +101,21 @@ UpdateResult RunUpdate(const Study& study) {
     c.immersion = m.immersion;
     c.measured_hz = m.frequencies_hz;
     const int count = std::min(study.model.num_dofs(), m.num_modes() + 4);
-    const ModalData nominal = PredictModes(study.model, zero, m.immersion, count, "model");
+    const ModalData nominal =
+        PredictModes(study.model, zero, m.immersion, count, "model");
     Eigen::MatrixXd unused;
     std::vector<int> dofs;
     Compare(m, nominal, r.num_dofs, &c.model_hz, &c.model_mac, &unused, &dofs);
     if (r.solution.summary.usable() && d.allFinite()) {
       try {
-        const ModalData updated = PredictModes(study.model, d, m.immersion, count, "updated");
+        const ModalData updated =
+            PredictModes(study.model, d, m.immersion, count, "updated");
         Compare(m, updated, r.num_dofs, &c.updated_hz, &c.updated_mac, &c.updated_shapes,
                 &c.shape_dofs);
       } catch (const InputError& e) {
         // The estimated factors can make the updated mass indefinite: a result.
-        r.solution.summary.message += " | updated model has no valid modes: " +
-                                      std::string(e.what());
+        r.solution.summary.message +=
+            " | updated model has no valid modes: " + std::string(e.what());
         c.updated_hz.setConstant(m.num_modes(), kNaN);
         c.updated_mac.setConstant(m.num_modes(), kNaN);
       }
@@ -123,9 +127,7 @@ UpdateResult RunUpdate(const Study& study) {
   return r;
 }
 
-namespace {
-
-}  // namespace
+namespace {}  // namespace
 
 void RenderStaged(const Figure& figure, const std::string& name, OutputDir* out,
                   std::vector<std::string>* warnings) {
@@ -148,11 +150,12 @@ nlohmann::json IdentifiabilityJson(const Identifiability& id) {
   j["condition_number_unscaled"] = json_util::Number(id.condition_number_unscaled);
   j["null_directions"] = nlohmann::json::array();
   for (const auto& nd : id.null_directions) {
-    j["null_directions"].push_back({{"description", nd.description},
-                                    {"common_scaling", nd.common_scaling},
-                                    {"best_to_fix", nd.best_to_fix},
-                                    {"singular_value", nd.singular_value},
-                                    {"coefficients", json_util::Vector(nd.coefficients)}});
+    j["null_directions"].push_back(
+        {{"description", nd.description},
+         {"common_scaling", nd.common_scaling},
+         {"best_to_fix", nd.best_to_fix},
+         {"singular_value", nd.singular_value},
+         {"coefficients", json_util::Vector(nd.coefficients)}});
   }
   j["unseen"] = id.unseen;
   j["warnings"] = id.warnings;
@@ -166,7 +169,8 @@ double ErrorPercent(double model, double measured) {
 std::vector<double> Positions(const UpdateResult& r, const std::vector<int>& dofs) {
   std::vector<double> x;
   for (int d : dofs) {
-    x.push_back(d < static_cast<int>(r.dof_positions.size()) ? r.dof_positions[d] : d + 1);
+    x.push_back(d < static_cast<int>(r.dof_positions.size()) ? r.dof_positions[d]
+                                                             : d + 1);
   }
   return x;
 }
@@ -202,7 +206,8 @@ void WriteUpdateOutputs(const UpdateResult& r, bool plots, OutputDir* out,
                  {"unconstrained", IdentifiabilityJson(r.identifiability_unconstrained)},
                  {"solved", IdentifiabilityJson(r.solution.identifiability)}};
   j["rank"] = r.identifiability_unconstrained.rank;
-  j["singular_values"] = json_util::Vector(r.identifiability_unconstrained.singular_values);
+  j["singular_values"] =
+      json_util::Vector(r.identifiability_unconstrained.singular_values);
   j["solver"] = {{"status", ToString(r.solution.summary.status)},
                  {"message", r.solution.summary.message},
                  {"iterations", r.solution.summary.iterations},
@@ -291,14 +296,16 @@ void WriteUpdateOutputs(const UpdateResult& r, bool plots, OutputDir* out,
   for (const StateComparison& c : r.states) {
     if (c.measured_shapes.cols() == 0) continue;
     Figure shapes;
-    shapes.columns = static_cast<int>(std::min<Eigen::Index>(c.measured_shapes.cols(), 4));
+    shapes.columns =
+        static_cast<int>(std::min<Eigen::Index>(c.measured_shapes.cols(), 4));
     shapes.width_px = 380 * shapes.columns + 100;
     shapes.height_px = 500;
     // Plot only the transverse DOFs of a frame ("...:ux"), else every DOF.
     std::vector<int> rows;
     for (std::size_t i = 0; i < c.shape_dofs.size(); ++i) {
       const std::string& label = r.dof_labels[c.shape_dofs[i]];
-      if (label.size() > 3 && label.compare(label.size() - 3, 3, ":ux") == 0) rows.push_back(i);
+      if (label.size() > 3 && label.compare(label.size() - 3, 3, ":ux") == 0)
+        rows.push_back(i);
     }
     if (rows.empty()) {
       for (std::size_t i = 0; i < c.shape_dofs.size(); ++i) rows.push_back(i);
@@ -330,13 +337,14 @@ void WriteUpdateOutputs(const UpdateResult& r, bool plots, OutputDir* out,
 std::string UpdateReport(const UpdateResult& r) {
   std::ostringstream o;
   o << std::fixed;
-  o << "study: " << r.study_name << "\nmodel: " << r.model_description << " (" << r.num_dofs
-    << " DOFs)\n";
+  o << "study: " << r.study_name << "\nmodel: " << r.model_description << " ("
+    << r.num_dofs << " DOFs)\n";
   const Identifiability& u = r.identifiability_unconstrained;
   o << "system: " << ToString(r.form) << " form, " << r.problem.num_rows() << " x "
-    << r.problem.num_unknowns() << ", " << r.num_fem_modes << " FEM modes, rank " << u.rank
-    << " of " << r.problem.num_unknowns() << "\n";
-  for (const auto& nd : u.null_directions) o << "  null direction: " << nd.description << "\n";
+    << r.problem.num_unknowns() << ", " << r.num_fem_modes << " FEM modes, rank "
+    << u.rank << " of " << r.problem.num_unknowns() << "\n";
+  for (const auto& nd : u.null_directions)
+    o << "  null direction: " << nd.description << "\n";
   for (const auto& w : u.warnings) o << "  note: " << w << "\n";
   if (!r.problem.fixed.empty()) {
     o << "fixed:";
@@ -347,10 +355,10 @@ std::string UpdateReport(const UpdateResult& r) {
   }
   const Identifiability& s = r.solution.identifiability;
   o << "solver: " << ToString(r.solution.summary.status) << " (rank " << s.rank
-    << ", condition " << std::setprecision(1) << s.condition_number_in_rank << "): "
-    << r.solution.summary.message << "\n\n";
-  o << std::left << std::setw(22) << "parameter" << std::right << std::setw(14) << "estimate"
-    << std::setw(14) << (r.preset ? "preset" : "") << "\n";
+    << ", condition " << std::setprecision(1) << s.condition_number_in_rank
+    << "): " << r.solution.summary.message << "\n\n";
+  o << std::left << std::setw(22) << "parameter" << std::right << std::setw(14)
+    << "estimate" << std::setw(14) << (r.preset ? "preset" : "") << "\n";
   for (std::size_t i = 0; i < r.parameters.size(); ++i) {
     o << std::left << std::setw(22) << r.parameters[i].name << std::right << std::setw(14)
       << std::setprecision(6) << r.solution.x[i];

@@ -28,9 +28,9 @@ const char* ToString(AddedMassBasis basis);
 bool AddedMassBasisFromString(const std::string& text, AddedMassBasis* basis);
 
 struct LumpedMass {
-  int node = 0;                // 0 = base node, n = n-th node above it
-  double mass = 0;             // kg, on both translations
-  double rotary_inertia = 0;   // kg m^2
+  int node = 0;               // 0 = base node, n = n-th node above it
+  double mass = 0;            // kg, on both translations
+  double rotary_inertia = 0;  // kg m^2
 };
 
 // A vertical cantilever: base node at height 0, nodes up to the free end. Node
@@ -39,7 +39,8 @@ struct LumpedMass {
 struct CantileverSpec {
   std::vector<double> node_heights;  // m, strictly increasing, first = 0 (base)
   BeamSection section;
-  double water_depth = 0;  // m above the base; an element is wet when its midpoint is below
+  double water_depth =
+      0;  // m above the base; an element is wet when its midpoint is below
   AddedMassBasis added_mass_basis = AddedMassBasis::kElementMass;
   // Support springs at the base node (N/m, N m/rad). A value of 0 (the default)
   // makes that base DOF rigid; a positive value frees it and holds it by the

@@ -18,7 +18,8 @@ struct BeamSection {
 using Matrix6 = Eigen::Matrix<double, 6, 6>;
 
 // Element stiffness between nodes (x1, y1) and (x2, y2).
-Matrix6 Frame2dStiffness(const BeamSection& s, double x1, double y1, double x2, double y2);
+Matrix6 Frame2dStiffness(const BeamSection& s, double x1, double y1, double x2,
+                         double y2);
 // Consistent mass (axial linear + cubic Hermitian transverse), mass rho*A*L.
 Matrix6 Frame2dConsistentMass(const BeamSection& s, double x1, double y1, double x2,
                               double y2);

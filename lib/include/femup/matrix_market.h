@@ -28,11 +28,11 @@ void WriteMatrixMarket(const std::string& path, const Eigen::MatrixXd& matrix);
 // A model from another FE code: global K and M, and elements (substructures)
 // whose matrices carry the correction factors.
 struct MatrixMarketElement {
-  int id = 0;                     // 1-based
-  std::string label;              // empty: "e<id>"
-  std::string stiffness_file;     // may be empty (no stiffness factor possible)
-  std::string mass_file;          // may be empty
-  std::string added_mass_file;    // empty: the element mass is the added-mass basis
+  int id = 0;                   // 1-based
+  std::string label;            // empty: "e<id>"
+  std::string stiffness_file;   // may be empty (no stiffness factor possible)
+  std::string mass_file;        // may be empty
+  std::string added_mass_file;  // empty: the element mass is the added-mass basis
   // Global DOF (0-based) of each local row/column; empty when the files are
   // already in global DOFs.
   std::vector<int> dofs;

@@ -8,11 +8,11 @@
 
 namespace femup {
 
-enum class Immersion { kDry, kWet };  // which mass the state sees: M~dry or M~wet
+enum class Immersion { kDry, kWet };        // which mass the state sees: M~dry or M~wet
 const char* ToString(Immersion immersion);  // "dry", "wet"
 
 struct ModalData {
-  std::string state;             // a name: "air", "water", "water_1.2m"
+  std::string state;  // a name: "air", "water", "water_1.2m"
   Immersion immersion = Immersion::kDry;
   Eigen::VectorXd frequencies_hz;  // one per measured mode, > 0
   // Mode shapes, one column per mode, one row per sensor DOF. Any scaling.

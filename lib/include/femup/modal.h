@@ -19,10 +19,10 @@ struct Modes {
 struct EigenOptions {
   enum class Method { kAuto, kDense, kSparseShiftInvert };
   Method method = Method::kAuto;
-  int num_modes = -1;       // -1: all (dense only); sparse needs 1 <= k < n
-  int dense_limit = 1500;   // kAuto uses dense at or below this many DOFs
-  double shift = 0.0;       // sparse: modes nearest this eigenvalue (rad^2/s^2)
-  double tolerance = 1e-10; // sparse: Krylov convergence tolerance
+  int num_modes = -1;        // -1: all (dense only); sparse needs 1 <= k < n
+  int dense_limit = 1500;    // kAuto uses dense at or below this many DOFs
+  double shift = 0.0;        // sparse: modes nearest this eigenvalue (rad^2/s^2)
+  double tolerance = 1e-10;  // sparse: Krylov convergence tolerance
   int max_iterations = 1000;
   // Returns an empty string when valid, otherwise what is wrong.
   std::string Validate() const;

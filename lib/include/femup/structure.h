@@ -13,13 +13,13 @@ namespace femup {
 
 // One element (or substructure) in global free DOFs.
 struct ElementMatrices {
-  int id = 0;              // 1-based element number
-  std::string label;       // used in parameter names: "3" (chain), "e3" (frame)
-  SparseMatrix stiffness;  // K_e, num_dofs x num_dofs
-  SparseMatrix mass;       // M_e (structural mass of the element)
+  int id = 0;                     // 1-based element number
+  std::string label;              // used in parameter names: "3" (chain), "e3" (frame)
+  SparseMatrix stiffness;         // K_e, num_dofs x num_dofs
+  SparseMatrix mass;              // M_e (structural mass of the element)
   SparseMatrix added_mass_basis;  // Mw_e: the basis for water added mass
-  bool wet = false;        // below the water line
-  double x0 = 0, x1 = 0;   // position along the structure (m), where it applies
+  bool wet = false;               // below the water line
+  double x0 = 0, x1 = 0;          // position along the structure (m), where it applies
 };
 
 struct Structure {
@@ -28,7 +28,7 @@ struct Structure {
   SparseMatrix mass;       // baseline M (includes lumped masses)
   std::vector<std::string> dof_labels;
   std::vector<ElementMatrices> elements;
-  double length = 0;       // overall length where it applies (m), 0 otherwise
+  double length = 0;  // overall length where it applies (m), 0 otherwise
   // Positions along the structure of each DOF (for plots), may be empty.
   std::vector<double> dof_positions;
   // Index of the element with the given id, or -1.

@@ -30,7 +30,8 @@ struct CorrectionSystemOptions {
 // M~dry, wet states M~wet). Added-mass columns are zero in dry rows.
 // The summed form needs exactly one dry and one wet state. Throws InputError
 // on size mismatches, incomplete shapes, or a form the states do not allow.
-LinearProblem BuildCorrectionSystem(const ParametrisedModel& model, const Modes& fem_modes,
+LinearProblem BuildCorrectionSystem(const ParametrisedModel& model,
+                                    const Modes& fem_modes,
                                     const std::vector<ModalData>& states,
                                     const CorrectionSystemOptions& options);
 

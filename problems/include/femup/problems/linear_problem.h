@@ -2,20 +2,19 @@
 // Every linear solver takes this one type.
 #pragma once
 
+#include <Eigen/Core>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include <Eigen/Core>
-
 namespace femup {
 
 struct LinearProblem {
-  Eigen::MatrixXd A;                     // m x n
-  Eigen::VectorXd b;                     // m
-  std::vector<std::string> names;        // n unknown names ("mass[3]")
-  std::vector<std::string> groups;       // n group names ("mass", "stiffness"); may be empty
-  std::vector<std::string> row_labels;   // m, may be empty
+  Eigen::MatrixXd A;                // m x n
+  Eigen::VectorXd b;                // m
+  std::vector<std::string> names;   // n unknown names ("mass[3]")
+  std::vector<std::string> groups;  // n group names ("mass", "stiffness"); may be empty
+  std::vector<std::string> row_labels;        // m, may be empty
   std::vector<std::pair<int, double>> fixed;  // (unknown index, known value)
 
   int num_rows() const { return static_cast<int>(A.rows()); }

@@ -2,10 +2,9 @@
 // directions the data cannot see, described in terms of named parameters.
 #pragma once
 
+#include <Eigen/Core>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 namespace femup {
 
@@ -15,7 +14,7 @@ struct NullDirection {
   // In words, e.g. "common scaling: all mass, stiffness and added_mass factors
   // move together (0.28 mass[1] + ...)".
   std::string description;
-  bool common_scaling = false;   // every mass and stiffness unknown, one sign
+  bool common_scaling = false;  // every mass and stiffness unknown, one sign
   // The unknown with the largest component: fixing it to a known value
   // removes this direction best.
   std::string best_to_fix;
@@ -25,11 +24,11 @@ struct Identifiability {
   Eigen::VectorXd singular_values;  // of A with unit-norm columns, descending
   double tolerance = 0;             // absolute threshold applied to them
   int rank = 0;
-  double condition_number = 0;      // s_max / s_min over all (inf when s_min = 0)
-  double condition_number_in_rank = 0;  // s_max / s_rank
-  double condition_number_unscaled = 0; // of A itself, before column scaling
-  std::vector<NullDirection> null_directions;   // one per singular value below tolerance
-  std::vector<std::string> unseen;  // unknowns whose column is exactly zero
+  double condition_number = 0;           // s_max / s_min over all (inf when s_min = 0)
+  double condition_number_in_rank = 0;   // s_max / s_rank
+  double condition_number_unscaled = 0;  // of A itself, before column scaling
+  std::vector<NullDirection> null_directions;  // one per singular value below tolerance
+  std::vector<std::string> unseen;             // unknowns whose column is exactly zero
   std::vector<std::string> warnings;
 };
 

@@ -24,8 +24,8 @@ struct LinearSolverOptions {
 };
 
 struct LinearSolution {
-  Eigen::VectorXd x;            // every unknown, fixed ones at their values
-  Eigen::VectorXd residual;     // A x - b
+  Eigen::VectorXd x;                // every unknown, fixed ones at their values
+  Eigen::VectorXd residual;         // A x - b
   Identifiability identifiability;  // of the free-unknown system that was solved
   SolverSummary summary;
 };

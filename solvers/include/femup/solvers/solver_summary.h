@@ -6,10 +6,10 @@
 namespace femup {
 
 enum class SolverStatus {
-  kSolved,        // a unique solution was found
-  kMinimumNorm,   // rank deficient: the minimum-norm solution of the free unknowns
-  kNoConvergence, // an iterative solver stopped at its limit
-  kFailed,        // the solver could not produce a solution (see message)
+  kSolved,         // a unique solution was found
+  kMinimumNorm,    // rank deficient: the minimum-norm solution of the free unknowns
+  kNoConvergence,  // an iterative solver stopped at its limit
+  kFailed,         // the solver could not produce a solution (see message)
 };
 const char* ToString(SolverStatus status);  // "solved", "minimum_norm", ...
 
@@ -17,7 +17,7 @@ struct SolverSummary {
   SolverStatus status = SolverStatus::kFailed;
   std::string message;
   int iterations = 0;
-  double cost = 0;          // 0.5 ||A x - b||^2 at the solution
+  double cost = 0;  // 0.5 ||A x - b||^2 at the solution
   double time_seconds = 0;
   bool usable() const {
     return status == SolverStatus::kSolved || status == SolverStatus::kMinimumNorm;

@@ -14,7 +14,7 @@ namespace femup {
 struct ModesResult {
   std::string study_name;
   std::string model_description;
-  Modes nominal;                       // lowest modes of (K, M)
+  Modes nominal;  // lowest modes of (K, M)
   std::vector<std::string> dof_labels;
   std::vector<double> dof_positions;
   double max_residual = 0;             // max_j ||K phi - lambda M phi|| / ||K phi||

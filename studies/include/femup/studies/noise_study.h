@@ -20,11 +20,11 @@ struct NoiseStudyResult {
   NoiseStudySpec spec;
   std::vector<std::string> parameter_names;
   Eigen::VectorXd preset;
-  std::vector<int> added_mass_indices;       // parameters with an Rm
+  std::vector<int> added_mass_indices;  // parameters with an Rm
   // rm[level][k]: statistics of added-mass factor k (in added_mass_indices order).
   std::vector<std::vector<RmStatistics>> rm;
-  std::vector<double> rm_average;            // mean over factors of the mean Rm, per level
-  std::vector<int> usable_draws;             // per level: draws the solver could solve
+  std::vector<double> rm_average;  // mean over factors of the mean Rm, per level
+  std::vector<int> usable_draws;   // per level: draws the solver could solve
   // Estimates at spec.figure_level (or the nearest level): mean and std per parameter.
   double figure_level = 0;
   Eigen::VectorXd figure_mean, figure_std, figure_first_draw;

@@ -21,10 +21,10 @@ namespace femup {
 
 // Where a measured state's modes come from.
 struct MeasurementSpec {
-  std::string state;                   // "air", "water"
+  std::string state;  // "air", "water"
   Immersion immersion = Immersion::kDry;
-  int simulate_modes = 0;              // > 0: simulate this many modes from `truth`
-  ModalData data;                      // given modes (when simulate_modes == 0)
+  int simulate_modes = 0;  // > 0: simulate this many modes from `truth`
+  ModalData data;          // given modes (when simulate_modes == 0)
 };
 
 struct NoiseStudySpec {
@@ -36,7 +36,7 @@ struct NoiseStudySpec {
 };
 
 struct Study {
-  std::string path;         // the study file
+  std::string path;  // the study file
   std::string name;
   std::string description;
   Structure structure;

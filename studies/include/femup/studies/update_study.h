@@ -31,10 +31,10 @@ struct UpdateResult {
   std::string study_name;
   std::string model_description;
   int num_dofs = 0;
-  std::vector<Parameter> parameters;   // without basis matrices
+  std::vector<Parameter> parameters;  // without basis matrices
   std::optional<Eigen::VectorXd> preset;
   std::vector<bool> fixed;
-  LinearProblem problem;               // Z, F (fixed values recorded)
+  LinearProblem problem;  // Z, F (fixed values recorded)
   SystemForm form = SystemForm::kStacked;
   int num_fem_modes = 0;
   Identifiability identifiability_unconstrained;  // of the full Z, before fixing
