@@ -34,7 +34,8 @@ BeamSection PaperSection() {
 
 // f = (beta L)^2 / (2 pi L^2) sqrt(EI / (rho A)).
 double BeamFrequencyHz(double beta_l, double length, const BeamSection& s) {
-  return beta_l * beta_l / (2 * kPi * length * length) * std::sqrt(s.E * s.I / (s.rho * s.A));
+  return beta_l * beta_l / (2 * kPi * length * length) *
+         std::sqrt(s.E * s.I / (s.rho * s.A));
 }
 
 Eigen::VectorXd LowestFrequenciesHz(const Structure& s, int count) {
@@ -167,8 +168,17 @@ TEST(BuildCantilever, PaperBeamFrequenciesAndWetElements) {
   EXPECT_EQ(s.mass.rows(), 30);
   EXPECT_DOUBLE_EQ(s.length, 1.9);
   const Eigen::VectorXd f = LowestFrequenciesHz(s, 2);
+  // method.md quotes 7.82 / 49.01 Hz. For this I the continuous beam gives
+  // 7.8180 / 48.9946 Hz and a conforming mesh lies just above it, so the
+  // second value is really 49.00 (49.01 is f1 = 7.82 times the ratio 6.267):
+  // check both the quoted values (49.01 to 0.015 Hz) and the analytic ones.
   EXPECT_NEAR(f[0], 7.82, 0.005);
-  EXPECT_NEAR(f[1], 49.01, 0.005);
+  EXPECT_NEAR(f[1], 49.01, 0.015);
+  for (int k = 0; k < 2; ++k) {
+    const double exact = BeamFrequencyHz(kClampedFreeBetaL[k], 1.9, spec.section);
+    EXPECT_GE(f[k], exact * (1 - 1e-12)) << "a conforming mesh is stiffer";
+    EXPECT_LE(f[k], exact * (1 + 1e-4));
+  }
   ASSERT_EQ(s.elements.size(), 10u);
   int wet = 0;
   for (const ElementMatrices& e : s.elements) {
@@ -191,7 +201,8 @@ TEST(BuildCantilever, StiffnessAndMassAreSumsOfElements) {
     k += Dense(e.stiffness);
     m += Dense(e.mass);
   }
-  EXPECT_LE((k - Dense(s.stiffness)).cwiseAbs().maxCoeff(), 1e-12 * k.cwiseAbs().maxCoeff());
+  EXPECT_LE((k - Dense(s.stiffness)).cwiseAbs().maxCoeff(),
+            1e-12 * k.cwiseAbs().maxCoeff());
   EXPECT_LE((m - Dense(s.mass)).cwiseAbs().maxCoeff(), 1e-12 * m.cwiseAbs().maxCoeff());
 }
 
@@ -333,13 +344,13 @@ TEST(BuildCantilever, LumpedTipMassBetweenRayleighAndDunkerley) {
   EXPECT_LT(f1, f_bare);
   // Upper bound: Rayleigh quotient of the static tip-load shape (a cubic, which
   // Hermite elements represent exactly): 3 EI / L^3 / (M + 33/140 m).
-  const double rayleigh = 3 * ei / std::pow(length, 3) / (tip_mass + 33.0 / 140.0 * beam_mass);
+  const double rayleigh =
+      3 * ei / std::pow(length, 3) / (tip_mass + 33.0 / 140.0 * beam_mass);
   // Lower bound (Dunkerley): 1 / lambda1 <= sum over modes of 1 / lambda_i,
   // which is rho A L^4 / (12 EI) for the bare cantilever plus the tip mass
   // over the tip stiffness 3 EI / L^3.
-  const double dunkerley =
-      1.0 / (sec.rho * sec.A * std::pow(length, 4) / (12 * ei) +
-             tip_mass * std::pow(length, 3) / (3 * ei));
+  const double dunkerley = 1.0 / (sec.rho * sec.A * std::pow(length, 4) / (12 * ei) +
+                                  tip_mass * std::pow(length, 3) / (3 * ei));
   EXPECT_LE(lambda, rayleigh * (1 + 1e-12));
   EXPECT_GE(lambda, dunkerley * (1 - 1e-12));
   // The bounds are within 1 % of each other, so this pins f1 down.
@@ -358,7 +369,8 @@ TEST(BuildCantilever, LumpedRotaryInertiaLowersF1) {
   spec.lumped_masses.push_back({10, 0.0, 0.5});
   const Structure s = BuildCantilever(spec);
   EXPECT_LT(LowestFrequenciesHz(s, 1)[0], f_bare);
-  const Eigen::MatrixXd diff = Dense(s.mass) - Dense(BuildCantilever(Uniform(1.9, 10)).mass);
+  const Eigen::MatrixXd diff =
+      Dense(s.mass) - Dense(BuildCantilever(Uniform(1.9, 10)).mass);
   EXPECT_NEAR(diff(29, 29), 0.5, 1e-12);
   EXPECT_NEAR(diff(27, 27), 0.0, 1e-12);
 }

@@ -82,17 +82,19 @@ TEST_P(PaperSystem, RecoversEveryFactorWithMass4Fixed) {
     }
     if (wet == 3) {
       // method.md: condition number of the reduced Z about 91 (summed), 87 (stacked).
-      std::printf("condition in rank (%s): %.3f / %.3f\n", ToString(GetParam()),
-                  sol.identifiability.condition_number,
-                  sol.identifiability.condition_number_in_rank);
+      // Unscaled stacked form: 86.6 here, about 87 in method.md. The summed
+      // form's value depends on the relative scaling of air and water shapes.
+      if (GetParam() == SystemForm::kStacked) {
+        EXPECT_NEAR(sol.identifiability.condition_number_unscaled, 87.0, 1.0);
+      }
     }
   }
 }
 
 INSTANTIATE_TEST_SUITE_P(Forms, PaperSystem,
                          ::testing::Values(SystemForm::kSummed, SystemForm::kStacked),
-                         [](const auto& info) {
-                           return std::string(ToString(info.param));
+                         [](const auto& param_info) {
+                           return std::string(ToString(param_info.param));
                          });
 
 }  // namespace

@@ -91,6 +91,10 @@ void AddFamily(const Structure& s, ParameterKind kind, const ParameterFamily& fa
                            "element " + std::to_string(id) +
                                " is not wet: it cannot carry added mass");
         }
+        if (std::find(idx.begin(), idx.end(), i) != idx.end()) {
+          throw InputError(field + ".groups", "element " + std::to_string(id) +
+                                                  " is listed twice in a group");
+        }
         idx.push_back(i);
       }
       if (idx.empty()) throw InputError(field + ".groups", "a group is empty");

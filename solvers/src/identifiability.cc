@@ -89,7 +89,7 @@ NullDirection Describe(Eigen::VectorXd v, double sigma,
 Identifiability AnalyseIdentifiability(const Eigen::MatrixXd& a,
                                        const std::vector<std::string>& names,
                                        const std::vector<std::string>& groups,
-                                       double relative_tolerance) {
+                                       double relative_tolerance, bool scale_columns) {
   if (a.cols() == 0) throw InputError("identifiability", "the matrix has no column");
   if (!a.allFinite())
     throw InputError("identifiability", "the matrix has a NaN or Inf entry");
@@ -108,6 +108,7 @@ Identifiability AnalyseIdentifiability(const Eigen::MatrixXd& a,
       scale[j] = 1.0;
     }
   }
+  if (!scale_columns) scale.setOnes();
   const Eigen::MatrixXd as = a * scale.cwiseInverse().asDiagonal();
   Eigen::BDCSVD<Eigen::MatrixXd> svd(as, Eigen::ComputeFullV);
   const Eigen::VectorXd s = svd.singularValues();
@@ -121,7 +122,10 @@ Identifiability AnalyseIdentifiability(const Eigen::MatrixXd& a,
     if (out.singular_values[i] > out.tolerance) ++out.rank;
   }
   const double smin = out.singular_values[n - 1];
-  out.condition_number = smin > 0 ? smax / smin : std::numeric_limits<double>::infinity();
+  // Infinite when the matrix is rank deficient at the tolerance: a ratio like
+  // 1e17 from rounding noise would be a number nobody should quote.
+  out.condition_number =
+      (smin > 0 && out.rank == n) ? smax / smin : std::numeric_limits<double>::infinity();
   out.condition_number_in_rank = out.rank > 0 ? smax / out.singular_values[out.rank - 1]
                                               : std::numeric_limits<double>::infinity();
   {

@@ -34,7 +34,7 @@ std::vector<std::string> AvailableLinearSolvers() { return {"lstsq"}; }
 std::unique_ptr<LinearSolver> CreateLinearSolver(const std::string& name,
                                                  const LinearSolverOptions& options) {
   const std::string invalid = options.Validate();
-  if (!invalid.empty()) throw InputError("solver", invalid);
+  if (!invalid.empty()) throw InputError("solver.rank_tolerance", invalid);
   if (name == "lstsq") return std::make_unique<LstsqSolver>(options);
   std::string known;
   for (const auto& n : AvailableLinearSolvers()) known += (known.empty() ? "" : ", ") + n;

@@ -30,8 +30,8 @@ LinearSolution LstsqSolver::Solve(const LinearProblem& problem) const {
   }
 
   LinearSolution solution;
-  solution.identifiability =
-      AnalyseIdentifiability(a, names, groups, options_.relative_rank_tolerance);
+  solution.identifiability = AnalyseIdentifiability(
+      a, names, groups, options_.relative_rank_tolerance, options_.scale_columns);
 
   Eigen::VectorXd scale = Eigen::VectorXd::Ones(nfree);
   if (options_.scale_columns) {

@@ -24,21 +24,23 @@ struct Identifiability {
   Eigen::VectorXd singular_values;  // of A with unit-norm columns, descending
   double tolerance = 0;             // absolute threshold applied to them
   int rank = 0;
-  double condition_number = 0;           // s_max / s_min over all (inf when s_min = 0)
-  double condition_number_in_rank = 0;   // s_max / s_rank
-  double condition_number_unscaled = 0;  // of A itself, before column scaling
+  double condition_number = 0;                 // s_max / s_min (inf when rank < n)
+  double condition_number_in_rank = 0;         // s_max / s_rank
+  double condition_number_unscaled = 0;        // of A itself, before column scaling
   std::vector<NullDirection> null_directions;  // one per singular value below tolerance
   std::vector<std::string> unseen;             // unknowns whose column is exactly zero
   std::vector<std::string> warnings;
 };
 
-// Analyses A (m x n) with columns scaled to unit norm. `names`/`groups` (may be
-// empty) label the columns; groups "mass" and "stiffness" are used to recognise
-// the common scaling of K and M. `relative_tolerance` times the largest
+// Analyses A (m x n) with columns scaled to unit norm (or as it is, when
+// `scale_columns` is false: then the rank decision depends on the units).
+// `names`/`groups` (may be empty) label the columns; groups "mass" and "stiffness" are
+// used to recognise the common scaling of K and M. `relative_tolerance` times the largest
 // singular value is the rank threshold.
 Identifiability AnalyseIdentifiability(const Eigen::MatrixXd& a,
                                        const std::vector<std::string>& names,
                                        const std::vector<std::string>& groups,
-                                       double relative_tolerance);
+                                       double relative_tolerance,
+                                       bool scale_columns = true);
 
 }  // namespace femup

@@ -1,0 +1,415 @@
+// Linear least squares (solvers/include/femup/solvers/{linear_solver,lstsq,
+// identifiability}.h) and LinearProblem
+// (problems/include/femup/problems/linear_problem.h), checked against normal
+// equations in long double, pseudo-inverses from Eigen's complete orthogonal
+// decomposition, and hand-made rank-deficient examples.
+#include "femup/solvers/lstsq.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "femup/errors.h"
+#include "femup/problems/linear_problem.h"
+#include "femup/solvers/identifiability.h"
+#include "femup/solvers/linear_solver.h"
+
+namespace femup {
+namespace {
+
+using MatrixLd = Eigen::Matrix<long double, Eigen::Dynamic, Eigen::Dynamic>;
+using VectorLd = Eigen::Matrix<long double, Eigen::Dynamic, 1>;
+
+Eigen::MatrixXd RandomMatrix(int rows, int cols, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> g(0.0, 1.0);
+  Eigen::MatrixXd a(rows, cols);
+  for (int i = 0; i < a.size(); ++i) a.data()[i] = g(rng);
+  return a;
+}
+
+// Least-squares solution by the normal equations in long double.
+Eigen::VectorXd NormalEquations(const Eigen::MatrixXd& a, const Eigen::VectorXd& b) {
+  const MatrixLd al = a.cast<long double>();
+  const VectorLd bl = b.cast<long double>();
+  const MatrixLd ata = al.transpose() * al;
+  const VectorLd atb = al.transpose() * bl;
+  return Eigen::LLT<MatrixLd>(ata).solve(atb).cast<double>();
+}
+
+LinearProblem Problem(const Eigen::MatrixXd& a, const Eigen::VectorXd& b) {
+  LinearProblem p;
+  p.A = a;
+  p.b = b;
+  for (int j = 0; j < a.cols(); ++j) p.names.push_back("x" + std::to_string(j + 1));
+  return p;
+}
+
+double MaxRelativeError(const Eigen::VectorXd& x, const Eigen::VectorXd& ref) {
+  return (x - ref).cwiseAbs().maxCoeff() / ref.cwiseAbs().maxCoeff();
+}
+
+TEST(LstsqSolver, OverdeterminedMatchesNormalEquations) {
+  const Eigen::MatrixXd a = RandomMatrix(30, 5, 1);
+  const Eigen::VectorXd b = RandomMatrix(30, 1, 2);
+  const LinearProblem p = Problem(a, b);
+  const auto solver = CreateLinearSolver("lstsq");
+  ASSERT_NE(solver, nullptr);
+  EXPECT_EQ(solver->name(), "lstsq");
+  const LinearSolution sol = solver->Solve(p);
+  const Eigen::VectorXd ref = NormalEquations(a, b);
+  EXPECT_EQ(sol.summary.status, SolverStatus::kSolved);
+  EXPECT_TRUE(sol.summary.usable());
+  EXPECT_LE(MaxRelativeError(sol.x, ref), 1e-13);
+  // Residual and cost are of the returned x; the residual is orthogonal to A.
+  EXPECT_LE((sol.residual - (a * sol.x - b)).norm(), 1e-14 * b.norm());
+  EXPECT_NEAR(sol.summary.cost, 0.5 * (a * ref - b).squaredNorm(),
+              1e-12 * b.squaredNorm());
+  EXPECT_LE((a.transpose() * sol.residual).norm(), 1e-12 * a.norm() * b.norm());
+  EXPECT_EQ(sol.identifiability.rank, 5);
+  EXPECT_TRUE(sol.identifiability.null_directions.empty());
+  EXPECT_FALSE(sol.summary.message.empty());
+}
+
+TEST(LstsqSolver, WithoutColumnScalingSameFullRankSolution) {
+  const Eigen::MatrixXd a = RandomMatrix(30, 5, 15);
+  const Eigen::VectorXd b = RandomMatrix(30, 1, 16);
+  LinearSolverOptions options;
+  options.scale_columns = false;
+  const LinearSolution sol = CreateLinearSolver("lstsq", options)->Solve(Problem(a, b));
+  EXPECT_EQ(sol.summary.status, SolverStatus::kSolved);
+  EXPECT_LE(MaxRelativeError(sol.x, NormalEquations(a, b)), 1e-13);
+}
+
+TEST(LstsqSolver, MinimumNormWithoutColumnScalingNamesTheDirections) {
+  // lstsq.h: when A is rank deficient the minimum-norm solution comes "with a
+  // warning that names the directions the data cannot determine". Without
+  // column scaling, columns of norm 1e-9 and 1e9 make the solver's own rank
+  // decision (on the unscaled A) rank deficient; the summary must then say
+  // which direction, and the identifiability it returns must agree.
+  Eigen::MatrixXd a(4, 3);
+  // clang-format off
+  a <<  1e-9,  1.0,  1e9,
+        2e-9, -1.0,  3e9,
+       -1e-9,  0.5,  1e9,
+        3e-9,  2.0, -2e9;
+  // clang-format on
+  const Eigen::VectorXd b = a * Eigen::Vector3d(1e9, 1.0, 1e-9);
+  LinearSolverOptions options;
+  options.scale_columns = false;
+  const LinearSolution sol = CreateLinearSolver("lstsq", options)->Solve(Problem(a, b));
+  if (sol.summary.status == SolverStatus::kMinimumNorm) {
+    EXPECT_FALSE(sol.identifiability.null_directions.empty())
+        << "status minimum_norm but identifiability rank " << sol.identifiability.rank
+        << " of 3 and no null direction; message: " << sol.summary.message;
+    const std::string tail = "Add a constraint: ";
+    const std::string& msg = sol.summary.message;
+    EXPECT_FALSE(msg.size() >= tail.size() &&
+                 msg.compare(msg.size() - tail.size(), tail.size(), tail) == 0)
+        << "the message names no direction: " << msg;
+  }
+}
+
+TEST(LstsqSolver, FixedValuesAreHonoured) {
+  const Eigen::MatrixXd a = RandomMatrix(25, 4, 3);
+  const Eigen::VectorXd b = RandomMatrix(25, 1, 4);
+  LinearProblem p = Problem(a, b);
+  p.Fix("x3", 0.7);
+  EXPECT_TRUE(p.IsFixed(2));
+  EXPECT_EQ(p.FreeUnknowns(), (std::vector<int>{0, 1, 3}));
+  const LinearSolution sol = CreateLinearSolver("lstsq")->Solve(p);
+  EXPECT_EQ(sol.x[2], 0.7);
+  // Reference: least squares of the other three on b - 0.7 a3.
+  Eigen::MatrixXd reduced(25, 3);
+  reduced << a.col(0), a.col(1), a.col(3);
+  const Eigen::VectorXd ref = NormalEquations(reduced, b - 0.7 * a.col(2));
+  const Eigen::Vector3d free(sol.x[0], sol.x[1], sol.x[3]);
+  EXPECT_LE(MaxRelativeError(free, ref), 1e-13);
+  EXPECT_EQ(sol.summary.status, SolverStatus::kSolved);
+  EXPECT_LE((sol.residual - (a * sol.x - b)).norm(), 1e-14 * b.norm());
+}
+
+TEST(LstsqSolver, RankDeficientGivesScaledMinimumNorm) {
+  Eigen::MatrixXd a = RandomMatrix(20, 4, 5);
+  a.col(1) *= 50.0;                      // unequal column norms
+  a.col(3) = 2.0 * a.col(0) - a.col(1);  // rank 3
+  const Eigen::VectorXd b = RandomMatrix(20, 1, 6);
+  const LinearProblem p = Problem(a, b);
+  const LinearSolution sol = CreateLinearSolver("lstsq")->Solve(p);
+  EXPECT_EQ(sol.summary.status, SolverStatus::kMinimumNorm);
+  EXPECT_TRUE(sol.summary.usable());
+  EXPECT_NE(sol.summary.message.find("rank 3 of 4"), std::string::npos)
+      << sol.summary.message;
+  EXPECT_EQ(sol.identifiability.rank, 3);
+  ASSERT_EQ(sol.identifiability.null_directions.size(), 1u);
+  // Reference: pseudo-inverse solution of the column-scaled matrix, mapped back.
+  const Eigen::VectorXd scale = a.colwise().norm().transpose();
+  const Eigen::MatrixXd as = a * scale.cwiseInverse().asDiagonal();
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(as);
+  cod.setThreshold(1e-10);
+  ASSERT_EQ(cod.rank(), 3);
+  const Eigen::VectorXd ref = scale.cwiseInverse().asDiagonal() * cod.solve(b);
+  EXPECT_LE(MaxRelativeError(sol.x, ref), 1e-11);
+  // A (2, -1, 0, -1) = 0: the null direction, in the unknowns' own units.
+  const Eigen::VectorXd v = sol.identifiability.null_directions[0].coefficients;
+  EXPECT_LE((a * v).norm(), 1e-10 * a.norm());
+  EXPECT_NEAR(std::abs(v.normalized().dot(Eigen::Vector4d(2, -1, 0, -1).normalized())),
+              1.0, 1e-10);
+  EXPECT_NEAR(v[2], 0.0, 1e-10);
+}
+
+TEST(LstsqSolver, ZeroColumnIsUnseen) {
+  Eigen::MatrixXd a = RandomMatrix(10, 3, 7);
+  a.col(1).setZero();
+  const Eigen::VectorXd b = RandomMatrix(10, 1, 8);
+  const LinearSolution sol = CreateLinearSolver("lstsq")->Solve(Problem(a, b));
+  EXPECT_EQ(sol.identifiability.unseen, std::vector<std::string>{"x2"});
+  EXPECT_EQ(sol.summary.status, SolverStatus::kMinimumNorm);
+  EXPECT_EQ(sol.x[1], 0.0);  // minimum norm: nothing is put where no data is
+  Eigen::MatrixXd reduced(10, 2);
+  reduced << a.col(0), a.col(2);
+  const Eigen::VectorXd ref = NormalEquations(reduced, b);
+  EXPECT_LE(MaxRelativeError(Eigen::Vector2d(sol.x[0], sol.x[2]), ref), 1e-13);
+  bool warned = false;
+  for (const auto& w : sol.identifiability.warnings)
+    warned |= w.find("x2") != std::string::npos;
+  EXPECT_TRUE(warned);
+}
+
+TEST(LstsqSolver, BadlyScaledColumnsSolvedToFullAccuracy) {
+  Eigen::MatrixXd a = RandomMatrix(15, 3, 9);
+  a.col(0) *= 1e-8;
+  a.col(2) *= 1e8;
+  const Eigen::Vector3d x_true(3e7, -0.25, 4e-9);  // each term of order 1
+  const Eigen::VectorXd b = a * x_true;
+  const LinearSolution sol = CreateLinearSolver("lstsq")->Solve(Problem(a, b));
+  EXPECT_EQ(sol.summary.status, SolverStatus::kSolved);
+  for (int j = 0; j < 3; ++j) {
+    EXPECT_NEAR(sol.x[j], x_true[j], 1e-12 * std::abs(x_true[j])) << j;
+  }
+  EXPECT_GT(sol.identifiability.condition_number_unscaled, 1e14);
+  EXPECT_LT(sol.identifiability.condition_number, 1e3);
+}
+
+TEST(LinearSolverFactory, NamesAndErrors) {
+  EXPECT_EQ(AvailableLinearSolvers(), std::vector<std::string>{"lstsq"});
+  EXPECT_NE(CreateLinearSolver("lstsq"), nullptr);
+  try {
+    CreateLinearSolver("qr");
+    FAIL() << "no exception";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where(), "solver.name");
+    const std::string what = e.what();
+    EXPECT_NE(what.find("qr"), std::string::npos) << what;
+    for (const std::string& name : AvailableLinearSolvers()) {
+      EXPECT_NE(what.find(name), std::string::npos) << what;
+    }
+  }
+  for (double tol : {0.0, -1e-3, 1.0, std::numeric_limits<double>::quiet_NaN()}) {
+    LinearSolverOptions options;
+    options.relative_rank_tolerance = tol;
+    EXPECT_NE(options.Validate(), "") << tol;
+    try {
+      CreateLinearSolver("lstsq", options);
+      ADD_FAILURE() << "no exception for tolerance " << tol;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("rank_tolerance"), std::string::npos)
+          << e.what();
+    }
+  }
+  EXPECT_EQ(LinearSolverOptions().Validate(), "");
+}
+
+TEST(LinearSolverFactory, InvalidOptionErrorNamesTheField) {
+  // linear_solver.h: "InputError("solver.<field>", ...) for invalid options".
+  LinearSolverOptions options;
+  options.relative_rank_tolerance = 2.0;
+  try {
+    CreateLinearSolver("lstsq", options);
+    FAIL() << "no exception";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().rfind("solver.", 0), 0u) << "where() = '" << e.where() << "'";
+  }
+}
+
+TEST(SolverStatus, Names) {
+  EXPECT_STREQ(ToString(SolverStatus::kSolved), "solved");
+  EXPECT_STREQ(ToString(SolverStatus::kMinimumNorm), "minimum_norm");
+  EXPECT_STREQ(ToString(SolverStatus::kNoConvergence), "no_convergence");
+  EXPECT_STREQ(ToString(SolverStatus::kFailed), "failed");
+}
+
+// ---------------------------------------------------------------------------
+// LinearProblem.
+
+TEST(LinearProblem, ValidateMessages) {
+  const LinearProblem good = Problem(RandomMatrix(4, 3, 10), RandomMatrix(4, 1, 11));
+  EXPECT_EQ(good.Validate(), "");
+
+  LinearProblem p = good;
+  p.b = Eigen::VectorXd::Zero(5);
+  EXPECT_NE(p.Validate().find("4 rows but b has 5"), std::string::npos) << p.Validate();
+
+  p = good;
+  p.names.pop_back();
+  EXPECT_NE(p.Validate().find("2 names for 3 unknowns"), std::string::npos)
+      << p.Validate();
+
+  p = good;
+  p.groups = {"mass"};
+  EXPECT_NE(p.Validate().find("groups"), std::string::npos) << p.Validate();
+
+  p = good;
+  p.row_labels = {"r1"};
+  EXPECT_NE(p.Validate().find("row labels"), std::string::npos) << p.Validate();
+
+  p = good;
+  p.A(1, 2) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_NE(p.Validate().find("A has a NaN"), std::string::npos) << p.Validate();
+
+  p = good;
+  p.b[0] = std::numeric_limits<double>::infinity();
+  EXPECT_NE(p.Validate().find("b has a NaN"), std::string::npos) << p.Validate();
+
+  p = good;
+  p.fixed = {{3, 1.0}};
+  EXPECT_NE(p.Validate().find("index 3 is outside 0..2"), std::string::npos)
+      << p.Validate();
+  p.fixed = {{-1, 1.0}};
+  EXPECT_NE(p.Validate().find("outside"), std::string::npos) << p.Validate();
+
+  p = good;
+  p.fixed = {{1, 1.0}, {1, 2.0}};
+  EXPECT_NE(p.Validate().find("x2 is fixed twice"), std::string::npos) << p.Validate();
+
+  p = good;
+  p.fixed = {{0, std::numeric_limits<double>::quiet_NaN()}};
+  EXPECT_NE(p.Validate().find("not finite"), std::string::npos) << p.Validate();
+
+  p = good;
+  p.fixed = {{0, 1.0}, {1, 1.0}, {2, 1.0}};
+  EXPECT_NE(p.Validate(), "");
+
+  // The solver refuses an invalid problem before any work.
+  p = good;
+  p.b = Eigen::VectorXd::Zero(5);
+  EXPECT_THROW(CreateLinearSolver("lstsq")->Solve(p), InputError);
+}
+
+TEST(LinearProblem, FixUnknownNameListsNames) {
+  LinearProblem p = Problem(RandomMatrix(4, 3, 12), RandomMatrix(4, 1, 13));
+  try {
+    p.Fix("mass[4]", 0.0058);
+    FAIL() << "no exception";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("mass[4]"), std::string::npos) << what;
+    for (const char* name : {"x1", "x2", "x3"}) {
+      EXPECT_NE(what.find(name), std::string::npos) << what;
+    }
+  }
+  EXPECT_TRUE(p.fixed.empty());
+  p.Fix("x2", 1.5);
+  ASSERT_EQ(p.fixed.size(), 1u);
+  EXPECT_EQ(p.fixed[0].first, 1);
+  EXPECT_EQ(p.fixed[0].second, 1.5);
+  EXPECT_FALSE(p.IsFixed(0));
+}
+
+// ---------------------------------------------------------------------------
+// Identifiability.
+
+// Two groups: column 0 ("mass[1]") and column 1 ("stiffness[1]") enter every
+// equation as m * c - s * c, so only their difference is seen: (K~ - lambda M~)
+// is unchanged when both factors grow together.
+TEST(AnalyseIdentifiability, CommonScalingOnTwoGroups) {
+  Eigen::MatrixXd a(4, 3);
+  // clang-format off
+  a << -2.0,  2.0, 1.0,
+       -1.0,  1.0, 0.0,
+        3.0, -3.0, 2.0,
+        0.5, -0.5, 1.0;
+  // clang-format on
+  const std::vector<std::string> names = {"mass[1]", "stiffness[1]", "added_mass[1]"};
+  const std::vector<std::string> groups = {"mass", "stiffness", "added_mass"};
+  const Identifiability id = AnalyseIdentifiability(a, names, groups, 1e-10);
+  EXPECT_EQ(id.rank, 2);
+  ASSERT_EQ(id.singular_values.size(), 3);
+  EXPECT_NEAR(id.singular_values[2], 0.0, 1e-14);
+  EXPECT_GT(id.condition_number, 1e14);  // s_min is zero to rounding
+  ASSERT_EQ(id.null_directions.size(), 1u);
+  const NullDirection& nd = id.null_directions[0];
+  // Null vector (1, 1, 0) / sqrt(2), sign with the largest entry positive.
+  EXPECT_NEAR(nd.coefficients[0], std::sqrt(0.5), 1e-12);
+  EXPECT_NEAR(nd.coefficients[1], std::sqrt(0.5), 1e-12);
+  EXPECT_NEAR(nd.coefficients[2], 0.0, 1e-12);
+  EXPECT_TRUE(nd.common_scaling) << nd.description;
+  EXPECT_NE(nd.description.find("common scaling"), std::string::npos) << nd.description;
+  EXPECT_NE(nd.description.find("mass[1]"), std::string::npos) << nd.description;
+  EXPECT_NE(nd.description.find("stiffness[1]"), std::string::npos) << nd.description;
+  EXPECT_TRUE(nd.best_to_fix == "mass[1]" || nd.best_to_fix == "stiffness[1]")
+      << nd.best_to_fix;
+  EXPECT_FALSE(id.warnings.empty());
+}
+
+TEST(AnalyseIdentifiability, OppositeSignsAreNotCommonScaling) {
+  Eigen::MatrixXd a(3, 2);
+  a << 1.0, 1.0, 2.0, 2.0, -1.0, -1.0;  // only m + s is seen: null (1, -1)
+  const Identifiability id = AnalyseIdentifiability(a, {"mass[1]", "stiffness[1]"},
+                                                    {"mass", "stiffness"}, 1e-10);
+  EXPECT_EQ(id.rank, 1);
+  ASSERT_EQ(id.null_directions.size(), 1u);
+  const NullDirection& nd = id.null_directions[0];
+  EXPECT_FALSE(nd.common_scaling) << nd.description;
+  EXPECT_NEAR(std::abs(nd.coefficients[0]), std::sqrt(0.5), 1e-12);
+  EXPECT_NEAR(nd.coefficients[0], -nd.coefficients[1], 1e-12);
+  EXPECT_NE(nd.description.find("mass[1]"), std::string::npos) << nd.description;
+  EXPECT_NE(nd.description.find("stiffness[1]"), std::string::npos) << nd.description;
+}
+
+TEST(AnalyseIdentifiability, NullDirectionInUnknownUnits) {
+  // Columns of very different norm: the direction is reported in the
+  // unknowns' own units, so A v = 0 holds for it.
+  Eigen::MatrixXd a(3, 2);
+  a << 1e6, -1.0, 2e6, -2.0, 3e6, -3.0;  // null vector (1, 1e6)
+  const Identifiability id = AnalyseIdentifiability(a, {}, {}, 1e-10);
+  ASSERT_EQ(id.null_directions.size(), 1u);
+  const Eigen::VectorXd v = id.null_directions[0].coefficients;
+  EXPECT_NEAR(v.norm(), 1.0, 1e-14);
+  EXPECT_LE((a * v).norm(), 1e-9 * a.norm());
+  EXPECT_EQ(id.null_directions[0].best_to_fix, "x2");  // default names
+}
+
+TEST(AnalyseIdentifiability, FullRankSingularValuesAndConditionNumbers) {
+  const Eigen::MatrixXd a = RandomMatrix(8, 3, 14);
+  const Identifiability id = AnalyseIdentifiability(a, {}, {}, 1e-10);
+  EXPECT_EQ(id.rank, 3);
+  EXPECT_TRUE(id.null_directions.empty());
+  EXPECT_TRUE(id.unseen.empty());
+  const Eigen::MatrixXd as = a * a.colwise().norm().cwiseInverse().asDiagonal();
+  const Eigen::VectorXd s = Eigen::JacobiSVD<Eigen::MatrixXd>(as).singularValues();
+  EXPECT_LE((id.singular_values - s).cwiseAbs().maxCoeff(), 1e-14);
+  EXPECT_NEAR(id.condition_number, s[0] / s[2], 1e-12 * s[0] / s[2]);
+  const Eigen::VectorXd raw = Eigen::JacobiSVD<Eigen::MatrixXd>(a).singularValues();
+  EXPECT_NEAR(id.condition_number_unscaled, raw[0] / raw[2], 1e-12 * raw[0] / raw[2]);
+  EXPECT_NEAR(id.tolerance, 1e-10 * s[0], 1e-24);
+}
+
+TEST(AnalyseIdentifiability, BadInputThrows) {
+  EXPECT_THROW(AnalyseIdentifiability(Eigen::MatrixXd(3, 0), {}, {}, 1e-10), InputError);
+  Eigen::MatrixXd nan = Eigen::MatrixXd::Ones(2, 2);
+  nan(0, 0) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(AnalyseIdentifiability(nan, {}, {}, 1e-10), InputError);
+  EXPECT_THROW(AnalyseIdentifiability(Eigen::MatrixXd::Ones(2, 2), {}, {}, 0.0),
+               InputError);
+  EXPECT_THROW(AnalyseIdentifiability(Eigen::MatrixXd::Ones(2, 2), {}, {}, 1.0),
+               InputError);
+}
+
+}  // namespace
+}  // namespace femup
