@@ -53,15 +53,9 @@ void WriteModesOutputs(const ModesResult& r, bool plots, OutputDir* out,
                  {"max_orthogonality_error", r.max_orthogonality_error}};
   out->WriteText("modes.json", j.dump(2) + "\n");
   if (!plots) return;
-  // Transverse DOFs of a frame (":ux"), else every DOF, against position.
-  std::vector<int> rows;
-  for (std::size_t i = 0; i < r.dof_labels.size(); ++i) {
-    const std::string& l = r.dof_labels[i];
-    if (l.size() > 3 && l.compare(l.size() - 3, 3, ":ux") == 0) rows.push_back(i);
-  }
-  if (rows.empty()) {
-    for (std::size_t i = 0; i < r.dof_labels.size(); ++i) rows.push_back(i);
-  }
+  std::vector<int> all(r.dof_labels.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
+  const std::vector<int> rows = TransverseRows(r.dof_labels, all);
   Figure f;
   Plot p;
   p.title = r.study_name + ": mode shapes (mass-normalised)";

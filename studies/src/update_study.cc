@@ -138,6 +138,21 @@ void RenderStaged(const Figure& figure, const std::string& name, OutputDir* out,
   if (!st.rendered) warnings->push_back(name + ".png: " + st.message);
 }
 
+std::vector<int> TransverseRows(const std::vector<std::string>& dof_labels,
+                                const std::vector<int>& dofs) {
+  std::vector<int> rows;
+  for (std::size_t i = 0; i < dofs.size(); ++i) {
+    const std::string& label = dof_labels[dofs[i]];
+    if (label.size() > 3 && label.compare(label.size() - 3, 3, ":ux") == 0) {
+      rows.push_back(static_cast<int>(i));
+    }
+  }
+  if (rows.empty()) {
+    for (std::size_t i = 0; i < dofs.size(); ++i) rows.push_back(static_cast<int>(i));
+  }
+  return rows;
+}
+
 namespace {
 
 nlohmann::json IdentifiabilityJson(const Identifiability& id) {
@@ -263,7 +278,7 @@ void WriteUpdateOutputs(const UpdateResult& r, bool plots, OutputDir* out,
   fp.series.push_back(est);
   if (r.preset) fp.series.push_back(pre);
   factors.panels.push_back(fp);
-  const std::vector<std::pair<std::string, Figure>> figures_head = {{"factors", factors}};
+  std::vector<std::pair<std::string, Figure>> figures = {{"factors", factors}};
 
   // Frequencies per state: measured, nominal model, updated.
   Figure freq;
@@ -289,7 +304,6 @@ void WriteUpdateOutputs(const UpdateResult& r, bool plots, OutputDir* out,
     p.series = {m0, m1};
     freq.panels.push_back(p);
   }
-  std::vector<std::pair<std::string, Figure>> figures = figures_head;
   figures.emplace_back("frequencies", freq);
 
   // Mode shapes per state with shapes: measured points, updated lines.
@@ -300,16 +314,7 @@ void WriteUpdateOutputs(const UpdateResult& r, bool plots, OutputDir* out,
         static_cast<int>(std::min<Eigen::Index>(c.measured_shapes.cols(), 4));
     shapes.width_px = 380 * shapes.columns + 100;
     shapes.height_px = 500;
-    // Plot only the transverse DOFs of a frame ("...:ux"), else every DOF.
-    std::vector<int> rows;
-    for (std::size_t i = 0; i < c.shape_dofs.size(); ++i) {
-      const std::string& label = r.dof_labels[c.shape_dofs[i]];
-      if (label.size() > 3 && label.compare(label.size() - 3, 3, ":ux") == 0)
-        rows.push_back(i);
-    }
-    if (rows.empty()) {
-      for (std::size_t i = 0; i < c.shape_dofs.size(); ++i) rows.push_back(i);
-    }
+    const std::vector<int> rows = TransverseRows(r.dof_labels, c.shape_dofs);
     std::vector<int> dofs;
     for (int i : rows) dofs.push_back(c.shape_dofs[i]);
     const std::vector<double> x = Positions(r, dofs);
