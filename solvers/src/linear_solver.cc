@@ -1,9 +1,14 @@
 #include "femup/solvers/linear_solver.h"
 
 #include <cmath>
+#include <sstream>
 
 #include "femup/errors.h"
+#include "femup/solvers/backend_linear_solvers.h"
+#include "femup/solvers/bvls.h"
 #include "femup/solvers/lstsq.h"
+#include "femup/solvers/tikhonov.h"
+#include "femup/solvers/tsvd.h"
 
 namespace femup {
 
@@ -15,6 +20,8 @@ const char* ToString(SolverStatus status) {
       return "minimum_norm";
     case SolverStatus::kNoConvergence:
       return "no_convergence";
+    case SolverStatus::kInfeasible:
+      return "infeasible";
     case SolverStatus::kFailed:
       return "failed";
   }
@@ -22,20 +29,49 @@ const char* ToString(SolverStatus status) {
 }
 
 std::string LinearSolverOptions::Validate() const {
+  std::ostringstream msg;
   if (!(relative_rank_tolerance > 0) || !(relative_rank_tolerance < 1) ||
       !std::isfinite(relative_rank_tolerance)) {
-    return "rank_tolerance must be in (0, 1)";
+    msg << "rank_tolerance: must be in (0, 1), got " << relative_rank_tolerance;
+    return msg.str();
   }
+  if (truncation < 0) {
+    msg << "truncation: must be >= 0 (0 = chosen by the rule), got " << truncation;
+    return msg.str();
+  }
+  if (max_iterations < 1) {
+    msg << "max_iterations: must be positive, got " << max_iterations;
+    return msg.str();
+  }
+  if (!(kkt_tolerance > 0) || !std::isfinite(kkt_tolerance)) {
+    msg << "kkt_tolerance: must be positive, got " << kkt_tolerance;
+    return msg.str();
+  }
+  if (!(confidence_level > 0 && confidence_level < 1)) {
+    msg << "confidence_level: must be in (0, 1), got " << confidence_level;
+    return msg.str();
+  }
+  const std::string reg = regularisation.Validate();
+  if (!reg.empty()) return "regularisation." + reg;
   return "";
 }
 
-std::vector<std::string> AvailableLinearSolvers() { return {"lstsq"}; }
+std::vector<std::string> AvailableLinearSolvers() {
+  return {"lstsq", "tsvd", "tikhonov", "bvls", "ceres", "ipopt"};
+}
 
 std::unique_ptr<LinearSolver> CreateLinearSolver(const std::string& name,
                                                  const LinearSolverOptions& options) {
   const std::string invalid = options.Validate();
-  if (!invalid.empty()) throw InputError("solver.rank_tolerance", invalid);
+  if (!invalid.empty())
+    throw InputError("solver." + invalid.substr(0, invalid.find(':')),
+                     invalid.substr(invalid.find(':') + 2));
   if (name == "lstsq") return std::make_unique<LstsqSolver>(options);
+  if (name == "tsvd") return std::make_unique<TsvdSolver>(options);
+  if (name == "tikhonov") return std::make_unique<TikhonovSolver>(options);
+  if (name == "bvls") return std::make_unique<BvlsSolver>(options);
+  if (name == "ceres") return std::make_unique<CeresLinearSolver>(options);
+  if (name == "ipopt") return std::make_unique<IpoptLinearSolver>(options);
   std::string known;
   for (const auto& n : AvailableLinearSolvers()) known += (known.empty() ? "" : ", ") + n;
   throw InputError("solver.name",

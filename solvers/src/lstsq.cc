@@ -1,81 +1,76 @@
 #include "femup/solvers/lstsq.h"
 
 #include <Eigen/SVD>
-#include <chrono>
 #include <sstream>
 
-#include "femup/errors.h"
+#include "linear_common.h"
 
 namespace femup {
 
 LinearSolution LstsqSolver::Solve(const LinearProblem& problem) const {
-  const auto start = std::chrono::steady_clock::now();
-  const std::string invalid = problem.Validate();
-  if (!invalid.empty()) throw InputError("linear problem", invalid);
-
-  const std::vector<int> free = problem.FreeUnknowns();
-  const int nfree = static_cast<int>(free.size());
-  Eigen::VectorXd x = Eigen::VectorXd::Zero(problem.num_unknowns());
-  Eigen::VectorXd rhs = problem.b;
-  for (const auto& [index, value] : problem.fixed) {
-    x[index] = value;
-    rhs -= problem.A.col(index) * value;
-  }
-  Eigen::MatrixXd a(problem.num_rows(), nfree);
-  std::vector<std::string> names, groups;
-  for (int k = 0; k < nfree; ++k) {
-    a.col(k) = problem.A.col(free[k]);
-    if (!problem.names.empty()) names.push_back(problem.names[free[k]]);
-    if (!problem.groups.empty()) groups.push_back(problem.groups[free[k]]);
-  }
+  const internal::Stopwatch clock;
+  const internal::ReducedProblem r = internal::Reduce(problem);
+  const int k = static_cast<int>(r.A.cols());
 
   LinearSolution solution;
   solution.identifiability = AnalyseIdentifiability(
-      a, names, groups, options_.relative_rank_tolerance, options_.scale_columns);
+      r.A, r.names, r.groups, options_.relative_rank_tolerance, options_.scale_columns);
 
-  Eigen::VectorXd scale = Eigen::VectorXd::Ones(nfree);
+  Eigen::VectorXd scale = Eigen::VectorXd::Ones(k);
   if (options_.scale_columns) {
-    scale = a.colwise().norm().transpose();
-    for (int k = 0; k < nfree; ++k) {
-      if (scale[k] == 0) scale[k] = 1.0;
+    scale = r.A.colwise().norm().transpose();
+    for (int j = 0; j < k; ++j) {
+      if (scale[j] == 0) scale[j] = 1.0;
     }
   }
-  const Eigen::MatrixXd as = a * scale.cwiseInverse().asDiagonal();
+  const Eigen::MatrixXd as = r.A * scale.cwiseInverse().asDiagonal();
   Eigen::BDCSVD<Eigen::MatrixXd> svd(as, Eigen::ComputeThinU | Eigen::ComputeThinV);
   const Eigen::VectorXd& s = svd.singularValues();
   const double threshold =
       s.size() > 0 ? options_.relative_rank_tolerance * s.maxCoeff() : 0.0;
-  Eigen::VectorXd utb = svd.matrixU().transpose() * rhs;
-  Eigen::VectorXd y = Eigen::VectorXd::Zero(s.size());
   int rank = 0;
+  Eigen::VectorXd inv = Eigen::VectorXd::Zero(s.size());
   for (Eigen::Index i = 0; i < s.size(); ++i) {
     if (s[i] > threshold) {
-      y[i] = utb[i] / s[i];
+      inv[i] = 1.0 / s[i];
       ++rank;
     }
   }
-  const Eigen::VectorXd xs = svd.matrixV() * y;
-  for (int k = 0; k < nfree; ++k) x[free[k]] = xs[k] / scale[k];
-
-  solution.x = x;
-  solution.residual = problem.A * x - problem.b;
-  solution.summary.cost = 0.5 * solution.residual.squaredNorm();
+  // z = D^-1 V S^+ U' b: the map from the weighted data to the answer.
+  const Eigen::MatrixXd z_map = scale.cwiseInverse().asDiagonal() * svd.matrixV() *
+                                inv.asDiagonal() * svd.matrixU().transpose();
+  const Eigen::VectorXd z = z_map * r.b;
+  solution.x = r.ToX(z);
+  solution.residual = problem.A * solution.x - problem.b;
+  const Eigen::VectorXd weighted_residual = r.weighted.A * solution.x - r.weighted.b;
+  solution.summary.cost = 0.5 * weighted_residual.squaredNorm();
   solution.summary.iterations = 1;
+  internal::FillUncertainty(problem, r.basis * z_map, weighted_residual, rank,
+                            options_.confidence_level, &solution);
+
   std::ostringstream msg;
-  if (rank == nfree) {
+  if (rank == k) {
     solution.summary.status = SolverStatus::kSolved;
-    msg << "least squares by SVD: full column rank (" << rank << " free unknowns)";
+    msg << "least squares by SVD: full column rank (" << rank
+        << (r.has_equalities ? " free combinations after the equalities)"
+                             : " free unknowns)");
   } else {
     solution.summary.status = SolverStatus::kMinimumNorm;
-    msg << "least squares by SVD: rank " << rank << " of " << nfree
+    msg << "least squares by SVD: rank " << rank << " of " << k
         << " free unknowns; the minimum-norm solution is one of many. Add a constraint: ";
-    for (std::size_t k = 0; k < solution.identifiability.null_directions.size(); ++k) {
-      msg << (k ? "; " : "") << solution.identifiability.null_directions[k].description;
+    for (std::size_t j = 0; j < solution.identifiability.null_directions.size(); ++j) {
+      msg << (j ? "; " : "") << solution.identifiability.null_directions[j].description;
     }
+    solution.summary.warnings.push_back(
+        "rank deficient: the covariance covers only the combinations the data determine");
+  }
+  if (!options_.scale_columns && rank < k) {
+    solution.summary.warnings.push_back(
+        "columns were not scaled: the rank decision depends on the units of the unknowns; "
+        "scale_columns = true may keep directions this one truncated");
   }
   solution.summary.message = msg.str();
-  solution.summary.time_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  solution.summary.time_seconds = clock.Seconds();
   return solution;
 }
 

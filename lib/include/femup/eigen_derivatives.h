@@ -1,0 +1,71 @@
+// Derivatives of one eigenpair of the symmetric pencil (K, M) with respect to a
+// parameter p, given dK = dK/dp and dM = dM/dp: the eigenvalue derivative and
+// the eigenvector derivative by Nelson's method (exact, no modal truncation),
+// for a mass-normalised eigenvector of a distinct (non-repeated) eigenvalue.
+// The eigenvector derivative keeps the mass normalisation: it is the derivative
+// of phi(p) with phi' M phi = 1 for every p, and the sign of phi held fixed.
+//
+// An empty (0 x 0) dK or dM means zero (a parameter that does not enter K, or M).
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/SparseLU>
+#include <string>
+
+#include "femup/model.h"
+
+namespace femup {
+
+// dlambda/dp = phi' (dK - lambda dM) phi, for phi with phi' M phi = 1.
+// Throws InputError when sizes disagree.
+double EigenvalueDerivative(const Eigen::VectorXd& phi, double lambda,
+                            const SparseMatrix& dK, const SparseMatrix& dM);
+
+struct EigenpairDerivative {
+  double eigenvalue = 0;        // dlambda/dp
+  Eigen::VectorXd eigenvector;  // dphi/dp (num_dofs)
+};
+
+// Nelson's method for one eigenpair, factorising once for any number of
+// parameters. The derivative v + c phi solves
+//   (K - lambda M) v = -(dK - dlambda M - lambda dM) phi,   v_k = 0,
+//   c = -phi' M v - 0.5 phi' dM phi,
+// where k is the index of phi's largest-magnitude entry: K - lambda M with row
+// and column k removed is non-singular (for a distinct eigenvalue) but
+// indefinite, so it is factorised by sparse LU with partial pivoting.
+// The solver keeps what it needs (the factor, phi, M phi); K and M may be
+// destroyed after construction.
+class NelsonSolver {
+ public:
+  // K, M: n x n symmetric, M positive definite; (lambda, phi) an eigenpair with
+  // phi' M phi = 1. Throws InputError when sizes disagree, phi is not finite or
+  // not mass-normalised (to 1e-6). A singular reduced matrix (a repeated
+  // eigenvalue, or lambda not an eigenvalue) is not thrown: ok() is then false.
+  NelsonSolver(const SparseMatrix& K, const SparseMatrix& M, double lambda,
+               const Eigen::VectorXd& phi);
+
+  // True when the reduced matrix was factorised; otherwise message() says why.
+  bool ok() const { return message_.empty(); }
+  const std::string& message() const { return message_; }
+  int num_dofs() const { return static_cast<int>(phi_.size()); }
+
+  // Derivatives for one parameter (dK, dM: n x n or empty). Throws InputError
+  // when sizes disagree or the factorisation failed (!ok()).
+  EigenpairDerivative Derivative(const SparseMatrix& dK, const SparseMatrix& dM) const;
+
+ private:
+  double lambda_;
+  Eigen::VectorXd phi_;
+  Eigen::VectorXd mass_phi_;  // M phi
+  int pivot_ = 0;             // k: the entry of phi held at zero in v
+  Eigen::SparseLU<SparseMatrix> lu_;
+  std::string message_;
+};
+
+// dphi/dp for one parameter: a NelsonSolver used once. Throws InputError as the
+// solver does, and also when the reduced matrix is singular (repeated eigenvalue).
+Eigen::VectorXd EigenvectorDerivative(const SparseMatrix& K, const SparseMatrix& M,
+                                      double lambda, const Eigen::VectorXd& phi,
+                                      const SparseMatrix& dK, const SparseMatrix& dM);
+
+}  // namespace femup

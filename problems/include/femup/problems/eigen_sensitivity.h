@@ -1,0 +1,100 @@
+// The iterative eigen-sensitivity updating problem: residuals between measured
+// and predicted modes (eigenvalues, and mode shapes at the sensors) as nonlinear
+// functions of the correction factors d, with the analytic Jacobian (eigenvalue
+// derivatives, Nelson eigenvector derivatives). Model modes are paired with the
+// measured ones at every evaluation. Any NonlinearSolver takes the result.
+//
+// Residuals, for each state s (in the given order), each measured mode j (in the
+// measured order), paired with model mode (lambda, phi) of (K~, M~dry) or
+// (K~, M~wet) as the state's immersion says:
+//   eigenvalue:  (lambda / lambda_meas - 1) / frequency_sigma,
+//                lambda_meas = (2 pi f_meas)^2; label "<state> mode <j> lambda".
+//   shape (when use_shapes and the state has shapes), one per sensor i:
+//                (sign * u_i - w_i) / (shape_sigma * max_i |w_i|),
+//                w = psi / ||psi|| (psi: the measured shape at the sensors),
+//                u = s / ||s|| (s: phi at the sensor DOFs), sign = +1 when
+//                s' psi >= 0, else -1; label "<state> mode <j> shape <dof label>".
+//     That is: the measured shape scaled to largest entry 1 and the model shape
+//     scaled to the same Euclidean norm and sign, differenced, over shape_sigma.
+//     Shape scaling and sign of the data are free; the residual does not depend
+//     on them.
+// then, optionally:
+//   prior:       (x_i - prior_mean_i) / prior_sigma_i for each parameter with a
+//                prior (0 < prior_sigma_i < inf); label "prior <name>".
+//   Tikhonov:    tikhonov_lambda * L (x - prior_mean) (prior_mean empty: zero),
+//                L = tikhonov_operator (empty: identity); label "tikhonov <row>".
+//
+// Mass and stiffness scale together without changing eigenvalues or unit-scaled
+// shapes, so (1 + mass and stiffness factors, added-mass factors) scaled by a
+// common number is a null direction of the data residuals: fix one factor
+// (problem.fixed), or give a prior, as the paper does with mass 4.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "femup/measurement.h"
+#include "femup/modal.h"
+#include "femup/model.h"
+#include "femup/problems/nonlinear_problem.h"
+
+namespace femup {
+
+struct EigenSensitivityOptions {
+  // Add the shape residuals of states that have shapes (else eigenvalues only).
+  bool use_shapes = true;
+  // Relative standard deviation of a measured eigenvalue lambda = (2 pi f)^2.
+  double frequency_sigma = 0.002;
+  // Standard deviation of a measured shape entry, relative to the shape's
+  // largest-magnitude entry.
+  double shape_sigma = 0.02;
+  // Model modes computed beyond the number measured in a state (capped at the
+  // number of DOFs), so that pairing can pick a model mode out of order.
+  int extra_modes = 4;
+  // Pair measured with model modes by MAC at the sensors at every evaluation
+  // (states without shapes, or false here: measured mode j is model mode j).
+  bool pair_by_mac = true;
+  // A measured mode whose pair would have MAC below this fails the evaluation
+  // (the step is rejected). In [0, 1].
+  double min_mac = 0.0;
+  // Optional Gaussian prior: both empty, or prior_sigma of size n (entries <= 0
+  // or infinite: no prior on that parameter) and prior_mean of size n or empty
+  // (zero). prior_mean is also the centre of the Tikhonov term.
+  Eigen::VectorXd prior_mean;
+  Eigen::VectorXd prior_sigma;
+  // Optional Tikhonov rows tikhonov_lambda * L (x - prior_mean); none when 0.
+  // L: p x n, empty = identity.
+  double tikhonov_lambda = 0.0;
+  Eigen::MatrixXd tikhonov_operator;
+  // Eigen-solver settings; num_modes is set per state (measured + extra_modes).
+  EigenOptions eigen;
+
+  // Empty when valid, else "<field>: what is wrong". Sizes that depend on the
+  // model are checked by BuildEigenSensitivityProblem.
+  std::string Validate() const;
+};
+
+// The problem over x = the factors d of `model`: every parameter, in the model's
+// order, named as the model names them, grouped by kind ("mass", "stiffness",
+// "added_mass"). Starts at `start` (n), or at zero (the nominal model) when
+// `start` is empty. Nothing is fixed and there are no bounds: the caller adds
+// them. residuals_whitened is true. The problem holds its own copies of the
+// model and the data.
+//
+// Evaluation never throws: it returns false, with the reason in *why, when the
+// eigen-solve fails (e.g. M~ not positive definite), when a measured mode cannot
+// be paired (MAC below min_mac), or when a paired eigenvalue is repeated (the
+// eigenvector derivative does not exist); x of the wrong size or not finite also
+// returns false. Jacobian columns of added-mass factors are zero in dry states.
+//
+// Throws InputError naming the field for invalid options, no state, a state's
+// data that ModalData::Validate rejects (e.g. a sensor DOF out of range), more
+// modes measured than the model has DOFs, a model without parameters, or
+// prior, Tikhonov or start sizes that do not match the model.
+NonlinearProblem BuildEigenSensitivityProblem(const ParametrisedModel& model,
+                                              const std::vector<ModalData>& states,
+                                              const EigenSensitivityOptions& options,
+                                              const Eigen::VectorXd& start = {});
+
+}  // namespace femup

@@ -1,0 +1,355 @@
+#include "femup/problems/eigen_sensitivity.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <numeric>
+#include <sstream>
+#include <utility>
+
+#include "femup/eigen_derivatives.h"
+#include "femup/errors.h"
+
+namespace femup {
+namespace {
+
+// One measured state, prepared for evaluation.
+struct StateTerms {
+  std::string name;
+  bool wet = false;
+  std::vector<int> sensors;       // model DOF of each shape row
+  Eigen::VectorXd lambdas;        // measured eigenvalues
+  Eigen::MatrixXd shapes;         // measured shapes at the sensors (or empty)
+  Eigen::MatrixXd unit_shapes;    // w = psi / ||psi||, when shape residuals are on
+  Eigen::VectorXd shape_weights;  // 1 / (shape_sigma max |w|), per mode
+  bool shape_residuals = false;
+  bool pair_by_mac = false;
+  int num_model_modes = 0;  // model modes solved for pairing
+  int first_row = 0;
+  int rows_per_mode() const {
+    return 1 + (shape_residuals ? static_cast<int>(sensors.size()) : 0);
+  }
+};
+
+// Everything evaluate needs, shared by copies of the problem.
+struct Context {
+  ParametrisedModel model;
+  std::vector<StateTerms> states;
+  double frequency_sigma = 0;
+  double min_mac = 0;
+  EigenOptions eigen;
+  std::vector<int> prior_index;  // parameters with a prior
+  Eigen::VectorXd prior_mean;    // n (zero when none given)
+  Eigen::VectorXd prior_sigma;   // n, used at prior_index
+  Eigen::MatrixXd tikhonov;      // lambda L (p x n), or empty
+  int prior_first_row = 0;
+  int num_residuals = 0;
+};
+
+bool Fail(std::string* why, const std::string& message) {
+  if (why != nullptr) *why = message;
+  return false;
+}
+
+// dK/dp and dM/dp of parameter `p` for a state with dry or wet mass; empty
+// means zero. Returns false when the parameter does not enter the state at all.
+bool ParameterDerivative(const Parameter& p, bool wet, const SparseMatrix** dk,
+                         const SparseMatrix** dm) {
+  static const SparseMatrix kZero;
+  *dk = &kZero;
+  *dm = &kZero;
+  switch (p.kind) {
+    case ParameterKind::kStiffness:
+      *dk = &p.basis;
+      return true;
+    case ParameterKind::kMass:
+      *dm = &p.basis;
+      return true;
+    case ParameterKind::kAddedMass:
+      if (!wet) return false;
+      *dm = &p.basis;
+      return true;
+  }
+  return false;
+}
+
+// Residuals (and Jacobian rows) of one state, given K~ and the state's M~.
+bool EvaluateState(const Context& c, const StateTerms& st, const SparseMatrix& k,
+                   const SparseMatrix& m, Eigen::VectorXd* r, Eigen::MatrixXd* jac,
+                   std::string* why) {
+  EigenOptions eigen = c.eigen;
+  eigen.num_modes = st.num_model_modes;
+  Modes modes;
+  try {
+    modes = SolveModes(k, m, eigen);
+  } catch (const InputError& e) {
+    return Fail(why, st.name + ": eigen-solve failed: " + e.what());
+  }
+  if (modes.size() < st.lambdas.size()) {
+    return Fail(why, st.name + ": the eigen-solve returned too few modes");
+  }
+
+  // Measured mode j is paired with model mode pairing[j].
+  std::vector<int> pairing(st.lambdas.size());
+  std::iota(pairing.begin(), pairing.end(), 0);
+  if (st.pair_by_mac) {
+    const Eigen::MatrixXd model_at_sensors = modes.shapes(st.sensors, Eigen::all);
+    const std::vector<ModePair> pairs =
+        PairModesByMac(st.shapes, model_at_sensors, c.min_mac);
+    for (std::size_t j = 0; j < pairs.size(); ++j) {
+      if (pairs[j].candidate < 0) {
+        std::ostringstream msg;
+        msg << st.name << " mode " << j + 1
+            << ": no model mode left to pair with MAC >= " << c.min_mac;
+        return Fail(why, msg.str());
+      }
+      pairing[j] = pairs[j].candidate;
+    }
+  }
+
+  const auto& parameters = c.model.parameters();
+  for (Eigen::Index j = 0; j < st.lambdas.size(); ++j) {
+    const int row = st.first_row + static_cast<int>(j) * st.rows_per_mode();
+    const double lambda = modes.eigenvalues[pairing[j]];
+    const Eigen::VectorXd phi = modes.shapes.col(pairing[j]);
+    const double lambda_weight = 1.0 / (st.lambdas[j] * c.frequency_sigma);
+    (*r)[row] = (lambda / st.lambdas[j] - 1.0) / c.frequency_sigma;
+
+    Eigen::VectorXd u;  // unit model shape at the sensors
+    double s_norm = 0, sign = 1, shape_weight = 0;
+    const Eigen::Index num_sensors = static_cast<Eigen::Index>(st.sensors.size());
+    if (st.shape_residuals) {
+      const Eigen::VectorXd s = phi(st.sensors);
+      s_norm = s.norm();
+      if (!(s_norm > 0)) {
+        std::ostringstream msg;
+        msg << st.name << " mode " << j + 1 << ": the paired model mode "
+            << pairing[j] + 1 << " is zero at every sensor";
+        return Fail(why, msg.str());
+      }
+      u = s / s_norm;
+      sign = u.dot(st.unit_shapes.col(j)) >= 0 ? 1.0 : -1.0;
+      shape_weight = st.shape_weights[j];
+      r->segment(row + 1, num_sensors) =
+          shape_weight * (sign * u - st.unit_shapes.col(j));
+    }
+    if (jac == nullptr) continue;
+
+    std::unique_ptr<NelsonSolver> nelson;
+    if (st.shape_residuals) {
+      nelson = std::make_unique<NelsonSolver>(k, m, lambda, phi);
+      if (!nelson->ok()) {
+        std::ostringstream msg;
+        msg << st.name << " mode " << j + 1 << " (model mode " << pairing[j] + 1
+            << "): no eigenvector derivative: " << nelson->message();
+        return Fail(why, msg.str());
+      }
+    }
+    for (int p = 0; p < c.model.num_parameters(); ++p) {
+      const SparseMatrix *dk = nullptr, *dm = nullptr;
+      if (!ParameterDerivative(parameters[p], st.wet, &dk, &dm)) continue;
+      if (!nelson) {
+        (*jac)(row, p) = lambda_weight * EigenvalueDerivative(phi, lambda, *dk, *dm);
+        continue;
+      }
+      const EigenpairDerivative d = nelson->Derivative(*dk, *dm);
+      (*jac)(row, p) = lambda_weight * d.eigenvalue;
+      // d(s / ||s||) = (I - u u') ds / ||s||.
+      const Eigen::VectorXd ds = d.eigenvector(st.sensors);
+      jac->block(row + 1, p, num_sensors, 1) =
+          (sign * shape_weight / s_norm) * (ds - u * u.dot(ds));
+    }
+  }
+  return true;
+}
+
+bool Evaluate(const Context& c, const Eigen::VectorXd& x, Eigen::VectorXd* r,
+              Eigen::MatrixXd* jac, std::string* why) {
+  const int n = c.model.num_parameters();
+  if (x.size() != n) {
+    return Fail(why, "x has " + std::to_string(x.size()) + " entries; expected " +
+                         std::to_string(n));
+  }
+  if (!x.allFinite()) return Fail(why, "x has a NaN or infinite entry");
+  r->setZero(c.num_residuals);
+  if (jac != nullptr) jac->setZero(c.num_residuals, n);
+  try {
+    const SparseMatrix k = c.model.UpdatedStiffness(x);
+    SparseMatrix dry_mass, wet_mass;  // assembled when a state needs them
+    for (const StateTerms& st : c.states) {
+      SparseMatrix& m = st.wet ? wet_mass : dry_mass;
+      if (m.size() == 0) {
+        m = st.wet ? c.model.UpdatedWetMass(x) : c.model.UpdatedDryMass(x);
+      }
+      if (!EvaluateState(c, st, k, m, r, jac, why)) return false;
+    }
+  } catch (const InputError& e) {
+    return Fail(why, e.what());
+  }
+
+  int row = c.prior_first_row;
+  for (int i : c.prior_index) {
+    (*r)[row] = (x[i] - c.prior_mean[i]) / c.prior_sigma[i];
+    if (jac != nullptr) (*jac)(row, i) = 1.0 / c.prior_sigma[i];
+    ++row;
+  }
+  if (c.tikhonov.rows() > 0) {
+    r->segment(row, c.tikhonov.rows()) = c.tikhonov * (x - c.prior_mean);
+    if (jac != nullptr) jac->middleRows(row, c.tikhonov.rows()) = c.tikhonov;
+  }
+  return true;
+}
+
+bool HasPrior(double sigma) { return sigma > 0 && std::isfinite(sigma); }
+
+}  // namespace
+
+std::string EigenSensitivityOptions::Validate() const {
+  if (!(frequency_sigma > 0) || !std::isfinite(frequency_sigma)) {
+    return "frequency_sigma: must be positive and finite";
+  }
+  if (!(shape_sigma > 0) || !std::isfinite(shape_sigma)) {
+    return "shape_sigma: must be positive and finite";
+  }
+  if (extra_modes < 0) return "extra_modes: must be >= 0";
+  if (!(min_mac >= 0 && min_mac <= 1)) return "min_mac: must be in [0, 1]";
+  if (!prior_mean.allFinite()) return "prior_mean: has a NaN or infinite entry";
+  if (prior_sigma.hasNaN()) return "prior_sigma: has a NaN entry";
+  if (!(tikhonov_lambda >= 0) || !std::isfinite(tikhonov_lambda)) {
+    return "tikhonov_lambda: must be finite and >= 0";
+  }
+  if (!tikhonov_operator.allFinite()) {
+    return "tikhonov_operator: has a NaN or infinite entry";
+  }
+  EigenOptions eigen_checked = eigen;
+  eigen_checked.num_modes = 1;  // set per state at evaluation
+  const std::string invalid = eigen_checked.Validate();
+  if (!invalid.empty()) return "eigen: " + invalid;
+  return "";
+}
+
+NonlinearProblem BuildEigenSensitivityProblem(const ParametrisedModel& model,
+                                              const std::vector<ModalData>& states,
+                                              const EigenSensitivityOptions& options,
+                                              const Eigen::VectorXd& start) {
+  const std::string invalid = options.Validate();
+  if (!invalid.empty()) throw InputError("eigen sensitivity options", invalid);
+  const int n = model.num_parameters();
+  const int num_dofs = model.num_dofs();
+  if (n == 0) {
+    throw InputError("model.parameters", "the model has no correction factor to update");
+  }
+  if (states.empty()) throw InputError("states", "no measured state is given");
+  auto size_error = [n](const std::string& field, Eigen::Index size) {
+    std::ostringstream msg;
+    msg << "has " << size << " entries; expected " << n
+        << " (one per model parameter) or none";
+    return InputError(field, msg.str());
+  };
+  if (options.prior_mean.size() != 0 && options.prior_mean.size() != n) {
+    throw size_error("options.prior_mean", options.prior_mean.size());
+  }
+  if (options.prior_sigma.size() != 0 && options.prior_sigma.size() != n) {
+    throw size_error("options.prior_sigma", options.prior_sigma.size());
+  }
+  if (options.tikhonov_operator.size() != 0 && options.tikhonov_operator.cols() != n) {
+    std::ostringstream msg;
+    msg << "has " << options.tikhonov_operator.cols() << " columns; expected " << n
+        << " (one per model parameter)";
+    throw InputError("options.tikhonov_operator", msg.str());
+  }
+  if (start.size() != 0 && start.size() != n) throw size_error("start", start.size());
+  if (!start.allFinite()) throw InputError("start", "has a NaN or infinite entry");
+
+  auto context = std::make_shared<Context>();
+  Context& c = *context;
+  c.model = model;
+  c.frequency_sigma = options.frequency_sigma;
+  c.min_mac = options.min_mac;
+  c.eigen = options.eigen;
+
+  NonlinearProblem problem;
+  int row = 0;
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    const ModalData& data = states[i];
+    const std::string where =
+        "states." + (data.state.empty() ? std::to_string(i + 1) : data.state);
+    data.Validate(num_dofs, where);
+    if (data.num_modes() > num_dofs) {
+      std::ostringstream msg;
+      msg << data.num_modes() << " modes measured; the model has only " << num_dofs
+          << " DOFs";
+      throw InputError(where + ".frequencies", msg.str());
+    }
+    StateTerms st;
+    st.name = data.state.empty() ? "state " + std::to_string(i + 1) : data.state;
+    st.wet = data.immersion == Immersion::kWet;
+    if (data.sensor_dofs.empty()) {
+      st.sensors.resize(num_dofs);
+      std::iota(st.sensors.begin(), st.sensors.end(), 0);
+    } else {
+      st.sensors = data.sensor_dofs;
+    }
+    st.lambdas = data.Eigenvalues();
+    st.shapes = data.shapes;
+    st.pair_by_mac = options.pair_by_mac && data.HasShapes();
+    st.shape_residuals = options.use_shapes && data.HasShapes();
+    st.num_model_modes = std::min(num_dofs, data.num_modes() + options.extra_modes);
+    st.first_row = row;
+    if (st.shape_residuals) {
+      st.unit_shapes = data.shapes.colwise().normalized();
+      st.shape_weights.resize(data.num_modes());
+      for (int j = 0; j < data.num_modes(); ++j) {
+        st.shape_weights[j] =
+            1.0 / (options.shape_sigma * st.unit_shapes.col(j).cwiseAbs().maxCoeff());
+      }
+    }
+    for (int j = 0; j < data.num_modes(); ++j) {
+      const std::string mode = st.name + " mode " + std::to_string(j + 1);
+      problem.residual_labels.push_back(mode + " lambda");
+      if (!st.shape_residuals) continue;
+      for (int dof : st.sensors) {
+        problem.residual_labels.push_back(mode + " shape " + model.dof_labels()[dof]);
+      }
+    }
+    row += data.num_modes() * st.rows_per_mode();
+    c.states.push_back(std::move(st));
+  }
+
+  const std::vector<std::string> names = model.ParameterNames();
+  c.prior_first_row = row;
+  c.prior_mean = options.prior_mean.size() == n ? options.prior_mean
+                                                : Eigen::VectorXd::Zero(n).eval();
+  c.prior_sigma = options.prior_sigma;
+  for (int i = 0; i < options.prior_sigma.size(); ++i) {
+    if (!HasPrior(options.prior_sigma[i])) continue;
+    c.prior_index.push_back(i);
+    problem.residual_labels.push_back("prior " + names[i]);
+    ++row;
+  }
+  if (options.tikhonov_lambda > 0) {
+    c.tikhonov = options.tikhonov_lambda * (options.tikhonov_operator.size() == 0
+                                                ? Eigen::MatrixXd::Identity(n, n).eval()
+                                                : options.tikhonov_operator);
+    for (Eigen::Index i = 0; i < c.tikhonov.rows(); ++i) {
+      problem.residual_labels.push_back("tikhonov " + std::to_string(i + 1));
+    }
+    row += static_cast<int>(c.tikhonov.rows());
+  }
+  c.num_residuals = row;
+
+  problem.num_residuals = row;
+  problem.initial = start.size() == n ? start : Eigen::VectorXd::Zero(n).eval();
+  problem.names = names;
+  for (const Parameter& p : model.parameters())
+    problem.groups.push_back(ToString(p.kind));
+  problem.residuals_whitened = true;
+  std::shared_ptr<const Context> shared = std::move(context);
+  problem.evaluate = [shared](const Eigen::VectorXd& x, Eigen::VectorXd* residuals,
+                              Eigen::MatrixXd* jacobian, std::string* why) {
+    return Evaluate(*shared, x, residuals, jacobian, why);
+  };
+  return problem;
+}
+
+}  // namespace femup

@@ -1,0 +1,94 @@
+#include "linear_common.h"
+
+#include <Eigen/QR>
+#include <Eigen/SVD>
+#include <boost/math/distributions/normal.hpp>
+#include <boost/math/distributions/students_t.hpp>
+#include <cmath>
+#include <sstream>
+
+#include "femup/errors.h"
+
+namespace femup::internal {
+
+Eigen::MatrixXd ReducedProblem::ToX(const Eigen::VectorXd& z) const {
+  return particular + basis * z;
+}
+
+ReducedProblem Reduce(const LinearProblem& problem) {
+  const std::string invalid = problem.Validate();
+  if (!invalid.empty()) throw InputError("linear problem", invalid);
+  ReducedProblem r;
+  const int n = problem.num_unknowns();
+  r.weighted = Weighted(problem);
+  r.free = problem.FreeUnknowns();
+  const int nf = static_cast<int>(r.free.size());
+  r.particular = Eigen::VectorXd::Zero(n);
+  for (const auto& [i, value] : problem.fixed) r.particular[i] = value;
+
+  Eigen::MatrixXd select = Eigen::MatrixXd::Zero(n, nf);  // free unknowns -> x
+  for (int k = 0; k < nf; ++k) select(r.free[k], k) = 1.0;
+
+  if (problem.has_equalities()) {
+    r.has_equalities = true;
+    const Eigen::MatrixXd c = problem.equality_matrix * select;
+    const Eigen::VectorXd d = problem.equality_rhs - problem.equality_matrix * r.particular;
+    Eigen::JacobiSVD<Eigen::MatrixXd> svd(c, Eigen::ComputeFullV);
+    const Eigen::VectorXd& s = svd.singularValues();
+    int rank = 0;
+    const double tol = s.size() > 0 ? 1e-12 * s[0] * std::max(c.rows(), c.cols()) : 0.0;
+    while (rank < s.size() && s[rank] > tol) ++rank;
+    Eigen::VectorXd xf = Eigen::VectorXd::Zero(nf);  // minimum-norm particular solution
+    const Eigen::MatrixXd v = svd.matrixV();
+    Eigen::JacobiSVD<Eigen::MatrixXd> thin(c, Eigen::ComputeThinU | Eigen::ComputeThinV);
+    for (int i = 0; i < rank; ++i)
+      xf += v.col(i) * (thin.matrixU().col(i).dot(d) / s[i]);
+    r.particular += select * xf;
+    r.basis = select * v.rightCols(nf - rank);
+    for (int k = 0; k < nf - rank; ++k) {
+      r.names.push_back("combination[" + std::to_string(k) + "]");
+      r.groups.push_back("combination");
+    }
+  } else {
+    r.basis = select;
+    for (int k = 0; k < nf; ++k) {
+      if (!problem.names.empty()) r.names.push_back(problem.names[r.free[k]]);
+      if (!problem.groups.empty()) r.groups.push_back(problem.groups[r.free[k]]);
+    }
+  }
+  r.A = r.weighted.A * r.basis;
+  r.b = r.weighted.b - r.weighted.A * r.particular;
+  return r;
+}
+
+double IntervalQuantile(double confidence_level, double dof) {
+  const double p = 0.5 + 0.5 * confidence_level;
+  if (dof <= 0) return boost::math::quantile(boost::math::normal_distribution<double>(), p);
+  return boost::math::quantile(boost::math::students_t_distribution<double>(dof), p);
+}
+
+void FillUncertainty(const LinearProblem& problem, const Eigen::MatrixXd& x_map,
+                     const Eigen::VectorXd& weighted_residual, double parameters_used,
+                     double confidence_level, LinearSolution* solution) {
+  const double m = problem.num_rows();
+  solution->confidence_level = confidence_level;
+  solution->noise_estimated = !problem.noise_known();
+  double variance = 1.0, dof = 0.0;
+  if (solution->noise_estimated) {
+    dof = m - parameters_used;
+    if (dof < 0.5) {
+      solution->summary.warnings.push_back(
+          "no uncertainty: the data leave no degree of freedom to estimate the noise "
+          "(give data_sigma or weights)");
+      return;
+    }
+    variance = weighted_residual.squaredNorm() / dof;
+  }
+  solution->covariance = variance * x_map * x_map.transpose();
+  solution->standard_error = solution->covariance.diagonal().cwiseMax(0.0).cwiseSqrt();
+  const double q = IntervalQuantile(confidence_level, dof);
+  solution->interval_lower = solution->x - q * solution->standard_error;
+  solution->interval_upper = solution->x + q * solution->standard_error;
+}
+
+}  // namespace femup::internal

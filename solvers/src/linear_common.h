@@ -1,0 +1,56 @@
+// Shared by the linear solvers (private): the problem reduced to its free
+// coordinates, and the uncertainty of a linear estimator.
+#pragma once
+
+#include <Eigen/Core>
+#include <chrono>
+#include <string>
+#include <vector>
+
+#include "femup/problems/linear_problem.h"
+#include "femup/solvers/linear_solver.h"
+
+namespace femup::internal {
+
+// x = particular + basis z: fixed values substituted, linear equalities
+// eliminated exactly (basis = orthonormal null space of C on the free unknowns).
+// A and b are weighted (rows whitened) and expressed in z.
+struct ReducedProblem {
+  Eigen::MatrixXd A;           // m x k
+  Eigen::VectorXd b;           // m: W b - W A particular
+  Eigen::MatrixXd basis;       // n x k
+  Eigen::VectorXd particular;  // n
+  bool has_equalities = false;
+  std::vector<int> free;  // free unknowns (not fixed)
+  // Labels of z: the free unknowns' names and groups without equalities,
+  // "combination[k]" with them.
+  std::vector<std::string> names, groups;
+  WeightedSystem weighted;  // the full weighted system (n columns)
+  Eigen::MatrixXd ToX(const Eigen::VectorXd& z) const;
+};
+
+// Validates (InputError "linear problem" before any work) and reduces.
+ReducedProblem Reduce(const LinearProblem& problem);
+
+// Covariance, standard errors and intervals of an estimator x = particular + X b_w
+// (X: n x m), `parameters_used` the degrees of freedom the fit consumed (rank or
+// trace of the influence matrix). Noise variance from the weighted residual
+// unless the problem states its noise.
+void FillUncertainty(const LinearProblem& problem, const Eigen::MatrixXd& x_map,
+                     const Eigen::VectorXd& weighted_residual, double parameters_used,
+                     double confidence_level, LinearSolution* solution);
+
+// Two-sided quantile: normal (dof <= 0) or Student t with `dof` degrees of freedom.
+double IntervalQuantile(double confidence_level, double dof);
+
+class Stopwatch {
+ public:
+  double Seconds() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+
+ private:
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+}  // namespace femup::internal

@@ -1,0 +1,447 @@
+// The eigen-sensitivity updating problem (problems/eigen_sensitivity.h), checked
+// against: zero residuals at the paper chain's known factors, residuals computed
+// by hand from SolveModes, central finite differences of its own residuals for
+// the Jacobian, the known common-scaling null space (method.md section 3), and
+// a Gauss-Newton loop written here that must recover the known factors.
+#include "femup/problems/eigen_sensitivity.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "femup/builders.h"
+#include "femup/errors.h"
+#include "femup/modal.h"
+#include "femup/problems/noise.h"
+#include "femup/problems/paper_chain.h"
+#include "femup/structure.h"
+
+namespace femup {
+namespace {
+
+// Noise-free measurements: the lowest modes of the model at its true factors,
+// shapes at every DOF.
+std::vector<ModalData> TrueData(const PaperChainScenario& s, int air_modes,
+                                int water_modes) {
+  return {PredictModes(s.model, s.preset, Immersion::kDry, air_modes, "air"),
+          PredictModes(s.model, s.preset, Immersion::kWet, water_modes, "water")};
+}
+
+// `data` (shapes on every DOF) seen only by the sensors on `dofs`.
+ModalData AtSensors(ModalData data, const std::vector<int>& dofs) {
+  data.shapes = Eigen::MatrixXd(data.shapes(dofs, Eigen::all));
+  data.sensor_dofs = dofs;
+  return data;
+}
+
+void SwapModes(ModalData* data, int a, int b) {
+  std::swap(data->frequencies_hz[a], data->frequencies_hz[b]);
+  data->shapes.col(a).swap(data->shapes.col(b));
+}
+
+Eigen::VectorXd Residuals(const NonlinearProblem& p, const Eigen::VectorXd& x) {
+  Eigen::VectorXd r;
+  std::string why;
+  EXPECT_TRUE(p.evaluate(x, &r, nullptr, &why)) << why;
+  EXPECT_EQ(r.size(), p.num_residuals);
+  return r;
+}
+
+int Row(const NonlinearProblem& p, const std::string& label) {
+  const auto it = std::find(p.residual_labels.begin(), p.residual_labels.end(), label);
+  EXPECT_NE(it, p.residual_labels.end()) << label;
+  return static_cast<int>(it - p.residual_labels.begin());
+}
+
+// max |J - J_fd| / max |J|, J_fd from central differences with steps h and h/2
+// combined by Richardson extrapolation (error O(h^4)).
+double JacobianError(const NonlinearProblem& p, const Eigen::VectorXd& x, double h) {
+  Eigen::VectorXd r;
+  Eigen::MatrixXd jac;
+  std::string why;
+  EXPECT_TRUE(p.evaluate(x, &r, &jac, &why)) << why;
+  EXPECT_EQ(jac.rows(), p.num_residuals);
+  EXPECT_EQ(jac.cols(), p.num_parameters());
+  Eigen::MatrixXd fd(jac.rows(), jac.cols());
+  for (int i = 0; i < p.num_parameters(); ++i) {
+    Eigen::VectorXd central[2];
+    for (int level = 0; level < 2; ++level) {
+      const double step = level == 0 ? h : h / 2;
+      Eigen::VectorXd xp = x, xm = x;
+      xp[i] += step;
+      xm[i] -= step;
+      central[level] = (Residuals(p, xp) - Residuals(p, xm)) / (2 * step);
+    }
+    fd.col(i) = (4 * central[1] - central[0]) / 3;
+  }
+  return (jac - fd).cwiseAbs().maxCoeff() / jac.cwiseAbs().maxCoeff();
+}
+
+TEST(EigenSensitivity, LabelsNamesAndShape) {
+  const PaperChainScenario s = PaperChain(3);
+  std::vector<ModalData> data = TrueData(s, 2, 3);
+  data[0] = AtSensors(data[0], {0, 2, 4});
+  const NonlinearProblem p = BuildEigenSensitivityProblem(s.model, data, {});
+  // Air: 2 x (1 + 3 sensors); water: 3 x (1 + 5 DOFs).
+  EXPECT_EQ(p.num_residuals, 8 + 18);
+  ASSERT_EQ(p.residual_labels.size(), 26u);
+  EXPECT_EQ(p.residual_labels[0], "air mode 1 lambda");
+  EXPECT_EQ(p.residual_labels[2], "air mode 1 shape x3");
+  EXPECT_EQ(p.residual_labels[8], "water mode 1 lambda");
+  EXPECT_EQ(p.residual_labels[8 + 6 + 3], "water mode 2 shape x3");
+  EXPECT_EQ(p.names, s.model.ParameterNames());
+  ASSERT_EQ(p.groups.size(), 13u);
+  EXPECT_EQ(p.groups[0], "mass");
+  EXPECT_EQ(p.groups[5], "stiffness");
+  EXPECT_EQ(p.groups[12], "added_mass");
+  EXPECT_TRUE(p.residuals_whitened);
+  EXPECT_TRUE(p.fixed.empty());
+  EXPECT_EQ(p.initial, Eigen::VectorXd::Zero(13));
+  const NonlinearProblem started =
+      BuildEigenSensitivityProblem(s.model, data, {}, s.preset);
+  EXPECT_EQ(started.initial, s.preset);
+
+  EigenSensitivityOptions frequencies_only;
+  frequencies_only.use_shapes = false;
+  const NonlinearProblem q =
+      BuildEigenSensitivityProblem(s.model, data, frequencies_only);
+  EXPECT_EQ(q.num_residuals, 5);
+  EXPECT_EQ(q.residual_labels[4], "water mode 3 lambda");
+}
+
+TEST(EigenSensitivity, ZeroResidualsAtTheTrueFactors) {
+  const PaperChainScenario s = PaperChain(3);
+  std::vector<ModalData> data = TrueData(s, 3, 3);
+  data[0] = AtSensors(data[0], {1, 3, 4});
+  data[1].shapes.col(1) *= -2.5;  // any scaling and sign of the data
+  const NonlinearProblem p = BuildEigenSensitivityProblem(s.model, data, {});
+  EXPECT_LT(Residuals(p, s.preset).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_GT(Residuals(p, Eigen::VectorXd::Zero(13)).norm(), 10.0);
+}
+
+// The documented definitions, computed another way: the measured shape scaled
+// so that its largest-magnitude entry is +-1, the model shape scaled to the same
+// Euclidean norm and sign.
+TEST(EigenSensitivity, ResidualsFollowTheirDefinition) {
+  const PaperChainScenario s = PaperChain(3);
+  std::mt19937_64 rng(42);
+  NoiseModel noise;
+  noise.level = 0.02;
+  std::vector<ModalData> data = TrueData(s, 2, 2);
+  for (ModalData& d : data) d = Corrupt(d, noise, &rng);
+  data[1] = AtSensors(data[1], {0, 1, 3});
+  EigenSensitivityOptions options;
+  options.frequency_sigma = 0.01;
+  options.shape_sigma = 0.05;
+  const NonlinearProblem p = BuildEigenSensitivityProblem(s.model, data, options);
+  const Eigen::VectorXd x = 0.5 * s.preset;
+  const Eigen::VectorXd r = Residuals(p, x);
+
+  const Modes wet = SolveModes(s.model.UpdatedStiffness(x), s.model.UpdatedWetMass(x));
+  const double lambda_meas = std::pow(2 * M_PI * data[1].frequencies_hz[1], 2);
+  EXPECT_NEAR(r[Row(p, "water mode 2 lambda")],
+              (wet.eigenvalues[1] / lambda_meas - 1) / 0.01, 1e-9);
+  const Eigen::VectorXd measured =
+      data[1].shapes.col(1) / data[1].shapes.col(1).cwiseAbs().maxCoeff();
+  Eigen::VectorXd model = wet.shapes.col(1)(data[1].sensor_dofs);
+  model *= measured.norm() / model.norm();
+  if (model.dot(measured) < 0) model = -model;
+  const std::vector<std::string> dofs = {"x1", "x2", "x4"};
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(r[Row(p, "water mode 2 shape " + dofs[i])],
+                (model[i] - measured[i]) / 0.05, 1e-9);
+  }
+}
+
+TEST(EigenSensitivity, JacobianMatchesFiniteDifferences) {
+  const PaperChainScenario s = PaperChain(3);
+  std::mt19937_64 rng(3);
+  NoiseModel noise;
+  noise.level = 0.01;
+  std::vector<ModalData> data = TrueData(s, 2, 3);
+  for (ModalData& d : data) d = Corrupt(d, noise, &rng);
+  data[0] = AtSensors(data[0], {0, 2, 3, 4});
+  data[1].shapes.col(2) *= -1;  // exercises the sign alignment
+  EigenSensitivityOptions options;
+  options.prior_sigma = Eigen::VectorXd::Zero(13);
+  options.prior_sigma.tail(3).setConstant(0.1);  // a prior on the added mass only
+  options.prior_mean = Eigen::VectorXd::Constant(13, 0.01);
+  options.tikhonov_lambda = 0.5;
+  options.tikhonov_operator = Eigen::MatrixXd::Zero(2, 13);
+  options.tikhonov_operator(0, 0) = 1;
+  options.tikhonov_operator(0, 1) = -1;
+  options.tikhonov_operator(1, 5) = 1;
+  options.tikhonov_operator(1, 6) = -1;
+  const NonlinearProblem p = BuildEigenSensitivityProblem(s.model, data, options);
+  for (const Eigen::VectorXd& x :
+       {Eigen::VectorXd(Eigen::VectorXd::Zero(13)), Eigen::VectorXd(0.7 * s.preset)}) {
+    const double error = JacobianError(p, x, 1e-4);
+    EXPECT_LT(error, 1e-8);
+    RecordProperty("max_relative_jacobian_error", std::to_string(error));
+  }
+}
+
+TEST(EigenSensitivity, CantileverJacobianMatchesFiniteDifferences) {
+  CantileverSpec spec;
+  spec.node_heights = UniformHeights(1.9, 10);
+  spec.section = BeamSection{206e9, 8.8e-4, 8.53e-8, 7850};
+  spec.water_depth = 1.5;
+  spec.added_mass_basis = AddedMassBasis::kTransverse;
+  const ParametrisedModel model = BuildModel(BuildCantilever(spec), PaperParameterPlan());
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> u(-0.05, 0.15);
+  Eigen::VectorXd truth(model.num_parameters());
+  for (int i = 0; i < truth.size(); ++i) truth[i] = u(rng);
+  // Ten transverse sensors, as in the paper's experiment.
+  std::vector<int> sensors;
+  for (int node = 1; node <= 10; ++node) {
+    sensors.push_back(model.FindDof("n" + std::to_string(node) + ":ux"));
+  }
+  NoiseModel noise;
+  noise.level = 0.01;
+  std::vector<ModalData> data = {
+      AtSensors(PredictModes(model, truth, Immersion::kDry, 3, "air"), sensors),
+      AtSensors(PredictModes(model, truth, Immersion::kWet, 3, "water"), sensors)};
+  for (ModalData& d : data) d = Corrupt(d, noise, &rng);
+  const NonlinearProblem p = BuildEigenSensitivityProblem(model, data, {});
+  EXPECT_EQ(p.residual_labels[1], "air mode 1 shape n1:ux");
+  // Larger steps than for the chain: the eigensolver's rounding on this stiff
+  // pencil enters the differences as 1/h.
+  const double error =
+      JacobianError(p, Eigen::VectorXd::Zero(model.num_parameters()), 1e-2);
+  EXPECT_LT(error, 1e-6);
+  RecordProperty("max_relative_jacobian_error", std::to_string(error));
+}
+
+// Mass and stiffness scaled together leave the data unchanged (method.md
+// section 3): the Jacobian at the truth has exactly that null vector, and
+// fixing mass 4 removes it.
+TEST(EigenSensitivity, CommonScalingIsTheOnlyNullDirection) {
+  const PaperChainScenario s = PaperChain(3);
+  const NonlinearProblem p = BuildEigenSensitivityProblem(s.model, TrueData(s, 2, 2), {});
+  Eigen::VectorXd r;
+  Eigen::MatrixXd jac;
+  std::string why;
+  ASSERT_TRUE(p.evaluate(s.preset, &r, &jac, &why)) << why;
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(jac, Eigen::ComputeFullV);
+  const Eigen::VectorXd sv = svd.singularValues();
+  EXPECT_LT(sv[12], 1e-10 * sv[0]);
+  EXPECT_GT(sv[11], 1e-4 * sv[0]);
+  Eigen::VectorXd scaling = s.preset;
+  scaling.head(10).array() += 1.0;
+  EXPECT_GT(std::abs(svd.matrixV().col(12).dot(scaling.normalized())), 1 - 1e-10);
+}
+
+// Gauss-Newton written here (x -= (J'J)^-1 J'r over the free factors, by QR)
+// from the nominal model, with mass 4 fixed at its true value as in the paper.
+TEST(EigenSensitivity, GaussNewtonRecoversThePaperFactors) {
+  for (int wet : {3, 2}) {
+    const PaperChainScenario s = PaperChain(wet);
+    std::vector<ModalData> data = TrueData(s, 2, 2);
+    data[1] = AtSensors(data[1], {0, 1, 2, 4});
+    const NonlinearProblem p = BuildEigenSensitivityProblem(s.model, data, {});
+    const int fixed = s.model.FindParameter(s.fixed_parameter);
+    std::vector<int> free;
+    for (int i = 0; i < p.num_parameters(); ++i) {
+      if (i != fixed) free.push_back(i);
+    }
+    Eigen::VectorXd x = p.initial;
+    x[fixed] = s.preset[fixed];
+    int iterations = 0;
+    double step_norm = 1;
+    while (step_norm > 1e-13 && iterations < 20) {
+      Eigen::VectorXd r;
+      Eigen::MatrixXd jac;
+      std::string why;
+      ASSERT_TRUE(p.evaluate(x, &r, &jac, &why)) << why;
+      const Eigen::MatrixXd jf = jac(Eigen::all, free);
+      const Eigen::VectorXd step = jf.colPivHouseholderQr().solve(r);
+      x(free) -= step;
+      step_norm = step.norm();
+      ++iterations;
+    }
+    EXPECT_LE(iterations, 10) << "wet masses " << wet;
+    for (int i = 0; i < p.num_parameters(); ++i) {
+      EXPECT_NEAR(x[i], s.preset[i], 1e-8) << p.names[i];
+    }
+    EXPECT_LT(Residuals(p, x).norm(), 1e-9);
+    RecordProperty("iterations_wet_" + std::to_string(wet), iterations);
+  }
+}
+
+TEST(EigenSensitivity, PairingByMacFollowsSwappedModes) {
+  const PaperChainScenario s = PaperChain(3);
+  std::vector<ModalData> data = TrueData(s, 3, 3);
+  std::vector<ModalData> swapped = data;
+  SwapModes(&swapped[0], 0, 1);
+  SwapModes(&swapped[1], 1, 2);
+  const NonlinearProblem p = BuildEigenSensitivityProblem(s.model, swapped, {});
+  EXPECT_LT(Residuals(p, s.preset).norm(), 1e-9);
+  EigenSensitivityOptions by_order;
+  by_order.pair_by_mac = false;
+  EXPECT_GT(Residuals(BuildEigenSensitivityProblem(s.model, swapped, by_order), s.preset)
+                .norm(),
+            10.0);
+
+  // With noise: the same residuals in another order, so the same norm.
+  std::mt19937_64 rng(17);
+  NoiseModel noise;
+  noise.level = 0.02;
+  for (ModalData& d : data) d = Corrupt(d, noise, &rng);
+  swapped = data;
+  SwapModes(&swapped[0], 0, 2);
+  const double norm =
+      Residuals(BuildEigenSensitivityProblem(s.model, data, {}), s.preset).norm();
+  const double swapped_norm =
+      Residuals(BuildEigenSensitivityProblem(s.model, swapped, {}), s.preset).norm();
+  EXPECT_GT(norm, 1.0);
+  EXPECT_NEAR(swapped_norm, norm, 1e-12 * norm);
+}
+
+TEST(EigenSensitivity, PairsAMeasuredModeOutOfOrder) {
+  // Air modes 1 and 3 measured (mode 2 missed): mode 3 pairs with model mode 3.
+  const PaperChainScenario s = PaperChain(3);
+  std::vector<ModalData> data = TrueData(s, 3, 2);
+  ModalData& air = data[0];
+  air.frequencies_hz = Eigen::Vector2d(air.frequencies_hz[0], air.frequencies_hz[2]);
+  air.shapes = Eigen::MatrixXd(air.shapes(Eigen::all, std::vector<int>{0, 2}));
+  EXPECT_LT(Residuals(BuildEigenSensitivityProblem(s.model, data, {}), s.preset).norm(),
+            1e-9);
+
+  // Without extra model modes mode 3 can only pair with model mode 2: below
+  // min_mac the evaluation fails (and does not throw).
+  EigenSensitivityOptions options;
+  options.extra_modes = 0;
+  options.min_mac = 0.9;
+  const NonlinearProblem p = BuildEigenSensitivityProblem(s.model, data, options);
+  Eigen::VectorXd r;
+  Eigen::MatrixXd jac;
+  std::string why;
+  EXPECT_FALSE(p.evaluate(s.preset, &r, &jac, &why));
+  EXPECT_NE(why.find("air mode 2"), std::string::npos) << why;
+  EXPECT_NE(why.find("MAC"), std::string::npos) << why;
+}
+
+TEST(EigenSensitivity, EvaluationFailuresAreReportedNotThrown) {
+  const PaperChainScenario s = PaperChain(3);
+  const NonlinearProblem p = BuildEigenSensitivityProblem(s.model, TrueData(s, 2, 2), {});
+  Eigen::VectorXd r;
+  Eigen::MatrixXd jac;
+  std::string why;
+  // Mass factors of -1.5 make M~ negative definite.
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(13);
+  x.head(5).setConstant(-1.5);
+  EXPECT_FALSE(p.evaluate(x, &r, &jac, &why));
+  EXPECT_NE(why.find("positive definite"), std::string::npos) << why;
+  why.clear();
+  EXPECT_FALSE(p.evaluate(Eigen::VectorXd::Zero(4), &r, nullptr, &why));
+  EXPECT_FALSE(why.empty());
+  x.setZero();
+  x[0] = std::nan("");
+  EXPECT_FALSE(p.evaluate(x, &r, nullptr, &why));
+}
+
+TEST(EigenSensitivity, PriorAndTikhonovRows) {
+  const PaperChainScenario s = PaperChain(3);
+  EigenSensitivityOptions options;
+  options.use_shapes = false;
+  options.prior_mean = Eigen::VectorXd::Constant(13, 0.1);
+  options.prior_sigma = Eigen::VectorXd::Zero(13);
+  options.prior_sigma[2] = 0.5;
+  options.prior_sigma[12] = 0.25;
+  options.prior_sigma[7] = std::numeric_limits<double>::infinity();  // no prior
+  options.tikhonov_lambda = 3;
+  const NonlinearProblem p =
+      BuildEigenSensitivityProblem(s.model, TrueData(s, 2, 2), options);
+  ASSERT_EQ(p.num_residuals, 4 + 2 + 13);
+  EXPECT_EQ(p.residual_labels[4], "prior mass[3]");
+  EXPECT_EQ(p.residual_labels[5], "prior added_mass[3]");
+  EXPECT_EQ(p.residual_labels[6], "tikhonov 1");
+  Eigen::VectorXd r;
+  Eigen::MatrixXd jac;
+  std::string why;
+  ASSERT_TRUE(p.evaluate(s.preset, &r, &jac, &why)) << why;
+  EXPECT_NEAR(r[4], (s.preset[2] - 0.1) / 0.5, 1e-15);
+  EXPECT_NEAR(r[5], (s.preset[12] - 0.1) / 0.25, 1e-15);
+  EXPECT_NEAR(jac(4, 2), 2.0, 1e-15);
+  EXPECT_EQ(jac.row(4).cwiseAbs().sum(), 2.0);
+  const Eigen::VectorXd expected = 3 * (s.preset.array() - 0.1).matrix();
+  EXPECT_LT((r.tail(13) - expected).norm(), 1e-14);
+  EXPECT_EQ(jac.bottomRows(13), 3 * Eigen::MatrixXd::Identity(13, 13));
+}
+
+TEST(EigenSensitivity, BadInputNamesTheField) {
+  const PaperChainScenario s = PaperChain(3);
+  const std::vector<ModalData> data = TrueData(s, 2, 2);
+  auto expect_error = [&](const std::vector<ModalData>& states,
+                          const EigenSensitivityOptions& options,
+                          const std::string& field, const Eigen::VectorXd& start = {}) {
+    try {
+      BuildEigenSensitivityProblem(s.model, states, options, start);
+      ADD_FAILURE() << "no InputError for " << field;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
+    }
+  };
+  const EigenSensitivityOptions ok;
+  expect_error({}, ok, "states");
+  std::vector<ModalData> bad = data;
+  bad[1] = AtSensors(bad[1], {0, 1, 7});
+  expect_error(bad, ok, "water.sensors");
+  bad = data;
+  bad[0].frequencies_hz = Eigen::VectorXd::Constant(6, 30.0);
+  bad[0].shapes = Eigen::MatrixXd();
+  expect_error(bad, ok, "air.frequencies");
+  bad = data;
+  bad[0].frequencies_hz[1] = -3;
+  expect_error(bad, ok, "air.frequencies");
+
+  EigenSensitivityOptions o;
+  o.frequency_sigma = 0;
+  expect_error(data, o, "frequency_sigma");
+  o = ok;
+  o.shape_sigma = -1;
+  expect_error(data, o, "shape_sigma");
+  o = ok;
+  o.extra_modes = -1;
+  expect_error(data, o, "extra_modes");
+  o = ok;
+  o.min_mac = 1.5;
+  expect_error(data, o, "min_mac");
+  o = ok;
+  o.prior_mean = Eigen::VectorXd::Zero(12);
+  expect_error(data, o, "prior_mean");
+  o = ok;
+  o.prior_sigma = Eigen::VectorXd::Ones(14);
+  expect_error(data, o, "prior_sigma");
+  o = ok;
+  o.prior_sigma = Eigen::VectorXd::Ones(13);
+  o.prior_sigma[3] = std::nan("");
+  expect_error(data, o, "prior_sigma");
+  o = ok;
+  o.tikhonov_lambda = -1;
+  expect_error(data, o, "tikhonov_lambda");
+  o = ok;
+  o.tikhonov_lambda = 1;
+  o.tikhonov_operator = Eigen::MatrixXd::Identity(3, 3);
+  expect_error(data, o, "tikhonov_operator");
+  o = ok;
+  o.eigen.tolerance = 0;
+  expect_error(data, o, "eigen");
+  expect_error(data, ok, "start", Eigen::VectorXd::Zero(5));
+
+  const ParametrisedModel bare(s.model.stiffness(), s.model.mass(), s.model.dof_labels());
+  try {
+    BuildEigenSensitivityProblem(bare, data, ok);
+    ADD_FAILURE() << "no InputError for a model without parameters";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("parameters"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace femup
