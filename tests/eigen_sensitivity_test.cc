@@ -179,9 +179,7 @@ TEST(EigenSensitivity, JacobianMatchesFiniteDifferences) {
   const NonlinearProblem p = BuildEigenSensitivityProblem(s.model, data, options);
   for (const Eigen::VectorXd& x :
        {Eigen::VectorXd(Eigen::VectorXd::Zero(13)), Eigen::VectorXd(0.7 * s.preset)}) {
-    const double error = JacobianError(p, x, 1e-4);
-    EXPECT_LT(error, 1e-8);
-    RecordProperty("max_relative_jacobian_error", std::to_string(error));
+    EXPECT_LT(JacobianError(p, x, 1e-4), 1e-8);  // measured: 8e-11
   }
 }
 
@@ -213,8 +211,7 @@ TEST(EigenSensitivity, CantileverJacobianMatchesFiniteDifferences) {
   // pencil enters the differences as 1/h.
   const double error =
       JacobianError(p, Eigen::VectorXd::Zero(model.num_parameters()), 1e-2);
-  EXPECT_LT(error, 1e-6);
-  RecordProperty("max_relative_jacobian_error", std::to_string(error));
+  EXPECT_LT(error, 1e-6);  // measured: 1.7e-7
 }
 
 // Mass and stiffness scaled together leave the data unchanged (method.md
@@ -264,12 +261,11 @@ TEST(EigenSensitivity, GaussNewtonRecoversThePaperFactors) {
       step_norm = step.norm();
       ++iterations;
     }
-    EXPECT_LE(iterations, 10) << "wet masses " << wet;
+    EXPECT_LE(iterations, 10) << "wet masses " << wet;  // measured: 6
     for (int i = 0; i < p.num_parameters(); ++i) {
       EXPECT_NEAR(x[i], s.preset[i], 1e-8) << p.names[i];
     }
     EXPECT_LT(Residuals(p, x).norm(), 1e-9);
-    RecordProperty("iterations_wet_" + std::to_string(wet), iterations);
   }
 }
 
@@ -390,7 +386,8 @@ TEST(EigenSensitivity, BadInputNamesTheField) {
   const EigenSensitivityOptions ok;
   expect_error({}, ok, "states");
   std::vector<ModalData> bad = data;
-  bad[1] = AtSensors(bad[1], {0, 1, 7});
+  bad[1] = AtSensors(bad[1], {0, 1, 2});
+  bad[1].sensor_dofs[2] = 7;  // the model has 5 DOFs
   expect_error(bad, ok, "water.sensors");
   bad = data;
   bad[0].frequencies_hz = Eigen::VectorXd::Constant(6, 30.0);

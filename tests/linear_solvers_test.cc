@@ -2,8 +2,6 @@
 // solvers/linear_solver.h), each against an independent reference: normal or
 // KKT equations solved in long double, a brute-force enumeration of active sets
 // for bounded problems, and the paper's preset factors.
-#include "femup/solvers/linear_solver.h"
-
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -18,6 +16,7 @@
 #include "femup/modal.h"
 #include "femup/problems/correction_system.h"
 #include "femup/problems/paper_chain.h"
+#include "femup/solvers/linear_solver.h"
 
 namespace femup {
 namespace {
@@ -66,7 +65,8 @@ Eigen::VectorXd BruteForceBounded(const Eigen::MatrixXd& a, const Eigen::VectorX
     for (int j = 0; j < n; ++j) {
       state[j] = code % 3 - 1;  // -1 lower, 0 free, 1 upper
       code /= 3;
-      if ((state[j] < 0 && !std::isfinite(l[j])) || (state[j] > 0 && !std::isfinite(u[j])))
+      if ((state[j] < 0 && !std::isfinite(l[j])) ||
+          (state[j] > 0 && !std::isfinite(u[j])))
         ok = false;
     }
     if (!ok) continue;
@@ -129,7 +129,8 @@ TEST_P(EverySolver, OverdeterminedMatchesNormalEquations) {
   const LinearProblem p = Make(Random(40, 6, 11), Random(40, 1, 12));
   const LinearSolution s = Solver()->Solve(p);
   ASSERT_EQ(s.summary.status, SolverStatus::kSolved) << s.summary.message;
-  const Eigen::VectorXd ref = KktReference(p.A, p.b, Eigen::MatrixXd(0, 6), Eigen::VectorXd());
+  const Eigen::VectorXd ref =
+      KktReference(p.A, p.b, Eigen::MatrixXd(0, 6), Eigen::VectorXd());
   EXPECT_LT((s.x - ref).cwiseAbs().maxCoeff(), 1e-8 * ref.cwiseAbs().maxCoeff());
   EXPECT_NEAR(s.summary.cost, 0.5 * (p.A * ref - p.b).squaredNorm(), 1e-10);
 }
@@ -141,7 +142,8 @@ TEST_P(EverySolver, WeightsAndCovarianceMatchWeightedNormalEquations) {
   ASSERT_EQ(s.summary.status, SolverStatus::kSolved) << s.summary.message;
   const Eigen::MatrixXd aw = p.row_weights.asDiagonal() * p.A;
   const Eigen::VectorXd bw = p.row_weights.cwiseProduct(p.b);
-  const Eigen::VectorXd ref = KktReference(aw, bw, Eigen::MatrixXd(0, 4), Eigen::VectorXd());
+  const Eigen::VectorXd ref =
+      KktReference(aw, bw, Eigen::MatrixXd(0, 4), Eigen::VectorXd());
   EXPECT_LT((s.x - ref).cwiseAbs().maxCoeff(), 1e-8 * ref.cwiseAbs().maxCoeff());
   // Weights state the noise: covariance (A' W^2 A)^-1, no residual scaling.
   EXPECT_FALSE(s.noise_estimated);
@@ -169,7 +171,7 @@ TEST_P(EverySolver, FixedValueAndEquality) {
   d << 1, 0.25;
   const Eigen::VectorXd ref = KktReference(p.A, p.b, c, d);
   EXPECT_LT((s.x - ref).cwiseAbs().maxCoeff(), 1e-8) << s.x.transpose() << "\n"
-                                                      << ref.transpose();
+                                                     << ref.transpose();
   EXPECT_DOUBLE_EQ(s.x[1], 0.25);
   EXPECT_NEAR(s.x[0] + s.x[2] + s.x[3], 1.0, 1e-9);
 }
@@ -213,7 +215,8 @@ TEST_P(EverySolver, RejectsBadInputBeforeWork) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Linear, EverySolver, ::testing::ValuesIn(AvailableLinearSolvers()));
+INSTANTIATE_TEST_SUITE_P(Linear, EverySolver,
+                         ::testing::ValuesIn(AvailableLinearSolvers()));
 
 class BoundedSolver : public ::testing::TestWithParam<std::string> {};
 
@@ -221,14 +224,15 @@ TEST_P(BoundedSolver, MatchesBruteForceActiveSetEnumeration) {
   const auto solver = CreateLinearSolver(GetParam());
   for (unsigned seed = 0; seed < 12; ++seed) {
     const int n = 3 + seed % 4;
-    LinearProblem p = Make(Random(3 * n, n, 100 + seed), 3.0 * Random(3 * n, 1, 200 + seed));
+    LinearProblem p =
+        Make(Random(3 * n, n, 100 + seed), 3.0 * Random(3 * n, 1, 200 + seed));
     p.lower = -0.5 * Eigen::VectorXd::Ones(n);
     p.upper = 0.5 * Eigen::VectorXd::Ones(n);
     if (seed % 3 == 0) p.upper[0] = kInf;  // one-sided
     const Eigen::VectorXd ref = BruteForceBounded(p.A, p.b, p.lower, p.upper);
     const LinearSolution s = solver->Solve(p);
-    ASSERT_EQ(s.summary.status, SolverStatus::kSolved) << "seed " << seed << ": "
-                                                       << s.summary.message;
+    ASSERT_EQ(s.summary.status, SolverStatus::kSolved)
+        << "seed " << seed << ": " << s.summary.message;
     EXPECT_LT((s.x - ref).cwiseAbs().maxCoeff(), 1e-7) << "seed " << seed;
     EXPECT_LT(s.summary.kkt_residual, 1e-6) << "seed " << seed;
     for (int j = 0; j < n; ++j) {
@@ -241,7 +245,8 @@ TEST_P(BoundedSolver, MatchesBruteForceActiveSetEnumeration) {
 TEST_P(BoundedSolver, BoundsWithEqualityMatchEnumerationOnTheNullSpace) {
   // x1 + x2 + x3 = 1 with 0 <= x <= 0.6: the optimum of a problem whose
   // unconstrained answer lies far outside the box.
-  LinearProblem p = Make(Eigen::MatrixXd::Identity(3, 3), Eigen::Vector3d(2.0, -1.0, 0.1));
+  LinearProblem p =
+      Make(Eigen::MatrixXd::Identity(3, 3), Eigen::Vector3d(2.0, -1.0, 0.1));
   p.equality_matrix = Eigen::RowVector3d(1, 1, 1);
   p.equality_rhs = Eigen::VectorXd::Ones(1);
   p.lower = Eigen::Vector3d::Zero();
@@ -265,7 +270,8 @@ TEST_P(BoundedSolver, InfeasibleBoxAndEqualityIsAStatus) {
   EXPECT_FALSE(s.summary.status == SolverStatus::kSolved) << s.summary.message;
 }
 
-INSTANTIATE_TEST_SUITE_P(Linear, BoundedSolver, ::testing::Values("bvls", "ceres", "ipopt"));
+INSTANTIATE_TEST_SUITE_P(Linear, BoundedSolver,
+                         ::testing::Values("bvls", "ceres", "ipopt"));
 
 TEST(Bvls, InfeasibleIsReportedAsInfeasible) {
   LinearProblem p = Make(Eigen::MatrixXd::Identity(2, 2), Eigen::Vector2d(1.0, 1.0));
@@ -292,7 +298,8 @@ TEST(Lstsq, RankDeficientPaperChainNamesTheMissingConstraint) {
   }
   const LinearSolution s = CreateLinearSolver("lstsq")->Solve(p);
   EXPECT_EQ(s.summary.status, SolverStatus::kMinimumNorm);
-  EXPECT_NE(s.summary.message.find("common scaling"), std::string::npos) << s.summary.message;
+  EXPECT_NE(s.summary.message.find("common scaling"), std::string::npos)
+      << s.summary.message;
 }
 
 TEST(Lstsq, UnscaledRankDecisionWarns) {
@@ -317,7 +324,8 @@ TEST(Lstsq, CovarianceFromResidualUsesStudentT) {
   EXPECT_TRUE(s.noise_estimated);
   const double s2 = s.residual.squaredNorm() / (12 - 3);
   const Eigen::MatrixXd cov = s2 * (p.A.transpose() * p.A).inverse();
-  EXPECT_LT((s.covariance - cov).cwiseAbs().maxCoeff(), 1e-10 * cov.cwiseAbs().maxCoeff());
+  EXPECT_LT((s.covariance - cov).cwiseAbs().maxCoeff(),
+            1e-10 * cov.cwiseAbs().maxCoeff());
   // t_{0.975, 9} = 2.262157 (tables).
   const double half = s.interval_upper[0] - s.x[0];
   EXPECT_NEAR(half / std::sqrt(cov(0, 0)), 2.262157, 1e-5);
@@ -344,9 +352,11 @@ TEST(Tsvd, RulesChooseSensibleTruncation) {
   // Singular values 1, 1e-1, ..., 1e-7 and a noise floor 1e-4: GCV and the
   // discrepancy principle keep the components above the noise.
   const int n = 8;
-  Eigen::MatrixXd u = Eigen::HouseholderQR<Eigen::MatrixXd>(Random(20, n, 81)).householderQ() *
-                      Eigen::MatrixXd::Identity(20, n);
-  Eigen::MatrixXd v = Eigen::HouseholderQR<Eigen::MatrixXd>(Random(n, n, 82)).householderQ();
+  Eigen::MatrixXd u =
+      Eigen::HouseholderQR<Eigen::MatrixXd>(Random(20, n, 81)).householderQ() *
+      Eigen::MatrixXd::Identity(20, n);
+  Eigen::MatrixXd v =
+      Eigen::HouseholderQR<Eigen::MatrixXd>(Random(n, n, 82)).householderQ();
   Eigen::VectorXd sv(n);
   for (int i = 0; i < n; ++i) sv[i] = std::pow(10.0, -i);
   const Eigen::MatrixXd a = u * sv.asDiagonal() * v.transpose();

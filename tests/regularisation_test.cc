@@ -44,8 +44,8 @@ TEST(TikhonovPath, StandardFormMatchesNormalEquations) {
   const Eigen::VectorXd b = Random(20, 1, 2);
   const TikhonovPath path(a, b);
   for (double lambda : {1e-3, 0.1, 1.0, 10.0}) {
-    const Eigen::VectorXd ref =
-        NormalEquations(a, b, Eigen::MatrixXd::Identity(8, 8), Eigen::VectorXd::Zero(8), lambda);
+    const Eigen::VectorXd ref = NormalEquations(a, b, Eigen::MatrixXd::Identity(8, 8),
+                                                Eigen::VectorXd::Zero(8), lambda);
     const Eigen::VectorXd x = path.Solve(lambda);
     EXPECT_LT((x - ref).norm(), 1e-11 * ref.norm()) << lambda;
     EXPECT_NEAR(path.ResidualNorm(lambda), (a * x - b).norm(), 1e-12);
@@ -97,7 +97,8 @@ TEST(TikhonovPath, CurvatureMatchesFiniteDifferences) {
     const double h = 1e-3, t = std::log(lambda);
     auto x = [&](double s) { return std::log(path.ResidualNorm(std::exp(s))); };
     auto y = [&](double s) { return std::log(path.SolutionNorm(std::exp(s))); };
-    const double x1 = (x(t + h) - x(t - h)) / (2 * h), y1 = (y(t + h) - y(t - h)) / (2 * h);
+    const double x1 = (x(t + h) - x(t - h)) / (2 * h),
+                 y1 = (y(t + h) - y(t - h)) / (2 * h);
     const double x2 = (x(t + h) - 2 * x(t) + x(t - h)) / (h * h);
     const double y2 = (y(t + h) - 2 * y(t) + y(t - h)) / (h * h);
     const double kappa = (x1 * y2 - x2 * y1) / std::pow(x1 * x1 + y1 * y1, 1.5);
@@ -106,8 +107,9 @@ TEST(TikhonovPath, CurvatureMatchesFiniteDifferences) {
 }
 
 // The rule's lambda against a dense grid (1e5 points) over the same range.
-void ExpectBeatsDenseGrid(const TikhonovPath& path, const std::function<double(double)>& f,
-                          double chosen, double lo, double hi) {
+void ExpectBeatsDenseGrid(const TikhonovPath& path,
+                          const std::function<double(double)>& f, double chosen,
+                          double lo, double hi) {
   const int k = 100000;
   double best = std::numeric_limits<double>::infinity(), arg = 0;
   for (int i = 0; i < k; ++i) {
@@ -130,11 +132,12 @@ TEST(ChooseLambda, GcvLcurveQuasiRefinedBeyondTheGrid) {
   ChooseLambda(path, o, &rep);
   const double lo = path.DefaultLambdaMin(), hi = path.DefaultLambdaMax();
   EXPECT_FALSE(rep.at_range_end) << rep.note;
-  ExpectBeatsDenseGrid(path, [&](double l) { return path.Gcv(l); }, rep.lambda_gcv, lo, hi);
-  ExpectBeatsDenseGrid(path, [&](double l) { return -path.Curvature(l); }, rep.lambda_lcurve,
-                       lo, hi);
-  ExpectBeatsDenseGrid(path, [&](double l) { return path.Quasi(l); }, rep.lambda_quasi, lo,
-                       hi);
+  ExpectBeatsDenseGrid(
+      path, [&](double l) { return path.Gcv(l); }, rep.lambda_gcv, lo, hi);
+  ExpectBeatsDenseGrid(
+      path, [&](double l) { return -path.Curvature(l); }, rep.lambda_lcurve, lo, hi);
+  ExpectBeatsDenseGrid(
+      path, [&](double l) { return path.Quasi(l); }, rep.lambda_quasi, lo, hi);
   EXPECT_EQ(rep.grid_lambda.size(), 200u);
 }
 
@@ -215,10 +218,13 @@ TEST(TikhonovSolver, ResolutionAndCovarianceOfTheRegularisedEstimator) {
   const LinearSolution s = CreateLinearSolver("tikhonov", o)->Solve(p);
   const Eigen::MatrixXd aw = 10.0 * a;
   const Eigen::MatrixXd x =
-      (aw.transpose() * aw + 9.0 * Eigen::MatrixXd::Identity(6, 6)).inverse() * aw.transpose();
+      (aw.transpose() * aw + 9.0 * Eigen::MatrixXd::Identity(6, 6)).inverse() *
+      aw.transpose();
   EXPECT_LT((s.resolution - x * aw).norm(), 1e-10);
-  EXPECT_LT((s.covariance - x * x.transpose()).norm(), 1e-10 * (x * x.transpose()).norm());
-  EXPECT_LT((s.bias_estimate - (x * aw - Eigen::MatrixXd::Identity(6, 6)) * s.x).norm(), 1e-10);
+  EXPECT_LT((s.covariance - x * x.transpose()).norm(),
+            1e-10 * (x * x.transpose()).norm());
+  EXPECT_LT((s.bias_estimate - (x * aw - Eigen::MatrixXd::Identity(6, 6)) * s.x).norm(),
+            1e-10);
 }
 
 // Hansen's test problems (n = 64, relative noise 1e-3): every rule lands an
@@ -234,7 +240,9 @@ TEST_P(HansenProblem, RulesFindInteriorLambdaNearTheBest) {
   o.noise_norm = (b - p.b).norm();
   RegularisationReport rep;
   ChooseLambda(path, o, &rep);
-  auto err = [&](double l) { return (path.Solve(l) - p.x_exact).norm() / p.x_exact.norm(); };
+  auto err = [&](double l) {
+    return (path.Solve(l) - p.x_exact).norm() / p.x_exact.norm();
+  };
   double best = 1e300;
   for (int i = 0; i < 2000; ++i) {
     const double l = 1e-8 * std::pow(1e8, i / 1999.0);
@@ -249,7 +257,8 @@ TEST_P(HansenProblem, RulesFindInteriorLambdaNearTheBest) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Regtools, HansenProblem,
-                         ::testing::Values("phillips", "shaw", "baart", "deriv2", "foxgood"));
+                         ::testing::Values("phillips", "shaw", "baart", "deriv2",
+                                           "foxgood"));
 
 }  // namespace
 }  // namespace femup

@@ -78,8 +78,10 @@ std::string LinearProblem::Validate() const {
           << data_covariance.cols() << "; expected " << m << " x " << m;
       return msg.str();
     }
-    if (!data_covariance.allFinite()) return "data_covariance has a NaN or infinite entry";
-    const double asym = (data_covariance - data_covariance.transpose()).cwiseAbs().maxCoeff();
+    if (!data_covariance.allFinite())
+      return "data_covariance has a NaN or infinite entry";
+    const double asym =
+        (data_covariance - data_covariance.transpose()).cwiseAbs().maxCoeff();
     if (asym > 1e-12 * data_covariance.cwiseAbs().maxCoeff())
       return "data_covariance is not symmetric";
     Eigen::LLT<Eigen::MatrixXd> llt(data_covariance);
@@ -103,14 +105,15 @@ std::string LinearProblem::Validate() const {
   if (lower.size() > 0 && upper.size() > 0) {
     for (Eigen::Index i = 0; i < n; ++i) {
       if (lower[i] > upper[i]) {
-        msg << "lower bound " << lower[i] << " of " << label(i) << " exceeds its upper bound "
-            << upper[i];
+        msg << "lower bound " << lower[i] << " of " << label(i)
+            << " exceeds its upper bound " << upper[i];
         return msg.str();
       }
     }
   }
   for (const auto& [i, value] : fixed) {
-    if ((lower.size() > 0 && value < lower[i]) || (upper.size() > 0 && value > upper[i])) {
+    if ((lower.size() > 0 && value < lower[i]) ||
+        (upper.size() > 0 && value > upper[i])) {
       msg << "fixed value " << value << " of " << label(i) << " is outside its bounds";
       return msg.str();
     }
@@ -122,8 +125,8 @@ std::string LinearProblem::Validate() const {
       return msg.str();
     }
     if (equality_rhs.size() != equality_matrix.rows()) {
-      msg << "equality matrix has " << equality_matrix.rows() << " rows but its right-hand side "
-          << equality_rhs.size() << " entries";
+      msg << "equality matrix has " << equality_matrix.rows()
+          << " rows but its right-hand side " << equality_rhs.size() << " entries";
       return msg.str();
     }
     if (!equality_matrix.allFinite() || !equality_rhs.allFinite())
@@ -148,7 +151,8 @@ std::string LinearProblem::Validate() const {
   }
   if (regulariser.size() > 0) {
     if (regulariser.cols() != n) {
-      msg << "regulariser has " << regulariser.cols() << " columns for " << n << " unknowns";
+      msg << "regulariser has " << regulariser.cols() << " columns for " << n
+          << " unknowns";
       return msg.str();
     }
     if (!regulariser.allFinite()) return "regulariser has a NaN or infinite entry";
@@ -195,11 +199,12 @@ WeightedSystem Weighted(const LinearProblem& problem) {
   return out;
 }
 
-Eigen::MatrixXd DifferenceOperator(int n, int order, const std::vector<std::string>& groups) {
+Eigen::MatrixXd DifferenceOperator(int n, int order,
+                                   const std::vector<std::string>& groups) {
   if (n < 1) throw InputError("regulariser", "needs at least one unknown");
   if (order < 0 || order > 2)
-    throw InputError("regulariser", "difference order must be 0, 1 or 2, got " +
-                                        std::to_string(order));
+    throw InputError("regulariser",
+                     "difference order must be 0, 1 or 2, got " + std::to_string(order));
   if (!groups.empty() && static_cast<int>(groups.size()) != n)
     throw InputError("regulariser", std::to_string(groups.size()) + " group labels for " +
                                         std::to_string(n) + " unknowns");
@@ -222,8 +227,9 @@ Eigen::MatrixXd DifferenceOperator(int n, int order, const std::vector<std::stri
     rows.push_back(row);
   }
   if (rows.empty())
-    throw InputError("regulariser", "no " + std::to_string(order + 1) +
-                                        " neighbouring unknowns of one group to difference");
+    throw InputError("regulariser",
+                     "no " + std::to_string(order + 1) +
+                         " neighbouring unknowns of one group to difference");
   Eigen::MatrixXd l(rows.size(), n);
   for (std::size_t r = 0; r < rows.size(); ++r) l.row(r) = rows[r];
   return l;

@@ -6,9 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <limits>
 #include <map>
-#include <memory>
 #include <sstream>
 #include <string>
 #include <unsupported/Eigen/AutoDiff>
@@ -194,7 +192,9 @@ int CountBefore(const DatFile& file, int from, int to, const std::string& word,
 
 Header ReadHeader(const DatFile& file, const std::string& procedure) {
   Header h;
-  if (file.num_lines() == 0) file.Fail(1, "expected 'NIST/ITL StRD', found an empty file");
+  if (file.num_lines() == 0) {
+    file.Fail(1, "expected 'NIST/ITL StRD', found an empty file");
+  }
   if (Trim(file.Line(1)) != "NIST/ITL StRD") {
     file.Fail(1, "expected the first line 'NIST/ITL StRD'");
   }
@@ -208,9 +208,10 @@ Header ReadHeader(const DatFile& file, const std::string& procedure) {
   const int procedure_line = file.Find("Procedure:");
   if (format_line == 0) file.Fail(name_line + 1, "expected a 'File Format:' section");
   if (procedure_line == 0 || procedure_line < format_line) {
-    file.Fail(format_line + 1, "expected a 'Procedure:' line after the File Format section");
+    file.Fail(format_line + 1,
+              "expected a 'Procedure:' line after the File Format section");
   }
-  const std::string proc = Trim(file.Line(procedure_line).substr(10));
+  const std::string proc = Trim(Trim(file.Line(procedure_line)).substr(10));
   if (proc != procedure) {
     file.Fail(procedure_line,
               "expected 'Procedure: " + procedure + "', found '" + proc + "'");
@@ -226,8 +227,13 @@ Header ReadHeader(const DatFile& file, const std::string& procedure) {
   const int description = file.Find("Data:", procedure_line);
   const int model_line = file.Find("Model:", procedure_line);
   if (description == 0) file.Fail(procedure_line + 1, "expected a 'Data:' description");
-  if (model_line == 0 || model_line < description) {
-    file.Fail(description + 1, "expected a 'Model:' section after the Data description");
+  if (model_line == 0) {
+    file.Fail(
+        file.num_lines() + 1,
+        "expected a 'Model:' section after the Data description, found end of file");
+  }
+  if (model_line < description) {
+    file.Fail(model_line, "expected the 'Data:' description before the 'Model:' section");
   }
   h.num_predictors =
       CountBefore(file, description, model_line - 1, "Predictor", "predictor variables");
@@ -240,16 +246,16 @@ Header ReadHeader(const DatFile& file, const std::string& procedure) {
     }
   }
   if (h.difficulty != "Lower" && h.difficulty != "Average" && h.difficulty != "Higher") {
-    file.Fail(description, "expected a line '<Lower|Average|Higher> Level of Difficulty' "
-                           "in the Data description");
+    file.Fail(description,
+              "expected a line '<Lower|Average|Higher> Level of Difficulty' "
+              "in the Data description");
   }
-  const int section_end = std::min(h.certified.first, h.starting.first > 0
-                                                          ? h.starting.first
-                                                          : h.certified.first) -
-                          1;
-  h.num_parameters =
-      CountBefore(file, model_line, std::min(model_line + 2, section_end), "Parameter",
-                  "parameters");
+  const int section_end =
+      std::min(h.certified.first,
+               h.starting.first > 0 ? h.starting.first : h.certified.first) -
+      1;
+  h.num_parameters = CountBefore(file, model_line, std::min(model_line + 2, section_end),
+                                 "Parameter", "parameters");
   for (int k = model_line; k <= std::min(model_line + 2, file.num_lines()); ++k) {
     if (file.Line(k).find("Parameter") != std::string::npos) h.model_line = k;
   }
@@ -318,9 +324,9 @@ LongDouble LabelledValue(const DatFile& file, const LineRange& range,
     return file.Number(k, t[0], "the value of '" + label + "'");
   }
   if (range.last > file.num_lines()) {
-    file.Fail(file.num_lines() + 1, "expected '" + label + " <value>' in lines " +
-                                        std::to_string(range.first) + " to " +
-                                        std::to_string(range.last) + ", found end of file");
+    file.Fail(file.num_lines() + 1,
+              "expected '" + label + " <value>' in lines " + std::to_string(range.first) +
+                  " to " + std::to_string(range.last) + ", found end of file");
   }
   file.Fail(range.first, "expected a line '" + label + " <value>' in lines " +
                              std::to_string(range.first) + " to " +
@@ -336,8 +342,8 @@ bool IsParameterName(const std::string& token, char letter, int* index) {
   const int at = range.last > file.num_lines() ? file.num_lines() + 1 : range.first;
   file.Fail(at, "expected " + std::to_string(expected) + " parameter lines '" + layout +
                     "' in lines " + std::to_string(range.first) + " to " +
-                    std::to_string(range.last) + " (as the Model section states), found " +
-                    std::to_string(found) +
+                    std::to_string(range.last) +
+                    " (as the Model section states), found " + std::to_string(found) +
                     (range.last > file.num_lines() ? " before the end of file" : ""));
 }
 
@@ -622,16 +628,16 @@ const Model& ModelFor(const NistNonlinearDataset& data, const std::string& where
   }
   const Model& m = it->second;
   const Eigen::Index n = data.y.size();
-  if (data.certified.size() != m.num_parameters || data.starts.rows() != m.num_parameters ||
-      data.starts.cols() != 2 || data.x.cols() != m.num_predictors || data.x.rows() != n ||
-      n == 0) {
+  if (data.certified.size() != m.num_parameters ||
+      data.starts.rows() != m.num_parameters || data.starts.cols() != 2 ||
+      data.x.cols() != m.num_predictors || data.x.rows() != n || n == 0) {
     std::ostringstream msg;
     msg << "dataset '" << data.name << "' has " << data.certified.size()
-        << " certified parameters, a " << data.starts.rows() << " x " << data.starts.cols()
-        << " start table, " << data.x.rows() << " x " << data.x.cols()
-        << " predictors and " << n << " responses; the model needs " << m.num_parameters
-        << " parameters (starts: " << m.num_parameters << " x 2) and " << m.num_predictors
-        << " predictor column(s) with one row per response";
+        << " certified parameters, a " << data.starts.rows() << " x "
+        << data.starts.cols() << " start table, " << data.x.rows() << " x "
+        << data.x.cols() << " predictors and " << n << " responses; the model needs "
+        << m.num_parameters << " parameters (starts: " << m.num_parameters << " x 2) and "
+        << m.num_predictors << " predictor column(s) with one row per response";
     throw InputError(where, msg.str());
   }
   return m;
@@ -652,7 +658,8 @@ NistLinearDataset ReadNistLinear(const std::string& path) {
 
   // "B0   estimate   sd" rows.
   std::vector<int> rows;
-  for (int k = h.certified.first; k <= std::min(h.certified.last, file.num_lines()); ++k) {
+  for (int k = h.certified.first; k <= std::min(h.certified.last, file.num_lines());
+       ++k) {
     const std::vector<std::string> t = Tokens(file.Line(k));
     int index = 0;
     if (!t.empty() && IsParameterName(t[0], 'B', &index)) {
@@ -666,19 +673,23 @@ NistLinearDataset ReadNistLinear(const std::string& path) {
   }
   d.certified.resize(h.num_parameters);
   d.certified_sd.resize(h.num_parameters);
+  int first = 0;  // B0, or B1 without an intercept
   for (int j = 0; j < h.num_parameters; ++j) {
     const int k = rows[j];
     const std::vector<std::string> t = Tokens(file.Line(k));
     int index = 0;
     IsParameterName(t[0], 'B', &index);
-    const int first = j == 0 ? index : std::stoi(d.parameter_names[0].substr(1));
-    if ((j == 0 && index != 0 && index != 1) || (j > 0 && index != first + j)) {
-      file.Fail(k, "expected parameter B" + std::to_string(j == 0 ? 0 : first + j) +
-                       ", found " + t[0]);
+    if (j == 0 && (index == 0 || index == 1)) first = index;
+    if (index != first + j) {
+      file.Fail(k,
+                "expected parameter " +
+                    (j == 0 ? std::string("B0 or B1") : "B" + std::to_string(first + j)) +
+                    ", found " + t[0]);
     }
     d.parameter_names.push_back(t[0]);
     d.certified(j) = file.Number(k, t[1], "the certified estimate of " + t[0]);
-    d.certified_sd(j) = file.Number(k, t[2], "the certified standard deviation of " + t[0]);
+    d.certified_sd(j) =
+        file.Number(k, t[2], "the certified standard deviation of " + t[0]);
   }
   d.residual_sd = LabelledValue(file, h.certified, "Standard Deviation");
   d.r_squared = LabelledValue(file, h.certified, "R-Squared");
@@ -731,8 +742,9 @@ NistNonlinearDataset ReadNistNonlinear(const std::string& path) {
     int index = 0;
     if (!t.empty() && IsParameterName(t[0], 'b', &index)) {
       if (t.size() != 6 || t[1] != "=") {
-        file.Fail(k, "expected '" + t[0] +
-                         " = <start 1> <start 2> <certified value> <standard deviation>'");
+        file.Fail(k,
+                  "expected '" + t[0] +
+                      " = <start 1> <start 2> <certified value> <standard deviation>'");
       }
       rows.push_back(k);
     }
@@ -803,11 +815,21 @@ NonlinearProblem NistNonlinearProblem(const NistNonlinearDataset& data, int star
   const std::string name = data.name;
   const auto f_ad = model.f_ad;
   const auto f_plain = model.f_double;
-  p.evaluate = [name, target, x, f_ad, f_plain](const Eigen::VectorXd& b, Eigen::VectorXd* residuals,
-                                       Eigen::MatrixXd* jacobian, std::string* why) {
+  const int num_parameters = model.num_parameters;
+  p.evaluate = [name, target, x, f_ad, f_plain, num_parameters](
+                   const Eigen::VectorXd& b, Eigen::VectorXd* residuals,
+                   Eigen::MatrixXd* jacobian, std::string* why) {
     const Eigen::Index n = target.size();
     const Eigen::Index k = b.size();
     residuals->resize(n);
+    if (k != num_parameters) {
+      if (jacobian) jacobian->resize(n, k);
+      if (why) {
+        *why = name + ": " + std::to_string(k) + " parameters given, the model has " +
+               std::to_string(num_parameters);
+      }
+      return false;
+    }
     if (jacobian) jacobian->resize(n, k);
     std::vector<AD> params(static_cast<std::size_t>(k));
     std::vector<double> plain(static_cast<std::size_t>(k));

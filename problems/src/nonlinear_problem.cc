@@ -93,7 +93,8 @@ std::string NonlinearProblem::Validate() const {
       return msg.str();
     }
   }
-  if ((lower.size() != 0 && lower.size() != n) || (upper.size() != 0 && upper.size() != n)) {
+  if ((lower.size() != 0 && lower.size() != n) ||
+      (upper.size() != 0 && upper.size() != n)) {
     msg << "bounds have " << lower.size() << " lower and " << upper.size()
         << " upper entries for " << n << " parameters (each must be " << n
         << " or empty)";

@@ -20,7 +20,8 @@ namespace {
 constexpr double kActiveTolerance = 1e-9;
 
 // Names of the free unknowns that lie on one of their bounds.
-std::vector<std::string> OnBounds(const LinearProblem& problem, const Eigen::VectorXd& x) {
+std::vector<std::string> OnBounds(const LinearProblem& problem,
+                                  const Eigen::VectorXd& x) {
   std::vector<std::string> out;
   const int n = problem.num_unknowns();
   const auto on = [n](double value, const Eigen::VectorXd& bounds, int i) {
@@ -40,7 +41,8 @@ std::vector<std::string> OnBounds(const LinearProblem& problem, const Eigen::Vec
 
 // Solves `problem` on the nonlinear backend called `backend` and reports it as
 // a linear solution.
-LinearSolution SolveOnBackend(const std::string& backend, const LinearSolverOptions& options,
+LinearSolution SolveOnBackend(const std::string& backend,
+                              const LinearSolverOptions& options,
                               const LinearProblem& problem) {
   const std::string invalid = problem.Validate();
   if (!invalid.empty()) throw InputError("linear problem", invalid);

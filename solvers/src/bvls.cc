@@ -38,9 +38,10 @@ struct ActiveSet {
 // min 0.5 ||A x - b||^2  s.t.  E x = e (kept by every step),  l <= x <= u,
 // from a feasible x. Steps solve the free unknowns' least-squares problem in
 // null(E_F) (minimum-norm step when that is rank deficient).
-ActiveSet SolveActiveSet(const Eigen::MatrixXd& a, const Eigen::VectorXd& b, const Eigen::MatrixXd& e,
-                const Eigen::VectorXd& l, const Eigen::VectorXd& u, Eigen::VectorXd x,
-                int max_iterations) {
+ActiveSet SolveActiveSet(const Eigen::MatrixXd& a, const Eigen::VectorXd& b,
+                         const Eigen::MatrixXd& e, const Eigen::VectorXd& l,
+                         const Eigen::VectorXd& u, Eigen::VectorXd x,
+                         int max_iterations) {
   const int n = static_cast<int>(a.cols());
   ActiveSet out;
   out.state.assign(n, 0);
@@ -159,22 +160,23 @@ LinearSolution BvlsSolver::Solve(const LinearProblem& problem) const {
     u[k] = problem.upper.size() > 0 ? problem.upper[free[k]] : kInf;
   }
   const Eigen::VectorXd b = w.b - w.A * xfixed;
-  const Eigen::VectorXd d = e.rows() > 0
-                                ? Eigen::VectorXd(problem.equality_rhs -
-                                                  problem.equality_matrix * xfixed)
-                                : Eigen::VectorXd();
+  const Eigen::VectorXd d =
+      e.rows() > 0
+          ? Eigen::VectorXd(problem.equality_rhs - problem.equality_matrix * xfixed)
+          : Eigen::VectorXd();
 
   LinearSolution solution;
   Eigen::VectorXd start(nf);
   for (int k = 0; k < nf; ++k) start[k] = std::clamp(0.0, l[k], u[k]);
   if (problem.prior.size() > 0) {
-    for (int k = 0; k < nf; ++k) start[k] = std::clamp(problem.prior[free[k]], l[k], u[k]);
+    for (int k = 0; k < nf; ++k)
+      start[k] = std::clamp(problem.prior[free[k]], l[k], u[k]);
   }
   int iterations = 0;
   if (e.rows() > 0) {
     // Phase 1: a point of the box closest to C x = d (bounded least squares).
     const ActiveSet phase1 = SolveActiveSet(e, d, Eigen::MatrixXd(0, nf), l, u, start,
-                                   options_.max_iterations);
+                                            options_.max_iterations);
     iterations += phase1.iterations;
     const double violation = (e * phase1.x - d).norm();
     if (violation > 1e-9 * (1.0 + d.norm() + e.norm() * phase1.x.norm())) {
@@ -183,7 +185,8 @@ LinearSolution BvlsSolver::Solve(const LinearProblem& problem) const {
       solution.residual = problem.A * solution.x - problem.b;
       solution.summary.status = SolverStatus::kInfeasible;
       std::ostringstream msg;
-      msg << "bvls: no x within the bounds satisfies the equalities (least violation |C x - "
+      msg << "bvls: no x within the bounds satisfies the equalities (least violation |C "
+             "x - "
              "d| = "
           << violation << ")";
       solution.summary.message = msg.str();
@@ -228,14 +231,15 @@ LinearSolution BvlsSolver::Solve(const LinearProblem& problem) const {
                             options_.confidence_level, &solution);
   if (off.size() < static_cast<std::size_t>(nf))
     solution.summary.warnings.push_back(
-        "the covariance holds the active bounds fixed; it ignores that a bound may release");
+        "the covariance holds the active bounds fixed; it ignores that a bound may "
+        "release");
 
   // Optimality, checked independently of the iteration above.
   const Eigen::VectorXd gradient = w.A.transpose() * weighted_residual;
   const double scale = (w.A.transpose() * w.b).cwiseAbs().maxCoeff();
-  const KktReport kkt =
-      CheckKkt(solution.x, gradient, problem.lower, problem.upper, problem.equality_matrix,
-               problem.equality_rhs, problem.fixed, scale > 0 ? scale : 1.0);
+  const KktReport kkt = CheckKkt(solution.x, gradient, problem.lower, problem.upper,
+                                 problem.equality_matrix, problem.equality_rhs,
+                                 problem.fixed, scale > 0 ? scale : 1.0);
   solution.summary.kkt_residual = kkt.residual();
   std::ostringstream msg;
   const int at_bounds = nf - static_cast<int>(off.size());

@@ -13,13 +13,36 @@ namespace femup {
 
 namespace {
 
-using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+using RowMajorMatrix =
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
 // First penalty of the augmented Lagrangian, relative to |J|_F^2 / |C|_F^2 at the
 // start, and how far it may grow: large enough for a few outer iterations to
 // reach a tight equality tolerance, small enough to keep the QR well conditioned.
 constexpr double kInitialPenalty = 1e3;
 constexpr double kMaxPenaltyGrowth = 1e8;
+// Ceres's default first trust region (1e4) damps the first Levenberg-Marquardt
+// steps by 1e-4 relative, and Ceres stops once the cost no longer changes in
+// floating point, which leaves x only ~1e-8 accurate on a linear problem. With
+// a nearly undamped start the first step is Gauss-Newton; failed steps shrink
+// the region as usual.
+constexpr double kInitialTrustRegion = 1e10;
+// Most re-solves with stalled bounds held, per run.
+constexpr int kMaxHolds = 20;
+// A solve has stalled on a bound when this many successful steps in a row
+// achieved less than this fraction of the decrease the model predicted (so the
+// trust region shrank each time) while x sat on a bound. Ceres keeps iterates
+// in the box by projecting the unconstrained step, with a projected line search
+// that upstream calls "incorrect and not terribly effective" (ceres-solver
+// issue 187): once a bound clips the step, the steps shrink towards a point
+// short of the optimum and Ceres reports convergence there.
+constexpr int kStallSteps = 3;
+constexpr double kStallRatio = 0.5;
+// A converged solve is re-run with its bounds held while its KKT residual
+// exceeds this (or options.kkt_tolerance if smaller): holding costs a few
+// iterations, and on an ill-conditioned problem a KKT residual just under
+// kkt_tolerance can still leave x far from the optimum.
+constexpr double kStallKktTolerance = 1e-10;
 
 // r(x) of the problem as one Ceres cost on the single parameter block x (n).
 class ModelCost final : public ceres::CostFunction {
@@ -82,9 +105,43 @@ class EqualityPenalty final : public ceres::CostFunction {
   const Eigen::VectorXd* mu_;
 };
 
+// Ends a Ceres solve that has stalled on a bound (see kStallSteps), so that the
+// bounds can be held and the rest re-solved. Reads x from the parameter block,
+// which needs Solver::Options::update_state_every_iteration.
+class StallDetector final : public ceres::IterationCallback {
+ public:
+  StallDetector(const NonlinearProblem& problem, const double* x)
+      : problem_(problem), x_(x) {}
+
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
+    const bool poor = summary.iteration > 0 && summary.step_is_successful &&
+                      summary.relative_decrease < kStallRatio;
+    poor_steps_ = poor && OnBound() ? poor_steps_ + 1 : 0;
+    return poor_steps_ >= kStallSteps ? ceres::SOLVER_TERMINATE_SUCCESSFULLY
+                                      : ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  bool OnBound() const {
+    const int n = problem_.num_parameters();
+    for (int i : problem_.FreeUnknowns()) {
+      if ((problem_.lower.size() == n && x_[i] == problem_.lower[i]) ||
+          (problem_.upper.size() == n && x_[i] == problem_.upper[i])) {
+        return true;
+      }
+    }
+    return false;
+  }
+
+  const NonlinearProblem& problem_;
+  const double* x_;
+  int poor_steps_ = 0;
+};
+
 SolverStatus FromCeres(ceres::TerminationType type) {
   switch (type) {
     case ceres::CONVERGENCE:
+    case ceres::USER_SUCCESS:  // only StallDetector ends a solve this way
       return SolverStatus::kSolved;
     case ceres::NO_CONVERGENCE:
       return SolverStatus::kNoConvergence;
@@ -93,52 +150,82 @@ SolverStatus FromCeres(ceres::TerminationType type) {
   }
 }
 
-}  // namespace
+// The free parameters on a bound whose multiplier has the right sign, and
+// whether the point fails the KKT conditions (to kStallKktTolerance), for
+// min 0.5 |r|^2 (+ the augmented-Lagrangian penalty) within the bounds.
+struct Stall {
+  std::vector<int> on_bounds;  // ascending
+  bool short_of_optimum = false;
+};
+Stall CheckStall(const NonlinearProblem& problem, const NonlinearSolverOptions& options,
+                 double gradient_scale, const Eigen::VectorXd& x,
+                 const Eigen::VectorXd& mu, double rho) {
+  Stall stall;
+  Eigen::VectorXd r;
+  Eigen::MatrixXd j;
+  std::string why;
+  if (!nonlinear_internal::Evaluate(problem, x, &r, &j, &why)) return stall;
+  Eigen::VectorXd g = j.transpose() * r;
+  if (mu.size() > 0) {
+    g += problem.equality_matrix.transpose() *
+         (mu + rho * (problem.equality_matrix * x - problem.equality_rhs));
+  }
+  const KktReport kkt = CheckKkt(x, g, problem.lower, problem.upper, Eigen::MatrixXd(),
+                                 Eigen::VectorXd(), problem.fixed, gradient_scale);
+  for (int i : kkt.active_lower) {
+    if (kkt.bound_multipliers[i] >= 0) stall.on_bounds.push_back(i);
+  }
+  for (int i : kkt.active_upper) {
+    if (kkt.bound_multipliers[i] <= 0) stall.on_bounds.push_back(i);
+  }
+  std::sort(stall.on_bounds.begin(), stall.on_bounds.end());
+  stall.short_of_optimum =
+      !(kkt.residual() <= std::min(options.kkt_tolerance, kStallKktTolerance));
+  return stall;
+}
 
-NonlinearSolution CeresSolver::Solve(const NonlinearProblem& problem) const {
-  nonlinear_internal::ValidateOptions(options_);
-  nonlinear_internal::ValidateProblem(problem);
-  const auto start = std::chrono::steady_clock::now();
+// One run of Ceres; see CeresSolver::Solve.
+nonlinear_internal::BackendResult RunCeres(const NonlinearProblem& problem,
+                                           const NonlinearSolverOptions& options,
+                                           double gradient_scale) {
   const int n = problem.num_parameters();
   const auto q = problem.equality_matrix.rows();
   const Eigen::MatrixXd& c = problem.equality_matrix;
   const Eigen::VectorXd& d = problem.equality_rhs;
-
-  NonlinearSolution solution;
-  SolverSummary& summary = solution.summary;
-  Eigen::VectorXd& x = solution.x;  // Ceres works on x in place
+  nonlinear_internal::BackendResult result;
+  Eigen::VectorXd& x = result.x;  // Ceres works on x in place
   x = nonlinear_internal::StartingPoint(problem);
-  Eigen::VectorXd r0;
-  Eigen::MatrixXd j0;
-  std::string why;
-  if (!nonlinear_internal::Evaluate(problem, x, &r0, &j0, &why)) {
-    summary.status = SolverStatus::kFailed;
-    summary.message = "ceres: the model cannot be evaluated at the start: " + why;
-    summary.time_seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return solution;
-  }
-  const double scale = nonlinear_internal::GradientScale(problem, j0, r0);
 
   Eigen::VectorXd mu = Eigen::VectorXd::Zero(q);
   double rho = kInitialPenalty;
-  if (q > 0 && c.squaredNorm() > 0) {
-    rho *= std::max(j0.squaredNorm(), 1e-300) / c.squaredNorm();
+  if (q > 0) {
+    Eigen::VectorXd r;
+    Eigen::MatrixXd j;
+    std::string why;
+    const double jacobian_size =
+        nonlinear_internal::Evaluate(problem, x, &r, &j, &why) ? j.squaredNorm() : 0.0;
+    if (jacobian_size > 0 && c.squaredNorm() > 0) rho *= jacobian_size / c.squaredNorm();
   }
   const double max_rho = rho * kMaxPenaltyGrowth;
 
   std::string last_failure;
-  ceres::Problem ceres_problem;  // owns the cost functions and the manifold
-  ceres_problem.AddResidualBlock(new ModelCost(problem, &last_failure), nullptr, x.data());
+  ceres::Problem ceres_problem;  // owns the cost functions and the manifolds
+  ceres_problem.AddResidualBlock(new ModelCost(problem, &last_failure), nullptr,
+                                 x.data());
   if (q > 0) {
     ceres_problem.AddResidualBlock(new EqualityPenalty(c, d, &rho, &mu), nullptr,
                                    x.data());
   }
   std::vector<int> fixed;
   for (const auto& f : problem.fixed) fixed.push_back(f.first);
-  if (!fixed.empty()) {
-    ceres_problem.SetManifold(x.data(), new ceres::SubsetManifold(n, fixed));
-  }
+  // Holds the fixed parameters and `held` constant.
+  const auto hold = [&](const std::vector<int>& held) {
+    std::vector<int> constant = fixed;
+    constant.insert(constant.end(), held.begin(), held.end());
+    ceres_problem.SetManifold(
+        x.data(), constant.empty() ? nullptr : new ceres::SubsetManifold(n, constant));
+  };
+  hold({});
   for (int i : problem.FreeUnknowns()) {
     if (problem.lower.size() == n && std::isfinite(problem.lower[i])) {
       ceres_problem.SetParameterLowerBound(x.data(), i, problem.lower[i]);
@@ -150,72 +237,98 @@ NonlinearSolution CeresSolver::Solve(const NonlinearProblem& problem) const {
 
   ceres::Solver::Options ceres_options;
   ceres_options.linear_solver_type = ceres::DENSE_QR;
-  ceres_options.trust_region_strategy_type = options_.trust_region == "dogleg"
-                                                 ? ceres::DOGLEG
-                                                 : ceres::LEVENBERG_MARQUARDT;
-  ceres_options.function_tolerance = options_.function_tolerance;
+  ceres_options.trust_region_strategy_type =
+      options.trust_region == "dogleg" ? ceres::DOGLEG : ceres::LEVENBERG_MARQUARDT;
+  ceres_options.initial_trust_region_radius = kInitialTrustRegion;
+  ceres_options.function_tolerance = options.function_tolerance;
   // Ceres's gradient tolerance is absolute; ours is relative to the start.
-  ceres_options.gradient_tolerance = options_.gradient_tolerance * scale;
-  ceres_options.parameter_tolerance = options_.parameter_tolerance;
+  ceres_options.gradient_tolerance = options.gradient_tolerance * gradient_scale;
+  ceres_options.parameter_tolerance = options.parameter_tolerance;
   ceres_options.logging_type =
-      options_.verbose ? ceres::PER_MINIMIZER_ITERATION : ceres::SILENT;
-  ceres_options.minimizer_progress_to_stdout = options_.verbose;
+      options.verbose ? ceres::PER_MINIMIZER_ITERATION : ceres::SILENT;
+  ceres_options.minimizer_progress_to_stdout = options.verbose;
+  StallDetector stall_detector(problem, x.data());
+  if (problem.has_bounds()) {
+    ceres_options.update_state_every_iteration = true;
+    ceres_options.callbacks.push_back(&stall_detector);
+  }
 
-  // Without equalities one pass; with them, the augmented-Lagrangian loop.
-  ceres::Solver::Summary ceres_summary;
+  // Each pass solves with the current penalty. A converged pass that stopped
+  // short of the (penalised) optimum on some bounds is repeated with those bounds
+  // held; otherwise, with equalities, the multipliers are updated.
+  ceres::Solver::Summary summary;
+  std::vector<int> held;
   double violation = 0;
-  int outer = 0;
+  int outer = 0, holds = 0;
   while (true) {
-    ceres_options.max_num_iterations = options_.max_iterations - summary.iterations;
-    ceres::Solve(ceres_options, &ceres_problem, &ceres_summary);
-    summary.iterations +=
-        ceres_summary.num_successful_steps + ceres_summary.num_unsuccessful_steps;
-    ++outer;
-    if (q == 0 || FromCeres(ceres_summary.termination_type) == SolverStatus::kFailed) {
-      break;
+    ceres_options.max_num_iterations = options.max_iterations - result.iterations;
+    ceres::Solve(ceres_options, &ceres_problem, &summary);
+    // summary.iterations starts with the evaluation at the start point.
+    result.iterations += std::max(0, static_cast<int>(summary.iterations.size()) - 1);
+    if (FromCeres(summary.termination_type) != SolverStatus::kSolved) break;
+    if (problem.has_bounds() && holds < kMaxHolds &&
+        result.iterations < options.max_iterations) {
+      const Stall stall = CheckStall(problem, options, gradient_scale, x, mu, rho);
+      if (stall.short_of_optimum && stall.on_bounds != held) {
+        held = stall.on_bounds;
+        hold(held);
+        ++holds;
+        continue;
+      }
     }
+    ++outer;
+    if (q == 0) break;
     const Eigen::VectorXd gap = c * x - d;
     const double previous = violation;
     violation = gap.cwiseAbs().maxCoeff();
-    if (violation < options_.equality_tolerance || outer >= options_.max_outer_iterations ||
-        summary.iterations >= options_.max_iterations) {
+    if (violation < options.equality_tolerance || outer >= options.max_outer_iterations ||
+        result.iterations >= options.max_iterations) {
       break;
     }
     mu += rho * gap;
     if (outer > 1 && violation > 0.25 * previous) rho = std::min(10 * rho, max_rho);
   }
 
-  summary.status = FromCeres(ceres_summary.termination_type);
+  result.status = FromCeres(summary.termination_type);
   std::ostringstream msg;
-  msg << "ceres (" << options_.trust_region << "): " << ceres_summary.message;
-  if (summary.status == SolverStatus::kFailed && !last_failure.empty()) {
+  msg << "ceres (" << options.trust_region << "): "
+      << (summary.termination_type == ceres::USER_SUCCESS ? "stalled on a bound"
+                                                          : summary.message);
+  if (result.status == SolverStatus::kFailed && !last_failure.empty()) {
     msg << " (last failed evaluation: " << last_failure << ")";
   }
-  if (q > 0 && summary.status != SolverStatus::kFailed) {
+  if (holds > 0) {
+    msg << "; re-solved " << holds << " time(s) with the bounds it stalled at held";
+  }
+  if (q > 0 && result.status != SolverStatus::kFailed) {
     msg << "; equalities |C x - d|_inf = " << violation << " after " << outer
         << " augmented-Lagrangian iterations";
-    if (!(violation < options_.equality_tolerance)) {
-      // Infeasible when x is (to the KKT tolerance) a minimiser of |C x - d|^2 within
-      // the bounds: that problem is convex, so no x does better.
+    if (!(violation < options.equality_tolerance)) {
+      // Infeasible when x is (to the KKT tolerance) a minimiser of |C x - d|^2
+      // within the bounds: that problem is convex, so no x does better.
       const Eigen::VectorXd gap = c * x - d;
-      const double gap_scale =
-          (c.cwiseAbs().transpose() * gap.cwiseAbs()).maxCoeff();
+      const double gap_scale = (c.cwiseAbs().transpose() * gap.cwiseAbs()).maxCoeff();
       const KktReport closest =
           CheckKkt(x, c.transpose() * gap, problem.lower, problem.upper,
                    Eigen::MatrixXd(), Eigen::VectorXd(), problem.fixed, gap_scale);
-      if (closest.residual() <= options_.kkt_tolerance) {
-        summary.status = SolverStatus::kInfeasible;
+      if (closest.residual() <= options.kkt_tolerance) {
+        result.status = SolverStatus::kInfeasible;
         msg << ": no x within the bounds satisfies the equalities (this x minimises "
                "|C x - d| over them)";
       } else {
-        summary.status = SolverStatus::kNoConvergence;
-        msg << ", above equality_tolerance " << options_.equality_tolerance;
+        result.status = SolverStatus::kNoConvergence;
+        msg << ", above equality_tolerance " << options.equality_tolerance;
       }
     }
   }
-  summary.message = msg.str();
-  nonlinear_internal::Finish(problem, options_, scale, start, &solution);
-  return solution;
+  result.message = msg.str();
+  return result;
+}
+
+}  // namespace
+
+NonlinearSolution CeresSolver::Solve(const NonlinearProblem& problem) const {
+  return nonlinear_internal::Solve("ceres", problem, options_, RunCeres);
 }
 
 }  // namespace femup

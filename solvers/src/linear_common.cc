@@ -32,7 +32,8 @@ ReducedProblem Reduce(const LinearProblem& problem) {
   if (problem.has_equalities()) {
     r.has_equalities = true;
     const Eigen::MatrixXd c = problem.equality_matrix * select;
-    const Eigen::VectorXd d = problem.equality_rhs - problem.equality_matrix * r.particular;
+    const Eigen::VectorXd d =
+        problem.equality_rhs - problem.equality_matrix * r.particular;
     Eigen::JacobiSVD<Eigen::MatrixXd> svd(c, Eigen::ComputeFullV);
     const Eigen::VectorXd& s = svd.singularValues();
     int rank = 0;
@@ -41,8 +42,7 @@ ReducedProblem Reduce(const LinearProblem& problem) {
     Eigen::VectorXd xf = Eigen::VectorXd::Zero(nf);  // minimum-norm particular solution
     const Eigen::MatrixXd v = svd.matrixV();
     Eigen::JacobiSVD<Eigen::MatrixXd> thin(c, Eigen::ComputeThinU | Eigen::ComputeThinV);
-    for (int i = 0; i < rank; ++i)
-      xf += v.col(i) * (thin.matrixU().col(i).dot(d) / s[i]);
+    for (int i = 0; i < rank; ++i) xf += v.col(i) * (thin.matrixU().col(i).dot(d) / s[i]);
     r.particular += select * xf;
     r.basis = select * v.rightCols(nf - rank);
     for (int k = 0; k < nf - rank; ++k) {
@@ -63,7 +63,8 @@ ReducedProblem Reduce(const LinearProblem& problem) {
 
 double IntervalQuantile(double confidence_level, double dof) {
   const double p = 0.5 + 0.5 * confidence_level;
-  if (dof <= 0) return boost::math::quantile(boost::math::normal_distribution<double>(), p);
+  if (dof <= 0)
+    return boost::math::quantile(boost::math::normal_distribution<double>(), p);
   return boost::math::quantile(boost::math::students_t_distribution<double>(dof), p);
 }
 

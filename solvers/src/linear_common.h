@@ -46,7 +46,8 @@ double IntervalQuantile(double confidence_level, double dof);
 class Stopwatch {
  public:
   double Seconds() const {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_)
+        .count();
   }
 
  private:

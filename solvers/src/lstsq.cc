@@ -66,7 +66,8 @@ LinearSolution LstsqSolver::Solve(const LinearProblem& problem) const {
   }
   if (!options_.scale_columns && rank < k) {
     solution.summary.warnings.push_back(
-        "columns were not scaled: the rank decision depends on the units of the unknowns; "
+        "columns were not scaled: the rank decision depends on the units of the "
+        "unknowns; "
         "scale_columns = true may keep directions this one truncated");
   }
   solution.summary.message = msg.str();

@@ -1,12 +1,13 @@
 // What the nonlinear backends (ceres_solver.cc, ipopt_solver.cc) and their
 // linear adapters share: the input checks done before any work, a checked call
-// of the model, the linearised covariance, and the KKT check that every bounded
-// or constrained answer goes through whichever backend produced it. Private to
-// the solvers library.
+// of the model, the linearised covariance, and one driver that runs a backend,
+// checks every bounded or constrained answer by its KKT conditions whichever
+// backend produced it, and polishes answers that stopped short. Private to the
+// solvers library.
 #pragma once
 
 #include <Eigen/Core>
-#include <chrono>
+#include <functional>
 #include <string>
 
 #include "femup/problems/nonlinear_problem.h"
@@ -18,10 +19,6 @@ namespace nonlinear_internal {
 // Throws InputError("solver.<field>", ...) when the options are invalid.
 void ValidateOptions(const NonlinearSolverOptions& options);
 
-// Throws InputError("nonlinear problem", ...) when the problem cannot be solved
-// as given (see NonlinearProblem::Validate).
-void ValidateProblem(const NonlinearProblem& problem);
-
 // The problem's start with the fixed parameters at their values.
 Eigen::VectorXd StartingPoint(const NonlinearProblem& problem);
 
@@ -32,35 +29,54 @@ Eigen::VectorXd StartingPoint(const NonlinearProblem& problem);
 bool Evaluate(const NonlinearProblem& problem, const Eigen::VectorXd& x,
               Eigen::VectorXd* residuals, Eigen::MatrixXd* jacobian, std::string* why);
 
-// |J' r|_inf over the free parameters, or 1 when that is 0: the scale of the
-// relative gradient tolerance and of the KKT check.
-double GradientScale(const NonlinearProblem& problem, const Eigen::MatrixXd& jacobian,
-                     const Eigen::VectorXd& residuals);
-
 // Number of parameters the data estimate: free parameters less the rank of the
 // equalities restricted to them. The residual variance has m minus this many
 // degrees of freedom.
 int EstimatedParameters(const NonlinearProblem& problem);
 
 // Linearised covariance over all n parameters at (J, r): (J_f' J_f)^-1 s^2 on the
-// free parameters, restricted to the null space of the equalities when there are
-// any (N (N' J_f' J_f N)^-1 N'), zero rows and columns for fixed parameters.
+// free parameters, restricted to the null space N of the equalities when there
+// are any (N (N' J_f' J_f N)^-1 N'), zero rows and columns for fixed parameters.
 // s^2 = |r|^2 / (m - EstimatedParameters) unless the residuals are whitened (then
 // 1). Empty when J_f N is numerically rank deficient or no degree of freedom is
 // left to estimate s^2.
-Eigen::MatrixXd Covariance(const NonlinearProblem& problem, const Eigen::MatrixXd& jacobian,
+Eigen::MatrixXd Covariance(const NonlinearProblem& problem,
+                           const Eigen::MatrixXd& jacobian,
                            const Eigen::VectorXd& residuals);
 
-// Completes a solution whose x, summary.status, summary.message and
-// summary.iterations the backend has set: evaluates r and J at x (kFailed when
-// that fails), fills the cost, covariance and time since `start`, and, when the
-// problem has bounds or equalities, checks the KKT conditions with the gradient
-// J' r scaled by `gradient_scale` (from the start). A kSolved answer whose KKT
-// residual exceeds options.kkt_tolerance becomes kNoConvergence ("stopped short
-// of the bounded optimum").
-void Finish(const NonlinearProblem& problem, const NonlinearSolverOptions& options,
-            double gradient_scale, std::chrono::steady_clock::time_point start,
-            NonlinearSolution* solution);
+// What one run of a backend returns.
+struct BackendResult {
+  Eigen::VectorXd x;  // n
+  SolverStatus status = SolverStatus::kFailed;
+  std::string message;
+  int iterations = 0;
+};
+
+// One run of a backend on `problem` from StartingPoint(problem), within
+// options.max_iterations. `gradient_scale` is |J'r|_inf at the user's start (so
+// that tolerances are relative to it). The problem has been validated, and the
+// driver may pass a copy with more fixed parameters (bounds held).
+using Backend = std::function<BackendResult(const NonlinearProblem& problem,
+                                            const NonlinearSolverOptions& options,
+                                            double gradient_scale)>;
+
+// Solves `problem` with `backend` (called `name` in messages):
+//  - throws InputError for invalid options ("solver.<field>") or problem
+//    ("nonlinear problem"), before any evaluation;
+//  - kFailed without running the backend when the model cannot be evaluated at
+//    the start;
+//  - fills r, J, cost, covariance and time at the answer (kFailed when the model
+//    cannot be evaluated there);
+//  - when the problem has bounds or equalities, checks the KKT conditions with
+//    the gradient J'r relative to |J'r|_inf at the start. A backend's converged
+//    answer that fails them is polished: the free parameters on (within 1e-6,
+//    relative) a bound whose multiplier has the right sign are held there, the
+//    rest re-solved, and so on while that set changes (an active-set step; Ceres's
+//    projected trust-region steps stall at bounds, Ipopt's interior iterates stop
+//    a little inside them). An answer that still fails becomes kNoConvergence
+//    ("stopped short of the bounded optimum: KKT residual ...").
+NonlinearSolution Solve(const std::string& name, const NonlinearProblem& problem,
+                        const NonlinearSolverOptions& options, const Backend& backend);
 
 }  // namespace nonlinear_internal
 }  // namespace femup

@@ -1,10 +1,12 @@
 #include "femup/solvers/nonlinear_solver.h"
 
-#include <Eigen/QR>
 #include <Eigen/SVD>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <limits>
 #include <sstream>
+#include <utility>
 
 #include "femup/errors.h"
 #include "femup/solvers/ceres_solver.h"
@@ -38,8 +40,8 @@ std::string Require(bool ok, const char* field, const char* requirement, T value
 std::string OneOf(const std::string& value, const char* field,
                   const std::vector<std::string>& allowed) {
   if (std::find(allowed.begin(), allowed.end(), value) != allowed.end()) return "";
-  return std::string(field) + ": unknown value '" + value + "' (allowed: " +
-         Join(allowed) + ")";
+  return std::string(field) + ": unknown value '" + value +
+         "' (allowed: " + Join(allowed) + ")";
 }
 
 // Orthonormal basis (columns) of the null space of `c`; the identity when `c` has
@@ -54,11 +56,12 @@ Eigen::MatrixXd NullSpace(const Eigen::MatrixXd& c) {
   return svd.matrixV().rightCols(n - rank);
 }
 
-// The equality matrix restricted to the free parameters.
+// The equality matrix restricted to the free parameters (no rows when there
+// are no equalities).
 Eigen::MatrixXd FreeEqualities(const NonlinearProblem& problem,
                                const std::vector<int>& free) {
   Eigen::MatrixXd c(problem.equality_matrix.rows(), free.size());
-  for (std::size_t k = 0; k < free.size(); ++k) {
+  for (std::size_t k = 0; k < free.size() && c.rows() > 0; ++k) {
     c.col(k) = problem.equality_matrix.col(free[k]);
   }
   return c;
@@ -97,8 +100,8 @@ std::unique_ptr<NonlinearSolver> CreateNonlinearSolver(
     const std::string& name, const NonlinearSolverOptions& options) {
   const std::vector<std::string> available = AvailableNonlinearSolvers();
   if (std::find(available.begin(), available.end(), name) == available.end()) {
-    throw InputError("solver.name",
-                     "unknown solver '" + name + "' (available: " + Join(available) + ")");
+    throw InputError("solver.name", "unknown solver '" + name +
+                                        "' (available: " + Join(available) + ")");
   }
   nonlinear_internal::ValidateOptions(options);
   if (name == "ceres") return std::make_unique<CeresSolver>(options);
@@ -107,16 +110,113 @@ std::unique_ptr<NonlinearSolver> CreateNonlinearSolver(
 
 namespace nonlinear_internal {
 
+namespace {
+
+// How close to a bound (relative to max(1, |bound|)) counts as on it (CheckKkt's
+// default), and how many times the polish may change the set of held bounds.
+constexpr double kActiveTolerance = 1e-9;
+constexpr int kMaxPolishRounds = 10;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+double Seconds(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// |J' r|_inf over the free parameters, or 1 when that is 0.
+double GradientScale(const NonlinearProblem& problem, const Eigen::MatrixXd& jacobian,
+                     const Eigen::VectorXd& residuals) {
+  const Eigen::VectorXd g = jacobian.transpose() * residuals;
+  double scale = 0;
+  for (int i : problem.FreeUnknowns()) scale = std::max(scale, std::abs(g[i]));
+  return scale > 0 ? scale : 1.0;
+}
+
+bool Constrained(const NonlinearProblem& problem) {
+  return problem.has_bounds() || problem.equality_matrix.rows() > 0;
+}
+
+KktReport Kkt(const NonlinearProblem& problem, const NonlinearSolution& solution,
+              double gradient_scale, double active_tolerance) {
+  return CheckKkt(solution.x, solution.jacobian.transpose() * solution.residual,
+                  problem.lower, problem.upper, problem.equality_matrix,
+                  problem.equality_rhs, problem.fixed, gradient_scale, active_tolerance);
+}
+
+// Turns a backend's result into a solution of `problem`: r, J, cost and
+// covariance at x, and the KKT check (a kSolved answer that fails it becomes
+// kNoConvergence).
+NonlinearSolution Complete(const NonlinearProblem& problem,
+                           const NonlinearSolverOptions& options, double gradient_scale,
+                           const BackendResult& result) {
+  NonlinearSolution solution;
+  SolverSummary& summary = solution.summary;
+  solution.x = result.x;
+  summary.status = result.status;
+  summary.message = result.message;
+  summary.iterations = result.iterations;
+  std::string why;
+  if (!Evaluate(problem, solution.x, &solution.residual, &solution.jacobian, &why)) {
+    summary.status = SolverStatus::kFailed;
+    summary.message += "; the model cannot be evaluated at the returned point: " + why;
+    solution.residual.resize(0);
+    solution.jacobian.resize(0, 0);
+    return solution;
+  }
+  summary.cost = 0.5 * solution.residual.squaredNorm();
+  solution.covariance = Covariance(problem, solution.jacobian, solution.residual);
+  if (!Constrained(problem)) return solution;
+  const KktReport kkt = Kkt(problem, solution, gradient_scale, kActiveTolerance);
+  summary.kkt_residual = kkt.residual();
+  if (summary.status == SolverStatus::kSolved &&
+      !(kkt.residual() <= options.kkt_tolerance)) {
+    std::ostringstream msg;
+    msg << "stopped short of the bounded optimum: KKT residual " << kkt.residual()
+        << " > kkt_tolerance " << options.kkt_tolerance << " (" << kkt.Describe()
+        << "); the backend reported: " << summary.message;
+    summary.status = SolverStatus::kNoConvergence;
+    summary.message = msg.str();
+  }
+  return solution;
+}
+
+// The free parameters whose bound an optimal answer should be on, with that
+// bound's value: those where the reduced gradient g_i = (J'r - C'mu)_i pushes
+// towards the bound and the Gauss-Newton step along x_i alone, g_i / |J_i|^2,
+// would reach it. Exactly on the bound this is "the multiplier has the right
+// sign"; a little inside (an interior-point answer) it does not depend on the
+// units of x_i.
+std::vector<std::pair<int, double>> BoundsToHold(const NonlinearProblem& problem,
+                                                 const NonlinearSolution& solution,
+                                                 double gradient_scale) {
+  const int n = problem.num_parameters();
+  Eigen::VectorXd g = solution.jacobian.transpose() * solution.residual;
+  if (problem.equality_matrix.rows() > 0) {
+    g -= problem.equality_matrix.transpose() *
+         Kkt(problem, solution, gradient_scale, kActiveTolerance).equality_multipliers;
+  }
+  const Eigen::VectorXd curvature = solution.jacobian.colwise().squaredNorm();
+  std::vector<std::pair<int, double>> held;
+  for (int i : problem.FreeUnknowns()) {
+    // Where the step along x_i alone would take it (unbounded when the residuals
+    // do not depend on x_i).
+    const double target = curvature[i] > 0 ? solution.x[i] - g[i] / curvature[i]
+                                           : (g[i] > 0 ? -kInf : kInf);
+    if (problem.lower.size() == n && g[i] > 0 && target <= problem.lower[i]) {
+      held.emplace_back(i, problem.lower[i]);
+    } else if (problem.upper.size() == n && g[i] < 0 && target >= problem.upper[i]) {
+      held.emplace_back(i, problem.upper[i]);
+    }
+  }
+  return held;
+}
+
+}  // namespace
+
 void ValidateOptions(const NonlinearSolverOptions& options) {
   const std::string invalid = options.Validate();
   if (invalid.empty()) return;
   const auto colon = invalid.find(": ");
   throw InputError("solver." + invalid.substr(0, colon), invalid.substr(colon + 2));
-}
-
-void ValidateProblem(const NonlinearProblem& problem) {
-  const std::string invalid = problem.Validate();
-  if (!invalid.empty()) throw InputError("nonlinear problem", invalid);
 }
 
 Eigen::VectorXd StartingPoint(const NonlinearProblem& problem) {
@@ -152,21 +252,13 @@ bool Evaluate(const NonlinearProblem& problem, const Eigen::VectorXd& x,
   return false;
 }
 
-double GradientScale(const NonlinearProblem& problem, const Eigen::MatrixXd& jacobian,
-                     const Eigen::VectorXd& residuals) {
-  const Eigen::VectorXd g = jacobian.transpose() * residuals;
-  double scale = 0;
-  for (int i : problem.FreeUnknowns()) scale = std::max(scale, std::abs(g[i]));
-  return scale > 0 ? scale : 1.0;
-}
-
 int EstimatedParameters(const NonlinearProblem& problem) {
-  const std::vector<int> free = problem.FreeUnknowns();
-  if (problem.equality_matrix.rows() == 0) return static_cast<int>(free.size());
-  return static_cast<int>(NullSpace(FreeEqualities(problem, free)).cols());
+  return static_cast<int>(
+      NullSpace(FreeEqualities(problem, problem.FreeUnknowns())).cols());
 }
 
-Eigen::MatrixXd Covariance(const NonlinearProblem& problem, const Eigen::MatrixXd& jacobian,
+Eigen::MatrixXd Covariance(const NonlinearProblem& problem,
+                           const Eigen::MatrixXd& jacobian,
                            const Eigen::VectorXd& residuals) {
   const int n = problem.num_parameters();
   const std::vector<int> free = problem.FreeUnknowns();
@@ -184,8 +276,9 @@ Eigen::MatrixXd Covariance(const NonlinearProblem& problem, const Eigen::MatrixX
     return Eigen::MatrixXd();
   }
   const Eigen::MatrixXd factor = basis * svd.matrixV() * s.cwiseInverse().asDiagonal();
-  const double variance =
-      problem.residuals_whitened ? 1.0 : residuals.squaredNorm() / static_cast<double>(dof);
+  const double variance = problem.residuals_whitened
+                              ? 1.0
+                              : residuals.squaredNorm() / static_cast<double>(dof);
   const Eigen::MatrixXd free_covariance = variance * factor * factor.transpose();
   Eigen::MatrixXd covariance = Eigen::MatrixXd::Zero(n, n);
   for (std::size_t a = 0; a < free.size(); ++a) {
@@ -196,38 +289,76 @@ Eigen::MatrixXd Covariance(const NonlinearProblem& problem, const Eigen::MatrixX
   return covariance;
 }
 
-void Finish(const NonlinearProblem& problem, const NonlinearSolverOptions& options,
-            double gradient_scale, std::chrono::steady_clock::time_point start,
-            NonlinearSolution* solution) {
-  SolverSummary& summary = solution->summary;
+NonlinearSolution Solve(const std::string& name, const NonlinearProblem& problem,
+                        const NonlinearSolverOptions& options, const Backend& backend) {
+  ValidateOptions(options);
+  const std::string invalid = problem.Validate();
+  if (!invalid.empty()) throw InputError("nonlinear problem", invalid);
+  const auto start = std::chrono::steady_clock::now();
+
+  Eigen::VectorXd r0;
+  Eigen::MatrixXd j0;
   std::string why;
-  if (!Evaluate(problem, solution->x, &solution->residual, &solution->jacobian, &why)) {
-    summary.status = SolverStatus::kFailed;
-    summary.message += "; the model cannot be evaluated at the returned point: " + why;
-    solution->residual.resize(0);
-    solution->jacobian.resize(0, 0);
-  } else {
-    summary.cost = 0.5 * solution->residual.squaredNorm();
-    solution->covariance = Covariance(problem, solution->jacobian, solution->residual);
-    if (problem.has_bounds() || problem.equality_matrix.rows() > 0) {
-      const KktReport kkt =
-          CheckKkt(solution->x, solution->jacobian.transpose() * solution->residual,
-                   problem.lower, problem.upper, problem.equality_matrix,
-                   problem.equality_rhs, problem.fixed, gradient_scale);
-      summary.kkt_residual = kkt.residual();
-      if (summary.status == SolverStatus::kSolved &&
-          !(kkt.residual() <= options.kkt_tolerance)) {
-        std::ostringstream msg;
-        msg << "stopped short of the bounded optimum: KKT residual " << kkt.residual()
-            << " > kkt_tolerance " << options.kkt_tolerance << " (" << kkt.Describe()
-            << "); the backend reported: " << summary.message;
-        summary.status = SolverStatus::kNoConvergence;
-        summary.message = msg.str();
-      }
-    }
+  if (!Evaluate(problem, StartingPoint(problem), &r0, &j0, &why)) {
+    NonlinearSolution solution;
+    solution.x = StartingPoint(problem);
+    solution.summary.status = SolverStatus::kFailed;
+    solution.summary.message =
+        name + ": the model cannot be evaluated at the start: " + why;
+    solution.summary.time_seconds = Seconds(start);
+    return solution;
   }
-  summary.time_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double scale = GradientScale(problem, j0, r0);
+  const BackendResult first = backend(problem, options, scale);
+  NonlinearSolution solution = Complete(problem, options, scale, first);
+
+  // Polish a converged answer (see the header): hold the bounds it should be on
+  // and re-solve the rest, while that is needed (it stopped short, or some of
+  // those bounds are not met exactly) and the held set changes.
+  std::vector<std::vector<std::pair<int, double>>> tried;
+  const auto num_free = problem.FreeUnknowns().size();
+  for (int round = 1;
+       round <= kMaxPolishRounds && first.status == SolverStatus::kSolved &&
+       Constrained(problem) && solution.summary.iterations < options.max_iterations;
+       ++round) {
+    const auto held = BoundsToHold(problem, solution, scale);
+    const bool off_bound = std::any_of(held.begin(), held.end(), [&](const auto& h) {
+      return solution.x[h.first] != h.second;
+    });
+    if (held.empty() || (solution.summary.usable() && !off_bound) ||
+        std::find(tried.begin(), tried.end(), held) != tried.end()) {
+      break;
+    }
+    tried.push_back(held);
+    NonlinearProblem reduced = problem;
+    reduced.initial = solution.x;
+    reduced.fixed.insert(reduced.fixed.end(), held.begin(), held.end());
+    BackendResult result;
+    if (held.size() == num_free) {
+      result = {StartingPoint(reduced), SolverStatus::kSolved,
+                "every free parameter is on a bound", 0};
+    } else {
+      NonlinearSolverOptions remaining = options;
+      remaining.max_iterations = options.max_iterations - solution.summary.iterations;
+      result = backend(reduced, remaining, scale);
+    }
+    std::ostringstream msg;
+    msg << first.message << "; then " << held.size()
+        << " bound(s) held where it stopped and the rest re-solved (polish round "
+        << round << "): " << result.message;
+    result.message = msg.str();
+    result.iterations += solution.summary.iterations;
+    NonlinearSolution polished = Complete(problem, options, scale, result);
+    // Keep a solved polish; otherwise only an improvement of an unsolved answer.
+    const bool better =
+        polished.summary.status == SolverStatus::kSolved ||
+        (!solution.summary.usable() && polished.summary.status != SolverStatus::kFailed &&
+         polished.summary.kkt_residual < solution.summary.kkt_residual);
+    if (!better) break;
+    solution = std::move(polished);
+  }
+  solution.summary.time_seconds = Seconds(start);
+  return solution;
 }
 
 }  // namespace nonlinear_internal

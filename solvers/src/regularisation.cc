@@ -19,13 +19,13 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 }  // namespace
 
 std::string RegularisationOptions::Validate() const {
-  const std::vector<std::string> rules = {"gcv", "lcurve", "discrepancy", "quasi_optimality",
-                                          "fixed"};
+  const std::vector<std::string> rules = {"gcv", "lcurve", "discrepancy",
+                                          "quasi_optimality", "fixed"};
   if (std::find(rules.begin(), rules.end(), parameter_choice) == rules.end())
     return "parameter_choice: unknown rule '" + parameter_choice +
            "' (choose gcv, lcurve, discrepancy, quasi_optimality or fixed)";
-  const std::vector<std::string> ops = {"identity", "first_difference", "second_difference",
-                                        "problem"};
+  const std::vector<std::string> ops = {"identity", "first_difference",
+                                        "second_difference", "problem"};
   if (std::find(ops.begin(), ops.end(), op) == ops.end())
     return "operator: unknown operator '" + op +
            "' (choose identity, first_difference, second_difference or problem)";
@@ -34,7 +34,8 @@ std::string RegularisationOptions::Validate() const {
     msg << "lambda: must be finite and >= 0 for the fixed rule, got " << lambda;
     return msg.str();
   }
-  if (parameter_choice == "discrepancy" && !(noise_norm > 0 && std::isfinite(noise_norm))) {
+  if (parameter_choice == "discrepancy" &&
+      !(noise_norm > 0 && std::isfinite(noise_norm))) {
     msg << "noise_norm: the discrepancy principle needs the noise norm ||e|| > 0, got "
         << noise_norm;
     return msg.str();
@@ -49,7 +50,8 @@ std::string RegularisationOptions::Validate() const {
   }
   if (!(lambda_min >= 0) || !(lambda_max >= 0) || !std::isfinite(lambda_min) ||
       !std::isfinite(lambda_max) || (lambda_max > 0 && lambda_min >= lambda_max)) {
-    msg << "lambda_min/lambda_max: need 0 <= lambda_min < lambda_max (0 = automatic), got "
+    msg << "lambda_min/lambda_max: need 0 <= lambda_min < lambda_max (0 = automatic), "
+           "got "
         << lambda_min << " and " << lambda_max;
     return msg.str();
   }
@@ -169,7 +171,7 @@ double TikhonovPath::Quasi(double lambda) const {
 
 double TikhonovPath::Curvature(double lambda) const {
   // Curvature of (log ||A x - b||, log ||L x||) as a function of lambda, from the
-  // first and second derivatives of eta = ||L x||^2 and rho = ||A x - b||^2
+  // first and second derivatives of eta = ||L x|| and rho = ||A x - b||
   // (Hansen, Rank-Deficient and Discrete Ill-Posed Problems, SIAM 1998, sec. 7.5).
   double eta = 0, rho = delta0_ * delta0_, phi = 0, psi = 0, dphi = 0, dpsi = 0;
   for (Eigen::Index i = 0; i < sigma_.size(); ++i) {
@@ -190,13 +192,19 @@ double TikhonovPath::Curvature(double lambda) const {
     dpsi += (-f1 * f1 + cf * f2) * b2;
   }
   if (eta <= 0 || rho <= 0) return 0.0;
-  // d/dlambda of log(sqrt(eta)) and log(sqrt(rho)), and second derivatives.
+  // eta, rho as norms; derivatives in lambda, then of their logarithms.
+  eta = std::sqrt(eta);
+  rho = std::sqrt(rho);
   const double deta = phi / eta, drho = -psi / rho;
-  const double ddeta = dphi / eta - deta * deta, ddrho = -dpsi / rho - drho * drho;
-  const double num = drho * ddeta - ddrho * deta;
-  const double den = std::pow(drho * drho + deta * deta, 1.5);
+  const double ddeta = dphi / eta - deta * (deta / eta);
+  const double ddrho = -dpsi / rho - drho * (drho / rho);
+  const double dlogeta = deta / eta, dlogrho = drho / rho;
+  const double ddlogeta = ddeta / eta - dlogeta * dlogeta;
+  const double ddlogrho = ddrho / rho - dlogrho * dlogrho;
+  const double den = std::pow(dlogrho * dlogrho + dlogeta * dlogeta, 1.5);
   if (den <= 0) return 0.0;
-  return -num / den;
+  // Positive where the curve turns like the L's corner (x = log rho, y = log eta).
+  return (dlogrho * ddlogeta - ddlogrho * dlogeta) / den;
 }
 
 Eigen::MatrixXd TikhonovPath::Inverse(double lambda) const {
@@ -246,15 +254,17 @@ Optimum MinimiseOnGrid(const std::function<double(double)>& f,
   for (std::size_t i = 1; i + 1 < g; ++i) {
     if (!(values[i] <= values[i - 1] && values[i] <= values[i + 1])) continue;
     if (values[i] == values[i - 1] && values[i] == values[i + 1]) continue;  // flat
-    const auto r = boost::math::tools::brent_find_minima(
-        in_log, std::log(grid[i - 1]), std::log(grid[i + 1]), bits);
+    const auto r = boost::math::tools::brent_find_minima(in_log, std::log(grid[i - 1]),
+                                                         std::log(grid[i + 1]), bits);
     if (r.second < best_value) {
       best_value = r.second;
       best.lambda = std::exp(r.first);
     }
   }
-  const bool low_end_better = values.front() < best_value && values.front() <= values.back();
-  const bool high_end_better = values.back() < best_value && values.back() < values.front();
+  const bool low_end_better =
+      values.front() < best_value && values.front() <= values.back();
+  const bool high_end_better =
+      values.back() < best_value && values.back() < values.front();
   std::ostringstream note;
   if (std::isnan(best.lambda)) {
     best.at_end = true;
@@ -265,7 +275,8 @@ Optimum MinimiseOnGrid(const std::function<double(double)>& f,
          << " end; the end point is returned";
     best.note = note.str();
   } else if (low_end_better || high_end_better) {
-    note << what << ": an end of the range (" << (low_end_better ? grid.front() : grid.back())
+    note << what << ": an end of the range ("
+         << (low_end_better ? grid.front() : grid.back())
          << ") scores better than the interior optimum " << best.lambda
          << "; the interior one is returned";
     best.note = note.str();
@@ -278,7 +289,9 @@ Optimum MinimiseOnGrid(const std::function<double(double)>& f,
 double ChooseLambda(const TikhonovPath& path, const RegularisationOptions& options,
                     RegularisationReport* report) {
   const std::string invalid = options.Validate();
-  if (!invalid.empty()) throw InputError("solver.regularisation." + invalid.substr(0, invalid.find(':')), invalid);
+  if (!invalid.empty())
+    throw InputError("solver.regularisation." + invalid.substr(0, invalid.find(':')),
+                     invalid);
   RegularisationReport local;
   RegularisationReport& rep = report ? *report : local;
   rep.parameter_choice = options.parameter_choice;
@@ -305,14 +318,14 @@ double ChooseLambda(const TikhonovPath& path, const RegularisationOptions& optio
 
   std::vector<double> neg_curvature(k);
   for (int i = 0; i < k; ++i) neg_curvature[i] = -rep.grid_curvature[i];
-  const Optimum gcv = MinimiseOnGrid([&](double l) { return path.Gcv(l); }, rep.grid_lambda,
-                                     rep.grid_gcv, "the GCV function");
+  const Optimum gcv = MinimiseOnGrid([&](double l) { return path.Gcv(l); },
+                                     rep.grid_lambda, rep.grid_gcv, "the GCV function");
   const Optimum lcurve =
       MinimiseOnGrid([&](double l) { return -path.Curvature(l); }, rep.grid_lambda,
                      neg_curvature, "the L-curve curvature (negated)");
-  const Optimum quasi = MinimiseOnGrid([&](double l) { return path.Quasi(l); },
-                                       rep.grid_lambda, rep.grid_quasi,
-                                       "the quasi-optimality function");
+  const Optimum quasi =
+      MinimiseOnGrid([&](double l) { return path.Quasi(l); }, rep.grid_lambda,
+                     rep.grid_quasi, "the quasi-optimality function");
   Optimum discrepancy;
   if (options.noise_norm > 0) {
     const double target = options.discrepancy_factor * options.noise_norm;
@@ -331,7 +344,9 @@ double ChooseLambda(const TikhonovPath& path, const RegularisationOptions& optio
            << " exceeds the residual at the largest lambda (" << r_hi << ")";
     } else {
       // The residual grows monotonically with lambda: bracketed root in log lambda.
-      auto g = [&](double t) { return std::log(path.ResidualNorm(std::exp(t)) / target); };
+      auto g = [&](double t) {
+        return std::log(path.ResidualNorm(std::exp(t)) / target);
+      };
       std::uintmax_t iterations = 200;
       const auto root = boost::math::tools::toms748_solve(
           g, std::log(lo), std::log(hi), boost::math::tools::eps_tolerance<double>(50),

@@ -32,15 +32,17 @@ LinearSolution TikhonovSolver::Solve(const LinearProblem& problem) const {
 
   // ||L (x - x0)|| in the reduced coordinates: x = p + N z, so L N z - L (x0 - p);
   // z0 = (L N)^+ L (x0 - p) leaves only a constant outside range(L N).
-  const Eigen::VectorXd x0 =
-      problem.prior.size() > 0 ? problem.prior : Eigen::VectorXd::Zero(problem.num_unknowns());
+  const Eigen::VectorXd x0 = problem.prior.size() > 0
+                                 ? problem.prior
+                                 : Eigen::VectorXd::Zero(problem.num_unknowns());
   const Eigen::MatrixXd ln = l * r.basis;
   const Eigen::VectorXd z0 =
-      Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(ln).solve(l * (x0 - r.particular));
+      Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(ln).solve(
+          l * (x0 - r.particular));
 
   LinearSolution solution;
-  solution.identifiability = AnalyseIdentifiability(r.A, r.names, r.groups,
-                                                    options_.relative_rank_tolerance, true);
+  solution.identifiability = AnalyseIdentifiability(
+      r.A, r.names, r.groups, options_.relative_rank_tolerance, true);
   const TikhonovPath path(r.A, r.b, ln, z0);
   RegularisationReport& rep = solution.regularisation;
   const double lambda = ChooseLambda(path, options_.regularisation, &rep);

@@ -32,8 +32,8 @@ LinearSolution TsvdSolver::Solve(const LinearProblem& problem) const {
   const int m = static_cast<int>(r.A.rows());
 
   LinearSolution solution;
-  solution.identifiability = AnalyseIdentifiability(r.A, r.names, r.groups,
-                                                    options_.relative_rank_tolerance, true);
+  solution.identifiability = AnalyseIdentifiability(
+      r.A, r.names, r.groups, options_.relative_rank_tolerance, true);
   Eigen::BDCSVD<Eigen::MatrixXd> svd(r.A, Eigen::ComputeThinU | Eigen::ComputeThinV);
   const Eigen::VectorXd& s = svd.singularValues();
   const Eigen::VectorXd beta = svd.matrixU().transpose() * r.b;
@@ -61,15 +61,16 @@ LinearSolution TsvdSolver::Solve(const LinearProblem& problem) const {
   rep.parameter_choice = options_.truncation > 0 ? "fixed" : ro.parameter_choice;
   auto gcv = [&](int k) {
     const double dof = m - k;
-    return dof > 0 ? res[k] * res[k] / (dof * dof) : std::numeric_limits<double>::infinity();
+    return dof > 0 ? res[k] * res[k] / (dof * dof)
+                   : std::numeric_limits<double>::infinity();
   };
   int chosen = 0;
   std::ostringstream note;
   if (options_.truncation > 0) {
     chosen = std::min(options_.truncation, rank);
     if (options_.truncation > rank)
-      note << "truncation " << options_.truncation << " exceeds the numerical rank " << rank
-           << "; " << rank << " used";
+      note << "truncation " << options_.truncation << " exceeds the numerical rank "
+           << rank << "; " << rank << " used";
   } else if (ro.parameter_choice == "gcv") {
     chosen = 1;
     for (int k = 2; k <= rank; ++k) {
@@ -85,8 +86,8 @@ LinearSolution TsvdSolver::Solve(const LinearProblem& problem) const {
       }
     }
     if (res[rank] > target)
-      note << "discrepancy principle: even k = " << rank << " leaves a residual " << res[rank]
-           << " above the target " << target;
+      note << "discrepancy principle: even k = " << rank << " leaves a residual "
+           << res[rank] << " above the target " << target;
   } else if (ro.parameter_choice == "quasi_optimality") {
     chosen = 1;
     for (int k = 2; k <= rank; ++k) {
@@ -98,8 +99,9 @@ LinearSolution TsvdSolver::Solve(const LinearProblem& problem) const {
     double best = -std::numeric_limits<double>::infinity();
     for (int k = 2; k < rank; ++k) {
       if (res[k - 1] <= 0 || res[k + 1] <= 0 || norm[k - 1] <= 0) continue;
-      const double c = Menger(std::log(res[k - 1]), std::log(norm[k - 1]), std::log(res[k]),
-                              std::log(norm[k]), std::log(res[k + 1]), std::log(norm[k + 1]));
+      const double c =
+          Menger(std::log(res[k - 1]), std::log(norm[k - 1]), std::log(res[k]),
+                 std::log(norm[k]), std::log(res[k + 1]), std::log(norm[k + 1]));
       if (c > best) {
         best = c;
         chosen = k;
@@ -107,9 +109,10 @@ LinearSolution TsvdSolver::Solve(const LinearProblem& problem) const {
     }
     if (rank < 3) note << "L-curve: fewer than three points; k = rank used";
   } else {
-    throw InputError("solver.truncation",
-                     "tsvd with the fixed rule needs truncation > 0 (the number of singular "
-                     "values kept)");
+    throw InputError(
+        "solver.truncation",
+        "tsvd with the fixed rule needs truncation > 0 (the number of singular "
+        "values kept)");
   }
   rep.truncation = chosen;
   rep.note = note.str();
@@ -122,7 +125,8 @@ LinearSolution TsvdSolver::Solve(const LinearProblem& problem) const {
 
   const Eigen::MatrixXd uk = svd.matrixU().leftCols(chosen);
   const Eigen::MatrixXd vk = svd.matrixV().leftCols(chosen);
-  const Eigen::MatrixXd z_map = vk * s.head(chosen).cwiseInverse().asDiagonal() * uk.transpose();
+  const Eigen::MatrixXd z_map =
+      vk * s.head(chosen).cwiseInverse().asDiagonal() * uk.transpose();
   const Eigen::VectorXd z = z_map * r.b;
   solution.x = r.ToX(z);
   solution.residual = problem.A * solution.x - problem.b;
@@ -134,7 +138,8 @@ LinearSolution TsvdSolver::Solve(const LinearProblem& problem) const {
   const Eigen::MatrixXd rz = vk * vk.transpose();  // resolution in z
   solution.resolution = r.basis * rz * r.basis.transpose();
   const Eigen::VectorXd zt = r.basis.transpose() * (solution.x - r.particular);
-  solution.bias_estimate = r.basis * ((rz - Eigen::MatrixXd::Identity(rz.rows(), rz.cols())) * zt);
+  solution.bias_estimate =
+      r.basis * ((rz - Eigen::MatrixXd::Identity(rz.rows(), rz.cols())) * zt);
 
   solution.summary.status = SolverStatus::kSolved;
   std::ostringstream msg;

@@ -14,10 +14,11 @@
 //                w = psi / ||psi|| (psi: the measured shape at the sensors),
 //                u = s / ||s|| (s: phi at the sensor DOFs), sign = +1 when
 //                s' psi >= 0, else -1; label "<state> mode <j> shape <dof label>".
-//     That is: the measured shape scaled to largest entry 1 and the model shape
-//     scaled to the same Euclidean norm and sign, differenced, over shape_sigma.
-//     Shape scaling and sign of the data are free; the residual does not depend
-//     on them.
+//     That is: the measured shape scaled so that its largest-magnitude entry is
+//     +-1, the model shape scaled to the same Euclidean norm and sign, their
+//     difference over shape_sigma.
+//     The data's shape scaling is free: a positive factor leaves the residuals
+//     unchanged, a negative one negates them.
 // then, optionally:
 //   prior:       (x_i - prior_mean_i) / prior_sigma_i for each parameter with a
 //                prior (0 < prior_sigma_i < inf); label "prior <name>".
@@ -27,7 +28,7 @@
 // Mass and stiffness scale together without changing eigenvalues or unit-scaled
 // shapes, so (1 + mass and stiffness factors, added-mass factors) scaled by a
 // common number is a null direction of the data residuals: fix one factor
-// (problem.fixed), or give a prior, as the paper does with mass 4.
+// (problem.fixed; the paper fixes mass 4), or give a prior.
 #pragma once
 
 #include <Eigen/Core>

@@ -42,9 +42,11 @@ struct LinearProblem {
 
   int num_rows() const { return static_cast<int>(A.rows()); }
   int num_unknowns() const { return static_cast<int>(A.cols()); }
-  bool has_bounds() const;      // any finite bound on a free unknown
+  bool has_bounds() const;  // any finite bound on a free unknown
   bool has_equalities() const { return equality_matrix.rows() > 0; }
-  bool noise_known() const { return row_weights.size() > 0 || data_covariance.size() > 0; }
+  bool noise_known() const {
+    return row_weights.size() > 0 || data_covariance.size() > 0;
+  }
   // Empty when consistent; otherwise what is wrong (sizes, NaN, a fixed index
   // out of range or listed twice, lower > upper, a fixed value outside its
   // bounds, a covariance that is not positive definite, equalities that no x

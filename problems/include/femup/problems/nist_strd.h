@@ -64,7 +64,7 @@ struct NistNonlinearDataset {
   Eigen::MatrixXd starts;  // parameters x 2: start 1 and start 2
   Eigen::VectorXd certified, certified_sd;
   double certified_rss = 0;  // residual sum of squares at the certified values
-  double residual_sd = 0;    // sqrt(certified_rss / degrees_of_freedom)
+  double residual_sd = 0;    // certified; sqrt(certified_rss / degrees_of_freedom)
   // Observations - parameters. (Rat43.dat states 9, a slip in NIST's file: its
   // certified residual standard deviation is sqrt(RSS / 11), and 15 - 4 = 11.)
   int degrees_of_freedom = 0;
@@ -86,9 +86,9 @@ NistNonlinearDataset ReadNistNonlinear(const std::string& path);
 // log[y] = f, r_i = f(x_i; b) - log(y_i)) and the Jacobian dr/db from forward-mode
 // automatic differentiation. `start` is 1 or 2 (NIST's two starting points).
 // evaluate returns false, with a reason, when a residual or derivative is not
-// finite. Throws InputError for an unknown dataset name (listing the known ones),
-// a dataset whose parameter or predictor count does not fit the model, or a start
-// other than 1 or 2.
+// finite or x does not have one entry per parameter. Throws InputError for an unknown
+// dataset name (listing the known ones), a dataset whose parameter or predictor count
+// does not fit the model, or a start other than 1 or 2.
 NonlinearProblem NistNonlinearProblem(const NistNonlinearDataset& data, int start);
 
 // The residuals above, evaluated in long double from the long double data, for

@@ -19,13 +19,14 @@ struct NonlinearProblem {
   // null; num_residuals x num_parameters). Returns false when the model cannot be
   // evaluated at x (the solver then treats the step as unsuccessful); it may then
   // set *why. Must be safe to call repeatedly; need not be thread-safe.
-  using Evaluate = std::function<bool(const Eigen::VectorXd& x, Eigen::VectorXd* residuals,
-                                      Eigen::MatrixXd* jacobian, std::string* why)>;
+  using Evaluate =
+      std::function<bool(const Eigen::VectorXd& x, Eigen::VectorXd* residuals,
+                         Eigen::MatrixXd* jacobian, std::string* why)>;
 
   int num_residuals = 0;
-  Eigen::VectorXd initial;          // n: the starting point
-  std::vector<std::string> names;   // n, may be empty
-  std::vector<std::string> groups;  // n, may be empty
+  Eigen::VectorXd initial;                    // n: the starting point
+  std::vector<std::string> names;             // n, may be empty
+  std::vector<std::string> groups;            // n, may be empty
   std::vector<std::string> residual_labels;   // may be empty
   std::vector<std::pair<int, double>> fixed;  // (index, value)
   Eigen::VectorXd lower, upper;               // n each, or empty

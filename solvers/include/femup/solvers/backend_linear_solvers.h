@@ -19,7 +19,8 @@ namespace femup {
 // normal when it is known) at options.confidence_level.
 class CeresLinearSolver : public LinearSolver {
  public:
-  explicit CeresLinearSolver(const LinearSolverOptions& options = {}) : options_(options) {}
+  explicit CeresLinearSolver(const LinearSolverOptions& options = {})
+      : options_(options) {}
   std::string name() const override { return "ceres"; }
   // Throws InputError("linear problem", ...) when the problem is unusable.
   LinearSolution Solve(const LinearProblem& problem) const override;
@@ -31,7 +32,8 @@ class CeresLinearSolver : public LinearSolver {
 // As CeresLinearSolver, on Ipopt with the exact (Gauss-Newton) Hessian.
 class IpoptLinearSolver : public LinearSolver {
  public:
-  explicit IpoptLinearSolver(const LinearSolverOptions& options = {}) : options_(options) {}
+  explicit IpoptLinearSolver(const LinearSolverOptions& options = {})
+      : options_(options) {}
   std::string name() const override { return "ipopt"; }
   LinearSolution Solve(const LinearProblem& problem) const override;
 

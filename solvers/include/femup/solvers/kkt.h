@@ -12,10 +12,10 @@
 namespace femup {
 
 struct KktReport {
-  double stationarity = 0;   // largest |g - C' mu - z| on free unknowns, / scale
-  double sign = 0;           // largest wrong-sign bound multiplier, / scale
-  double feasibility = 0;    // largest bound or equality violation (absolute)
-  Eigen::VectorXd bound_multipliers;     // n: > 0 at an active lower bound, < 0 at upper
+  double stationarity = 0;            // largest |g - C' mu - z| on free unknowns, / scale
+  double sign = 0;                    // largest wrong-sign bound multiplier, / scale
+  double feasibility = 0;             // largest bound or equality violation (absolute)
+  Eigen::VectorXd bound_multipliers;  // n: > 0 at an active lower bound, < 0 at upper
   Eigen::VectorXd equality_multipliers;  // q
   std::vector<int> active_lower, active_upper;
   double residual() const;  // max(stationarity, sign, feasibility)

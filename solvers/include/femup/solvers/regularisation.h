@@ -25,10 +25,10 @@ struct RegularisationOptions {
   // "identity", "first_difference", "second_difference" (over neighbouring
   // unknowns of one group) or "problem" (the problem's own regulariser).
   std::string op = "identity";
-  int grid_points = 200;     // log-spaced grid for plots and bracketing
-  double lambda_min = 0;     // search range; 0 = from the singular values
+  int grid_points = 200;  // log-spaced grid for plots and bracketing
+  double lambda_min = 0;  // search range; 0 = from the singular values
   double lambda_max = 0;
-  std::string Validate() const;     // empty when valid, else "<field>: what is wrong"
+  std::string Validate() const;  // empty when valid, else "<field>: what is wrong"
 };
 
 // What a regularised solve reports (for JSON, tables and plots).
@@ -55,16 +55,18 @@ class TikhonovPath {
                const Eigen::VectorXd& x0 = Eigen::VectorXd());
 
   Eigen::VectorXd Solve(double lambda) const;
-  double ResidualNorm(double lambda) const;   // ||A x - b||
-  double SolutionNorm(double lambda) const;   // ||L (x - x0)||
-  double Gcv(double lambda) const;            // ||A x - b||^2 / (m - trace H)^2
-  double Curvature(double lambda) const;      // of the L-curve in log-log scale
-  double Quasi(double lambda) const;          // ||lambda dx/dlambda|| in standard form
+  double ResidualNorm(double lambda) const;  // ||A x - b||
+  double SolutionNorm(double lambda) const;  // ||L (x - x0)||
+  double Gcv(double lambda) const;           // ||A x - b||^2 / (m - trace H)^2
+  double Curvature(double lambda) const;     // of the L-curve in log-log scale
+  double Quasi(double lambda) const;         // ||lambda dx/dlambda|| in standard form
   double EffectiveParameters(double lambda) const;  // trace of the influence matrix
   // The regularised inverse X (n x m, x - x0 = X (b - A x0)); resolution = X A.
   Eigen::MatrixXd Inverse(double lambda) const;
 
-  const Eigen::VectorXd& singular_values() const { return sigma_; }  // of the standard form
+  const Eigen::VectorXd& singular_values() const {
+    return sigma_;
+  }  // of the standard form
   double DefaultLambdaMin() const;
   double DefaultLambdaMax() const;
   int num_rows() const { return m_; }
