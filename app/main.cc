@@ -9,8 +9,10 @@
 #include "femup/output_dir.h"
 #include "femup/studies/modes_study.h"
 #include "femup/studies/noise_study.h"
+#include "femup/studies/solve_study.h"
 #include "femup/studies/study.h"
 #include "femup/studies/update_study.h"
+#include "femup/solvers/nonlinear_solver.h"
 
 namespace {
 
@@ -19,6 +21,8 @@ struct Common {
   std::string out;
   bool no_plots = false;
   bool quiet = false;
+  std::string solver;  // overrides the study file's solver.name
+  std::string method;  // overrides solver.method
 };
 
 void AddCommon(CLI::App* cmd, Common* c) {
@@ -26,6 +30,37 @@ void AddCommon(CLI::App* cmd, Common* c) {
   cmd->add_option("-o,--out", c->out, "output folder (default: out/<study name>)");
   cmd->add_flag("--no-plots", c->no_plots, "write JSON and matrices only");
   cmd->add_flag("-q,--quiet", c->quiet, "print nothing but errors and warnings");
+}
+
+void AddSolverOverride(CLI::App* cmd, Common* c) {
+  cmd->add_option("--solver", c->solver,
+                  "solver name, overriding the study file (linear: lstsq, tsvd, tikhonov, "
+                  "bvls, ceres, ipopt; sensitivity: ceres, ipopt)");
+  cmd->add_option("--method", c->method,
+                  "linear (the paper's Z d = F) or sensitivity (iterative eigen-sensitivity)");
+}
+
+// Applies --solver / --method and checks the result before any work.
+void ApplyOverride(const Common& c, femup::Study* study) {
+  if (!c.method.empty()) {
+    if (c.method != "linear" && c.method != "sensitivity")
+      throw femup::InputError("--method", "expected linear or sensitivity, got '" + c.method +
+                                              "'");
+    study->solver.method = c.method;
+    if (c.solver.empty() && c.method == "sensitivity") study->solver.name = "ceres";
+  }
+  if (!c.solver.empty()) study->solver.name = c.solver;
+  if (c.solver.empty() && c.method.empty()) return;
+  study->solver.label = study->solver.method + " (" + study->solver.name + ")";
+  try {
+    if (study->solver.method == "linear") {
+      femup::CreateLinearSolver(study->solver.name, study->solver.linear);
+    } else {
+      femup::CreateNonlinearSolver(study->solver.name, study->solver.nonlinear);
+    }
+  } catch (const femup::InputError& e) {
+    throw femup::InputError("--solver", e.what());
+  }
 }
 
 std::string OutputFolder(const Common& c, const femup::Study& study) {
@@ -63,9 +98,11 @@ int main(int argc, char** argv) {
   CLI::App* run = app.add_subcommand(
       "run", "identify correction factors (Z d = F), build the updated model, compare");
   AddCommon(run, &run_opts);
+  AddSolverOverride(run, &run_opts);
   CLI::App* noise = app.add_subcommand(
       "noise", "the noise study: Rm of the added-mass factors vs corruption");
   AddCommon(noise, &noise_opts);
+  AddSolverOverride(noise, &noise_opts);
   CLI::App* modes =
       app.add_subcommand("modes", "modal analysis of the study's nominal model");
   AddCommon(modes, &modes_opts);
@@ -74,6 +111,34 @@ int main(int argc, char** argv) {
   CLI::App* check =
       app.add_subcommand("check", "read and check a study file, do no work");
   check->add_option("study", check_opts.study, "study file (YAML or JSON)")->required();
+
+  CLI::App* solve = app.add_subcommand(
+      "solve", "solve a general linear inverse problem A x ~ b from files (.mtx or .csv)");
+  femup::SolveFiles files;
+  std::string solve_solver = "lstsq", solve_out = "out/solve";
+  femup::LinearSolverOptions solve_options;
+  bool solve_no_plots = false, solve_quiet = false;
+  solve->add_option("--A", files.a, "matrix A (.mtx or .csv; a CSV header names the unknowns)")
+      ->required();
+  solve->add_option("--b", files.b, "right-hand side b (.mtx or .csv)")->required();
+  solve->add_option("--lower", files.lower, "lower bounds (vector file)");
+  solve->add_option("--upper", files.upper, "upper bounds (vector file)");
+  solve->add_option("--truth", files.truth, "a reference solution to report the error against");
+  solve->add_option("--sigma", files.data_sigma, "noise standard deviation of b (known noise)");
+  solve->add_option("--solver", solve_solver,
+                    "lstsq, tsvd, tikhonov, bvls, ceres or ipopt (default lstsq)");
+  solve->add_option("--parameter-choice", solve_options.regularisation.parameter_choice,
+                    "tikhonov/tsvd: gcv, lcurve, discrepancy, quasi_optimality or fixed");
+  solve->add_option("--lambda", solve_options.regularisation.lambda,
+                    "tikhonov with --parameter-choice fixed: lambda");
+  solve->add_option("--noise-norm", solve_options.regularisation.noise_norm,
+                    "discrepancy principle: ||e||");
+  solve->add_option("--operator", solve_options.regularisation.op,
+                    "tikhonov: identity, first_difference or second_difference");
+  solve->add_option("--truncation", solve_options.truncation, "tsvd: singular values kept");
+  solve->add_option("-o,--out", solve_out, "output folder (default out/solve)");
+  solve->add_flag("--no-plots", solve_no_plots, "write JSON and CSV only");
+  solve->add_flag("-q,--quiet", solve_quiet, "print nothing but errors and warnings");
 
   CLI11_PARSE(app, argc, argv);
 
@@ -87,7 +152,8 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (*run) {
-      const femup::Study study = femup::LoadStudy(run_opts.study);
+      femup::Study study = femup::LoadStudy(run_opts.study);
+      ApplyOverride(run_opts, &study);
       const femup::UpdateResult result = femup::RunUpdate(study);
       femup::OutputDir dir(OutputFolder(run_opts, study));
       femup::WriteUpdateOutputs(result, study.plots && !run_opts.no_plots, &dir,
@@ -100,7 +166,8 @@ int main(int argc, char** argv) {
       return result.solution.summary.usable() ? 0 : 3;
     }
     if (*noise) {
-      const femup::Study study = femup::LoadStudy(noise_opts.study);
+      femup::Study study = femup::LoadStudy(noise_opts.study);
+      ApplyOverride(noise_opts, &study);
       if (!study.noise_study) {
         throw femup::InputError(noise_opts.study,
                                 "noise_study: the study has no noise_study "
@@ -113,6 +180,16 @@ int main(int argc, char** argv) {
       if (!noise_opts.quiet) std::cout << femup::NoiseReport(result);
       Finish(&dir, warnings, noise_opts);
       return 0;
+    }
+    if (*solve) {
+      const femup::SolveResult result = femup::RunSolve(files, solve_solver, solve_options);
+      femup::OutputDir dir(solve_out);
+      femup::WriteSolveOutputs(result, !solve_no_plots, &dir, &warnings);
+      if (!solve_quiet) std::cout << femup::SolveReport(result);
+      Common c;
+      c.quiet = solve_quiet;
+      Finish(&dir, warnings, c);
+      return result.solution.summary.usable() ? 0 : 3;
     }
     if (*modes) {
       const femup::Study study = femup::LoadStudy(modes_opts.study);

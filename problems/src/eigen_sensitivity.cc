@@ -21,7 +21,7 @@ struct StateTerms {
   Eigen::VectorXd lambdas;        // measured eigenvalues
   Eigen::MatrixXd shapes;         // measured shapes at the sensors (or empty)
   Eigen::MatrixXd unit_shapes;    // w = psi / ||psi||, when shape residuals are on
-  Eigen::VectorXd shape_weights;  // 1 / (shape_sigma max |w|), per mode
+  Eigen::MatrixXd shape_weights;  // 1 / standard deviation, per sensor and mode
   bool shape_residuals = false;
   bool pair_by_mac = false;
   int num_model_modes = 0;  // model modes solved for pairing
@@ -116,7 +116,7 @@ bool EvaluateState(const Context& c, const StateTerms& st, const SparseMatrix& k
     (*r)[row] = (lambda / st.lambdas[j] - 1.0) / c.frequency_sigma;
 
     Eigen::VectorXd u;  // unit model shape at the sensors
-    double s_norm = 0, sign = 1, shape_weight = 0;
+    double s_norm = 0, sign = 1;
     const Eigen::Index num_sensors = static_cast<Eigen::Index>(st.sensors.size());
     if (st.shape_residuals) {
       const Eigen::VectorXd s = phi(st.sensors);
@@ -129,9 +129,8 @@ bool EvaluateState(const Context& c, const StateTerms& st, const SparseMatrix& k
       }
       u = s / s_norm;
       sign = u.dot(st.unit_shapes.col(j)) >= 0 ? 1.0 : -1.0;
-      shape_weight = st.shape_weights[j];
       r->segment(row + 1, num_sensors) =
-          shape_weight * (sign * u - st.unit_shapes.col(j));
+          st.shape_weights.col(j).cwiseProduct(sign * u - st.unit_shapes.col(j));
     }
     if (jac == nullptr) continue;
 
@@ -157,7 +156,7 @@ bool EvaluateState(const Context& c, const StateTerms& st, const SparseMatrix& k
       // d(s / ||s||) = (I - u u') ds / ||s||.
       const Eigen::VectorXd ds = d.eigenvector(st.sensors);
       jac->block(row + 1, p, num_sensors, 1) =
-          (sign * shape_weight / s_norm) * (ds - u * u.dot(ds));
+          (sign / s_norm) * st.shape_weights.col(j).cwiseProduct(ds - u * u.dot(ds));
     }
   }
   return true;
@@ -208,6 +207,10 @@ std::string EigenSensitivityOptions::Validate() const {
   if (!(frequency_sigma > 0) || !std::isfinite(frequency_sigma)) {
     return "frequency_sigma: must be positive and finite";
   }
+  if (shape_noise != "max" && shape_noise != "entry")
+    return "shape_noise: expected max or entry, got '" + shape_noise + "'";
+  if (!(entry_floor > 0 && entry_floor <= 1))
+    return "entry_floor: must be in (0, 1]";
   if (!(shape_sigma > 0) || !std::isfinite(shape_sigma)) {
     return "shape_sigma: must be positive and finite";
   }
@@ -298,10 +301,16 @@ NonlinearProblem BuildEigenSensitivityProblem(const ParametrisedModel& model,
     st.first_row = row;
     if (st.shape_residuals) {
       st.unit_shapes = data.shapes.colwise().normalized();
-      st.shape_weights.resize(data.num_modes());
+      st.shape_weights.resize(st.unit_shapes.rows(), data.num_modes());
       for (int j = 0; j < data.num_modes(); ++j) {
-        st.shape_weights[j] =
-            1.0 / (options.shape_sigma * st.unit_shapes.col(j).cwiseAbs().maxCoeff());
+        const double peak = st.unit_shapes.col(j).cwiseAbs().maxCoeff();
+        for (Eigen::Index i = 0; i < st.unit_shapes.rows(); ++i) {
+          const double scale =
+              options.shape_noise == "entry"
+                  ? std::max(std::abs(st.unit_shapes(i, j)), options.entry_floor * peak)
+                  : peak;
+          st.shape_weights(i, j) = 1.0 / (options.shape_sigma * scale);
+        }
       }
     }
     for (int j = 0; j < data.num_modes(); ++j) {

@@ -24,6 +24,8 @@ bool NoiseDistributionFromString(const std::string& text, NoiseDistribution* d) 
 std::string NoiseModel::Validate() const {
   if (!(level >= 0) || !std::isfinite(level)) return "level must be finite and >= 0";
   if (level >= 1) return "level must be below 1 (it is relative: 0.05 is 5 %)";
+  if (std::isnan(shape_level) || shape_level >= 1 || !std::isfinite(shape_level))
+    return "shape_level must be below 1 (negative: the same as level)";
   return "";
 }
 
@@ -48,9 +50,10 @@ ModalData Corrupt(const ModalData& data, const NoiseModel& noise, std::mt19937_6
     }
   }
   if (noise.shapes) {
+    const double shape_level = noise.shape_level < 0 ? noise.level : noise.shape_level;
     for (Eigen::Index j = 0; j < out.shapes.cols(); ++j) {
       for (Eigen::Index i = 0; i < out.shapes.rows(); ++i) {
-        out.shapes(i, j) *= 1.0 + noise.level * draw();
+        out.shapes(i, j) *= 1.0 + shape_level * draw();
       }
     }
   }

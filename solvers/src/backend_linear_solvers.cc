@@ -19,6 +19,10 @@ namespace {
 // CheckKkt.
 constexpr double kActiveTolerance = 1e-9;
 
+// Quantiles in double precision (Boost's default promotes to long double).
+using Policy =
+    boost::math::policies::policy<boost::math::policies::promote_double<false>>;
+
 // Names of the free unknowns that lie on one of their bounds.
 std::vector<std::string> OnBounds(const LinearProblem& problem,
                                   const Eigen::VectorXd& x) {
@@ -73,9 +77,11 @@ LinearSolution SolveOnBackend(const std::string& backend,
   if (solution.noise_estimated) {
     const double dof =
         problem.num_rows() - nonlinear_internal::EstimatedParameters(nonlinear);
-    quantile = boost::math::quantile(boost::math::students_t(dof), p);
+    quantile = boost::math::quantile(
+        boost::math::students_t_distribution<double, Policy>(dof), p);
   } else {
-    quantile = boost::math::quantile(boost::math::normal(), p);
+    quantile =
+        boost::math::quantile(boost::math::normal_distribution<double, Policy>(), p);
   }
   solution.interval_lower = solution.x - quantile * solution.standard_error;
   solution.interval_upper = solution.x + quantile * solution.standard_error;

@@ -27,7 +27,7 @@ constexpr double kMaxPenaltyGrowth = 1e8;
 // a nearly undamped start the first step is Gauss-Newton; failed steps shrink
 // the region as usual.
 constexpr double kInitialTrustRegion = 1e10;
-// Most re-solves with stalled bounds held, per run.
+// Most re-solves with stalled bounds held between two multiplier updates.
 constexpr int kMaxHolds = 20;
 // A solve has stalled on a bound when this many successful steps in a row
 // achieved less than this fraction of the decrease the model predicted (so the
@@ -105,13 +105,16 @@ class EqualityPenalty final : public ceres::CostFunction {
   const Eigen::VectorXd* mu_;
 };
 
-// Ends a Ceres solve that has stalled on a bound (see kStallSteps), so that the
-// bounds can be held and the rest re-solved. Reads x from the parameter block,
-// which needs Solver::Options::update_state_every_iteration.
+// Ends a Ceres solve that has stalled on a bound that is not held (see
+// kStallSteps), so that the bounds can be held and the rest re-solved. Reads x
+// from the parameter block, which needs
+// Solver::Options::update_state_every_iteration.
 class StallDetector final : public ceres::IterationCallback {
  public:
-  StallDetector(const NonlinearProblem& problem, const double* x)
-      : problem_(problem), x_(x) {}
+  // `held`: the parameters currently held on their bounds (ascending).
+  StallDetector(const NonlinearProblem& problem, const double* x,
+                const std::vector<int>* held)
+      : problem_(problem), x_(x), held_(held) {}
 
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
     const bool poor = summary.iteration > 0 && summary.step_is_successful &&
@@ -125,6 +128,7 @@ class StallDetector final : public ceres::IterationCallback {
   bool OnBound() const {
     const int n = problem_.num_parameters();
     for (int i : problem_.FreeUnknowns()) {
+      if (std::binary_search(held_->begin(), held_->end(), i)) continue;
       if ((problem_.lower.size() == n && x_[i] == problem_.lower[i]) ||
           (problem_.upper.size() == n && x_[i] == problem_.upper[i])) {
         return true;
@@ -135,6 +139,7 @@ class StallDetector final : public ceres::IterationCallback {
 
   const NonlinearProblem& problem_;
   const double* x_;
+  const std::vector<int>* held_;
   int poor_steps_ = 0;
 };
 
@@ -151,8 +156,11 @@ SolverStatus FromCeres(ceres::TerminationType type) {
 }
 
 // The free parameters on a bound whose multiplier has the right sign, and
-// whether the point fails the KKT conditions (to kStallKktTolerance), for
-// min 0.5 |r|^2 (+ the augmented-Lagrangian penalty) within the bounds.
+// whether the point fails the KKT conditions (to kStallKktTolerance) of the
+// pass's problem, min 0.5 |r|^2 + the augmented-Lagrangian penalty within the
+// bounds. The signs are those of the original problem (equality multipliers by
+// least squares): the penalised gradient carries rho (C x - d), which is large
+// and of any sign while the penalty is large and C x - d not yet converged.
 struct Stall {
   std::vector<int> on_bounds;  // ascending
   bool short_of_optimum = false;
@@ -165,22 +173,27 @@ Stall CheckStall(const NonlinearProblem& problem, const NonlinearSolverOptions& 
   Eigen::MatrixXd j;
   std::string why;
   if (!nonlinear_internal::Evaluate(problem, x, &r, &j, &why)) return stall;
-  Eigen::VectorXd g = j.transpose() * r;
-  if (mu.size() > 0) {
-    g += problem.equality_matrix.transpose() *
-         (mu + rho * (problem.equality_matrix * x - problem.equality_rhs));
+  const Eigen::VectorXd g = j.transpose() * r;
+  const KktReport original =
+      CheckKkt(x, g, problem.lower, problem.upper, problem.equality_matrix,
+               problem.equality_rhs, problem.fixed, gradient_scale);
+  for (int i : original.active_lower) {
+    if (original.bound_multipliers[i] >= 0) stall.on_bounds.push_back(i);
   }
-  const KktReport kkt = CheckKkt(x, g, problem.lower, problem.upper, Eigen::MatrixXd(),
-                                 Eigen::VectorXd(), problem.fixed, gradient_scale);
-  for (int i : kkt.active_lower) {
-    if (kkt.bound_multipliers[i] >= 0) stall.on_bounds.push_back(i);
-  }
-  for (int i : kkt.active_upper) {
-    if (kkt.bound_multipliers[i] <= 0) stall.on_bounds.push_back(i);
+  for (int i : original.active_upper) {
+    if (original.bound_multipliers[i] <= 0) stall.on_bounds.push_back(i);
   }
   std::sort(stall.on_bounds.begin(), stall.on_bounds.end());
+  Eigen::VectorXd penalised = g;
+  if (mu.size() > 0) {
+    penalised += problem.equality_matrix.transpose() *
+                 (mu + rho * (problem.equality_matrix * x - problem.equality_rhs));
+  }
+  const KktReport pass =
+      CheckKkt(x, penalised, problem.lower, problem.upper, Eigen::MatrixXd(),
+               Eigen::VectorXd(), problem.fixed, gradient_scale);
   stall.short_of_optimum =
-      !(kkt.residual() <= std::min(options.kkt_tolerance, kStallKktTolerance));
+      !(pass.residual() <= std::min(options.kkt_tolerance, kStallKktTolerance));
   return stall;
 }
 
@@ -218,10 +231,10 @@ nonlinear_internal::BackendResult RunCeres(const NonlinearProblem& problem,
   }
   std::vector<int> fixed;
   for (const auto& f : problem.fixed) fixed.push_back(f.first);
-  // Holds the fixed parameters and `held` constant.
-  const auto hold = [&](const std::vector<int>& held) {
+  // Holds the fixed parameters and `on_bounds` constant.
+  const auto hold = [&](const std::vector<int>& on_bounds) {
     std::vector<int> constant = fixed;
-    constant.insert(constant.end(), held.begin(), held.end());
+    constant.insert(constant.end(), on_bounds.begin(), on_bounds.end());
     ceres_problem.SetManifold(
         x.data(), constant.empty() ? nullptr : new ceres::SubsetManifold(n, constant));
   };
@@ -247,7 +260,8 @@ nonlinear_internal::BackendResult RunCeres(const NonlinearProblem& problem,
   ceres_options.logging_type =
       options.verbose ? ceres::PER_MINIMIZER_ITERATION : ceres::SILENT;
   ceres_options.minimizer_progress_to_stdout = options.verbose;
-  StallDetector stall_detector(problem, x.data());
+  std::vector<int> held;  // free parameters held on their bounds, ascending
+  StallDetector stall_detector(problem, x.data(), &held);
   if (problem.has_bounds()) {
     ceres_options.update_state_every_iteration = true;
     ceres_options.callbacks.push_back(&stall_detector);
@@ -257,26 +271,49 @@ nonlinear_internal::BackendResult RunCeres(const NonlinearProblem& problem,
   // short of the (penalised) optimum on some bounds is repeated with those bounds
   // held; otherwise, with equalities, the multipliers are updated.
   ceres::Solver::Summary summary;
-  std::vector<int> held;
+  SolverStatus status = SolverStatus::kFailed;
+  std::string stop;  // why the last pass that produced x ended
+  std::string late_failure;
   double violation = 0;
-  int outer = 0, holds = 0;
+  int outer = 0, holds = 0, holds_this_pass = 0;
   while (true) {
+    const Eigen::VectorXd before = x;
     ceres_options.max_num_iterations = options.max_iterations - result.iterations;
     ceres::Solve(ceres_options, &ceres_problem, &summary);
     // summary.iterations starts with the evaluation at the start point.
     result.iterations += std::max(0, static_cast<int>(summary.iterations.size()) - 1);
-    if (FromCeres(summary.termination_type) != SolverStatus::kSolved) break;
-    if (problem.has_bounds() && holds < kMaxHolds &&
+    const SolverStatus pass = FromCeres(summary.termination_type);
+    if (pass == SolverStatus::kFailed && status == SolverStatus::kSolved) {
+      // A numerical failure after a converged pass (with a large penalty, Ceres
+      // can end on "consecutive invalid steps"): x is the last accepted point,
+      // judged below like the converged one.
+      late_failure = summary.message;
+      break;
+    }
+    status = pass;
+    stop = summary.termination_type == ceres::USER_SUCCESS ? "stalled on a bound"
+                                                           : summary.message;
+    if (status != SolverStatus::kSolved) break;
+    if (problem.has_bounds() && holds_this_pass < kMaxHolds &&
         result.iterations < options.max_iterations) {
-      const Stall stall = CheckStall(problem, options, gradient_scale, x, mu, rho);
-      if (stall.short_of_optimum && stall.on_bounds != held) {
-        held = stall.on_bounds;
+      if (q > 0 && !held.empty() && x == before) {
+        // The held bounds leave the equalities no room to improve: release
+        // them and let the multipliers move.
+        held.clear();
         hold(held);
-        ++holds;
-        continue;
+      } else {
+        const Stall stall = CheckStall(problem, options, gradient_scale, x, mu, rho);
+        if (stall.short_of_optimum && stall.on_bounds != held) {
+          held = stall.on_bounds;
+          hold(held);
+          ++holds;
+          ++holds_this_pass;
+          continue;
+        }
       }
     }
     ++outer;
+    holds_this_pass = 0;
     if (q == 0) break;
     const Eigen::VectorXd gap = c * x - d;
     const double previous = violation;
@@ -288,15 +325,15 @@ nonlinear_internal::BackendResult RunCeres(const NonlinearProblem& problem,
     mu += rho * gap;
     if (outer > 1 && violation > 0.25 * previous) rho = std::min(10 * rho, max_rho);
   }
+  if (q > 0) violation = (c * x - d).cwiseAbs().maxCoeff();
 
-  result.status = FromCeres(summary.termination_type);
+  result.status = status;
   std::ostringstream msg;
-  msg << "ceres (" << options.trust_region << "): "
-      << (summary.termination_type == ceres::USER_SUCCESS ? "stalled on a bound"
-                                                          : summary.message);
+  msg << "ceres (" << options.trust_region << "): " << stop;
   if (result.status == SolverStatus::kFailed && !last_failure.empty()) {
     msg << " (last failed evaluation: " << last_failure << ")";
   }
+  if (!late_failure.empty()) msg << "; then " << late_failure;
   if (holds > 0) {
     msg << "; re-solved " << holds << " time(s) with the bounds it stalled at held";
   }

@@ -71,6 +71,10 @@ LinearSolution LstsqSolver::Solve(const LinearProblem& problem) const {
         "scale_columns = true may keep directions this one truncated");
   }
   solution.summary.message = msg.str();
+  if (problem.has_bounds()) {
+    solution.summary.warnings.push_back(
+        "bounds ignored: lstsq does not take bounds (bvls, ceres and ipopt do)");
+  }
   solution.summary.time_seconds = clock.Seconds();
   return solution;
 }

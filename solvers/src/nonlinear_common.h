@@ -68,13 +68,17 @@ using Backend = std::function<BackendResult(const NonlinearProblem& problem,
 //  - fills r, J, cost, covariance and time at the answer (kFailed when the model
 //    cannot be evaluated there);
 //  - when the problem has bounds or equalities, checks the KKT conditions with
-//    the gradient J'r relative to |J'r|_inf at the start. A backend's converged
-//    answer that fails them is polished: the free parameters on (within 1e-6,
-//    relative) a bound whose multiplier has the right sign are held there, the
-//    rest re-solved, and so on while that set changes (an active-set step; Ceres's
-//    projected trust-region steps stall at bounds, Ipopt's interior iterates stop
-//    a little inside them). An answer that still fails becomes kNoConvergence
-//    ("stopped short of the bounded optimum: KKT residual ...").
+//    the gradient J'r relative to |J'r|_inf at the start. A converged answer
+//    that fails them, or that lies near but not on bounds it should be on, is
+//    polished: those bounds are held (fixed at their values) and the rest
+//    re-solved, while the held set changes (an active-set step). A bound is
+//    one to hold when the reduced gradient pushes towards it and the
+//    Gauss-Newton step along that parameter alone would reach it: Ceres's
+//    projected steps stall short of bounded optima, Ipopt's interior iterates
+//    stop a little inside active bounds. The polished answer is kept when it
+//    is solved (or better than an unsolved one). An answer that still fails the
+//    check becomes kNoConvergence ("stopped short of the bounded optimum: KKT
+//    residual ...").
 NonlinearSolution Solve(const std::string& name, const NonlinearProblem& problem,
                         const NonlinearSolverOptions& options, const Backend& backend);
 

@@ -69,6 +69,10 @@ LinearSolution TikhonovSolver::Solve(const LinearProblem& problem) const {
       << " effective parameters of " << r.A.cols();
   solution.summary.message = msg.str();
   if (!rep.note.empty()) solution.summary.warnings.push_back(rep.note);
+  if (problem.has_bounds()) {
+    solution.summary.warnings.push_back(
+        "bounds ignored: tikhonov does not take bounds (bvls, ceres and ipopt do)");
+  }
   solution.summary.time_seconds = clock.Seconds();
   return solution;
 }

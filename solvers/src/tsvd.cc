@@ -147,6 +147,10 @@ LinearSolution TsvdSolver::Solve(const LinearProblem& problem) const {
       << rep.parameter_choice << ")";
   solution.summary.message = msg.str();
   if (!rep.note.empty()) solution.summary.warnings.push_back(rep.note);
+  if (problem.has_bounds()) {
+    solution.summary.warnings.push_back(
+        "bounds ignored: tsvd does not take bounds (bvls, ceres and ipopt do)");
+  }
   solution.summary.time_seconds = clock.Seconds();
   return solution;
 }

@@ -12,6 +12,7 @@
 #include "femup/modal.h"
 #include "femup/problems/correction_system.h"
 #include "femup/problems/noise.h"
+#include "femup/studies/factor_solve.h"
 #include "json_util.h"
 #include "render_staged.h"
 
@@ -72,7 +73,10 @@ NoiseStudyResult RunNoiseStudy(const Study& study) {
 
   const Modes fem = SolveModes(study.model.stiffness(), study.model.mass());
   const std::vector<ModalData> clean = MeasuredStates(study);
-  const auto solver = CreateLinearSolver(study.solver_name, study.solver_options);
+  const std::vector<SolverSpec> variants =
+      spec.compare.empty() ? std::vector<SolverSpec>{study.solver} : spec.compare;
+  r.comparison.resize(variants.size());
+  for (std::size_t v = 0; v < variants.size(); ++v) r.comparison[v].label = variants[v].label;
 
   // The level shown in the estimated-vs-preset figure: the nearest one.
   std::size_t figure_index = 0;
@@ -89,8 +93,11 @@ NoiseStudyResult RunNoiseStudy(const Study& study) {
   for (std::size_t l = 0; l < spec.levels.size(); ++l) {
     NoiseModel noise;
     noise.level = spec.levels[l];
+    noise.shape_level = spec.levels[l] * spec.shape_level_ratio;
     noise.distribution = spec.distribution;
     std::vector<std::vector<double>> rm(r.added_mass_indices.size());
+    std::vector<std::vector<double>> draw_average(variants.size());
+    std::vector<int> usable_by(variants.size(), 0);
     int usable = 0;
     for (int draw = 0; draw < spec.draws; ++draw) {
       std::seed_seq seq{static_cast<unsigned long long>(spec.seed & 0xffffffffu),
@@ -100,19 +107,33 @@ NoiseStudyResult RunNoiseStudy(const Study& study) {
       std::mt19937_64 rng(seq);
       std::vector<ModalData> noisy;
       for (const ModalData& m : clean) noisy.push_back(Corrupt(m, noise, &rng));
-      LinearProblem p = BuildCorrectionSystem(study.model, fem, noisy, study.system);
-      for (const auto& [name, value] : study.fixed) p.Fix(name, value);
-      const LinearSolution sol = solver->Solve(p);
-      const bool ok = sol.summary.usable() && sol.x.allFinite();
-      usable += ok ? 1 : 0;
-      for (std::size_t k = 0; k < r.added_mass_indices.size(); ++k) {
-        const int i = r.added_mass_indices[k];
-        rm[k].push_back(
-            ok ? std::abs(sol.x[i] - r.preset[i]) / std::abs(r.preset[i]) * 100.0 : kNaN);
+      for (std::size_t v = 0; v < variants.size(); ++v) {
+        const FactorSolve fs = SolveFactors(study, variants[v], fem, noisy);
+        const LinearSolution& sol = fs.solution;
+        r.comparison[v].seconds += sol.summary.time_seconds;
+        const bool ok = sol.summary.usable() && sol.x.allFinite();
+        usable_by[v] += ok ? 1 : 0;
+        double sum = 0;
+        for (std::size_t k = 0; k < r.added_mass_indices.size(); ++k) {
+          const int i = r.added_mass_indices[k];
+          const double e =
+              ok ? std::abs(sol.x[i] - r.preset[i]) / std::abs(r.preset[i]) * 100.0 : kNaN;
+          sum += e;
+          if (v == 0) rm[k].push_back(e);
+        }
+        draw_average[v].push_back(sum / r.added_mass_indices.size());
+        if (v != 0) continue;
+        usable += ok ? 1 : 0;
+        if (l == figure_index) {
+          figure_estimates.col(draw) = ok ? sol.x : Eigen::VectorXd::Constant(np, kNaN);
+        }
       }
-      if (l == figure_index) {
-        figure_estimates.col(draw) = ok ? sol.x : Eigen::VectorXd::Constant(np, kNaN);
-      }
+    }
+    for (std::size_t v = 0; v < variants.size(); ++v) {
+      const RmStatistics st = Summarise(draw_average[v]);
+      r.comparison[v].rm_average.push_back(st.mean);
+      r.comparison[v].rm_median.push_back(st.median);
+      r.comparison[v].usable_draws.push_back(usable_by[v]);
     }
     std::vector<RmStatistics> stats;
     double average = 0;
@@ -178,6 +199,17 @@ void WriteNoiseOutputs(const NoiseStudyResult& r, bool plots, OutputDir* out,
          {"std", json_util::Number(r.figure_std[i])},
          {"first_draw", json_util::Number(r.figure_first_draw[i])}});
   }
+  j["noise_model"]["shape_level_ratio"] = r.spec.shape_level_ratio;
+  j["comparison"] = nlohmann::json::array();
+  for (const SolverScores& c : r.comparison) {
+    nlohmann::json cj = {{"label", c.label}, {"seconds", c.seconds}};
+    cj["usable_draws"] = c.usable_draws;
+    cj["rm_average_percent"] = nlohmann::json::array();
+    cj["rm_median_percent"] = nlohmann::json::array();
+    for (double v : c.rm_average) cj["rm_average_percent"].push_back(json_util::Number(v));
+    for (double v : c.rm_median) cj["rm_median_percent"].push_back(json_util::Number(v));
+    j["comparison"].push_back(cj);
+  }
   out->WriteText("noise.json", j.dump(2) + "\n");
   if (!plots) return;
 
@@ -227,6 +259,19 @@ void WriteNoiseOutputs(const NoiseStudyResult& r, bool plots, OutputDir* out,
   p5.series.push_back({"average", PlotSeries::Style::kLines, x, r.rm_average, {}, {}});
   f5.panels.push_back(p5);
   RenderStaged(f5, "rm_vs_level", out, warnings);
+
+  // Every compared solver: average Rm against level.
+  if (r.comparison.size() > 1) {
+    Figure fc;
+    Plot pc;
+    pc.title = r.study_name + ": added-mass error by solver (same draws)";
+    pc.x_label = "corruption level of eigenvalues (%)";
+    pc.y_label = "mean Rm over factors and draws (%)";
+    for (const SolverScores& c : r.comparison)
+      pc.series.push_back({c.label, PlotSeries::Style::kLinesPoints, x, c.rm_average, {}, {}});
+    fc.panels.push_back(pc);
+    RenderStaged(fc, "rm_by_solver", out, warnings);
+  }
 }
 
 std::string NoiseReport(const NoiseStudyResult& r) {
@@ -243,6 +288,23 @@ std::string NoiseReport(const NoiseStudyResult& r) {
     for (const auto& s : r.rm[l]) o << std::setw(16) << std::setprecision(3) << s.mean;
     o << std::setw(12) << std::setprecision(3) << r.rm_average[l] << std::setw(8)
       << r.usable_draws[l] << "\n";
+  }
+  if (r.comparison.size() > 1) {
+    o << "\nmean Rm (%) by solver, same draws (shape level = " << r.spec.shape_level_ratio
+      << " x eigenvalue level)\n  level_%";
+    for (const SolverScores& c : r.comparison) o << "  " << c.label;
+    o << "\n";
+    for (std::size_t l = 0; l < r.spec.levels.size(); ++l) {
+      o << std::setw(9) << std::setprecision(2) << r.spec.levels[l] * 100;
+      for (const SolverScores& c : r.comparison) {
+        o << std::setw(static_cast<int>(c.label.size()) + 2) << std::setprecision(2)
+          << c.rm_average[l];
+      }
+      o << "\n";
+    }
+    o << "  solve time (s):";
+    for (const SolverScores& c : r.comparison) o << " " << c.label << " " << c.seconds << ";";
+    o << "\n";
   }
   return o.str();
 }

@@ -5,6 +5,7 @@
 #include <Eigen/SparseCholesky>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <set>
 #include <sstream>
 
@@ -382,6 +383,124 @@ MeasurementSpec ReadMeasurement(const Field& f, const ParametrisedModel& model,
   return m;
 }
 
+// A value per parameter from a mapping whose keys are parameter kinds ("mass",
+// "stiffness", "added_mass": every parameter of that kind) or parameter names
+// (which override their kind). `read` turns one value field into a number pair.
+template <typename Read>
+void ForEachParameterKey(const Field& f, const ParametrisedModel& model, Read read) {
+  if (!f.IsMap()) f.Fail("expected a mapping of parameter names or kinds to values");
+  for (int pass = 0; pass < 2; ++pass) {
+    for (const auto& kv : f.node()) {
+      const std::string key = kv.first.as<std::string>();
+      const Field value(kv.second, f.file(), f.path() + "." + key);
+      ParameterKind kind;
+      const bool is_kind = ParameterKindFromString(key, &kind);
+      if (pass == 0 && is_kind) {
+        for (int i : model.ParametersOfKind(kind)) read(value, i);
+      } else if (pass == 1 && !is_kind) {
+        const int i = model.FindParameter(key);
+        if (i < 0) {
+          std::string names;
+          for (const auto& n : model.ParameterNames()) names += (names.empty() ? "" : ", ") + n;
+          value.Fail("no parameter or kind is called '" + key +
+                     "' (kinds: mass, stiffness, added_mass; parameters: " + names + ")");
+        }
+        read(value, i);
+      }
+    }
+  }
+}
+
+double BoundValue(const Field& f) {
+  if (f.IsScalar()) {
+    const std::string s = f.node().Scalar();
+    if (s == "-inf" || s == "-.inf") return -std::numeric_limits<double>::infinity();
+    if (s == "inf" || s == ".inf" || s == "+inf") return std::numeric_limits<double>::infinity();
+    if (s == "null" || s == "~" || s.empty()) return std::nan("");
+  }
+  return f.Num();
+}
+
+RegularisationOptions ReadRegularisation(const Field& f) {
+  f.ExpectKeys({"parameter_choice", "lambda", "noise_norm", "discrepancy_factor", "operator",
+                "grid_points", "lambda_min", "lambda_max"});
+  RegularisationOptions o;
+  if (f.Has("parameter_choice")) o.parameter_choice = f["parameter_choice"].Str();
+  if (f.Has("lambda")) o.lambda = f["lambda"].NonNegative();
+  if (f.Has("noise_norm")) o.noise_norm = f["noise_norm"].Positive();
+  if (f.Has("discrepancy_factor")) o.discrepancy_factor = f["discrepancy_factor"].Positive();
+  if (f.Has("operator")) o.op = f["operator"].Str();
+  if (f.Has("grid_points")) o.grid_points = f["grid_points"].Int();
+  if (f.Has("lambda_min")) o.lambda_min = f["lambda_min"].NonNegative();
+  if (f.Has("lambda_max")) o.lambda_max = f["lambda_max"].NonNegative();
+  const std::string invalid = o.Validate();
+  if (!invalid.empty()) {
+    const std::string key = invalid.substr(0, invalid.find(':'));
+    (f.Has(key) ? f[key] : f).Fail(invalid.substr(invalid.find(':') + 2));
+  }
+  return o;
+}
+
+SolverSpec ReadSolver(const Field& sf, const ParametrisedModel& model) {
+  sf.ExpectKeys({"label", "method", "name", "rank_tolerance", "scale_columns", "truncation",
+                 "regularisation", "prior_mean", "max_iterations", "kkt_tolerance",
+                 "confidence_level", "trust_region", "hessian", "sensitivity"});
+  SolverSpec spec;
+  if (sf.Has("method")) spec.method = sf["method"].Str();
+  if (spec.method != "linear" && spec.method != "sensitivity")
+    sf["method"].Fail("unknown method '" + spec.method +
+                      "' (expected linear: the paper's Z d = F, or sensitivity: iterative "
+                      "eigen-sensitivity updating)");
+  spec.name = sf.Has("name") ? sf["name"].Str() : (spec.method == "linear" ? "lstsq" : "ceres");
+  spec.label = sf.Has("label") ? sf["label"].Str() : spec.method + " (" + spec.name + ")";
+  LinearSolverOptions& lo = spec.linear;
+  NonlinearSolverOptions& no = spec.nonlinear;
+  if (sf.Has("rank_tolerance")) lo.relative_rank_tolerance = sf["rank_tolerance"].Positive();
+  if (sf.Has("scale_columns")) lo.scale_columns = sf["scale_columns"].Bool();
+  if (sf.Has("truncation")) lo.truncation = sf["truncation"].Int();
+  if (sf.Has("regularisation")) lo.regularisation = ReadRegularisation(sf["regularisation"]);
+  if (sf.Has("max_iterations")) lo.max_iterations = no.max_iterations = sf["max_iterations"].Int();
+  if (sf.Has("kkt_tolerance")) lo.kkt_tolerance = no.kkt_tolerance = sf["kkt_tolerance"].Positive();
+  if (sf.Has("confidence_level")) lo.confidence_level = sf["confidence_level"].Positive();
+  if (sf.Has("trust_region")) no.trust_region = sf["trust_region"].Str();
+  if (sf.Has("hessian")) no.hessian = sf["hessian"].Str();
+  if (sf.Has("prior_mean")) {
+    spec.prior_mean = Eigen::VectorXd::Zero(model.num_parameters());
+    ForEachParameterKey(sf["prior_mean"], model,
+                        [&](const Field& v, int i) { spec.prior_mean[i] = v.Num(); });
+  }
+  if (sf.Has("sensitivity")) {
+    const Field tf = sf["sensitivity"];
+    tf.ExpectKeys({"frequency_sigma", "shape_sigma", "shape_noise", "use_shapes",
+                   "extra_modes", "min_mac", "prior_sigma"});
+    EigenSensitivityOptions& so = spec.sensitivity;
+    if (tf.Has("frequency_sigma")) so.frequency_sigma = tf["frequency_sigma"].Positive();
+    if (tf.Has("shape_sigma")) so.shape_sigma = tf["shape_sigma"].Positive();
+    if (tf.Has("shape_noise")) so.shape_noise = tf["shape_noise"].Str();
+    if (tf.Has("use_shapes")) so.use_shapes = tf["use_shapes"].Bool();
+    if (tf.Has("extra_modes")) so.extra_modes = tf["extra_modes"].Int();
+    if (tf.Has("min_mac")) so.min_mac = tf["min_mac"].NonNegative();
+    if (tf.Has("prior_sigma")) {
+      so.prior_sigma = Eigen::VectorXd::Zero(model.num_parameters());
+      ForEachParameterKey(tf["prior_sigma"], model,
+                          [&](const Field& v, int i) { so.prior_sigma[i] = v.NonNegative(); });
+      if (spec.prior_mean.size() > 0) so.prior_mean = spec.prior_mean;
+    }
+    const std::string invalid = so.Validate();
+    if (!invalid.empty()) tf.Fail(invalid);
+  }
+  try {
+    if (spec.method == "linear") {
+      CreateLinearSolver(spec.name, lo);
+    } else {
+      CreateNonlinearSolver(spec.name, no);
+    }
+  } catch (const InputError& e) {
+    sf.Fail(e.what());
+  }
+  return spec;
+}
+
 void CheckMassPositiveDefinite(const Field& model_field, const ParametrisedModel& model) {
   Eigen::SimplicialLLT<SparseMatrix> llt(model.mass());
   if (llt.info() != Eigen::Success) {
@@ -428,7 +547,7 @@ Study LoadStudy(const std::string& path) {
   ParameterPlan plan = PaperParameterPlan();
   if (top.Has("parameters")) {
     const Field pf = top["parameters"];
-    pf.ExpectKeys({"mass", "stiffness", "added_mass", "fix"});
+    pf.ExpectKeys({"mass", "stiffness", "added_mass", "fix", "bounds", "equalities"});
     if (pf.Has("mass")) plan.mass = ReadFamily(pf["mass"]);
     if (pf.Has("stiffness")) plan.stiffness = ReadFamily(pf["stiffness"]);
     if (pf.Has("added_mass")) plan.added_mass = ReadFamily(pf["added_mass"]);
@@ -458,6 +577,42 @@ Study LoadStudy(const std::string& path) {
       const Field value(kv.second, ff.file(), ff.path() + "." + name);
       parameter_index(value, name);
       study.fixed[name] = value.Num();
+    }
+  }
+  if (top.Has("parameters") && top["parameters"].Has("bounds")) {
+    const int n = study.model.num_parameters();
+    study.lower = Eigen::VectorXd::Constant(n, -std::numeric_limits<double>::infinity());
+    study.upper = Eigen::VectorXd::Constant(n, std::numeric_limits<double>::infinity());
+    ForEachParameterKey(top["parameters"]["bounds"], study.model, [&](const Field& v, int i) {
+      const std::vector<Field> pair = v.Items();
+      if (pair.size() != 2) v.Fail("expected [lower, upper] (use -inf / inf for none)");
+      const double lo = BoundValue(pair[0]), hi = BoundValue(pair[1]);
+      if (std::isnan(lo) || std::isnan(hi)) v.Fail("a bound is empty; use -inf / inf for none");
+      if (lo > hi) v.Fail("lower bound exceeds upper bound");
+      study.lower[i] = lo;
+      study.upper[i] = hi;
+    });
+    for (const auto& [name, value] : study.fixed) {
+      const int i = study.model.FindParameter(name);
+      if (value < study.lower[i] || value > study.upper[i])
+        top["parameters"]["fix"][name].Fail("the fixed value is outside the parameter's bounds");
+    }
+  }
+  if (top.Has("parameters") && top["parameters"].Has("equalities")) {
+    const std::vector<Field> rows = top["parameters"]["equalities"].Items();
+    const int n = study.model.num_parameters();
+    study.equality_matrix = Eigen::MatrixXd::Zero(rows.size(), n);
+    study.equality_rhs = Eigen::VectorXd::Zero(rows.size());
+    for (std::size_t r = 0; r < rows.size(); ++r) {
+      rows[r].ExpectKeys({"coefficients", "value"});
+      const Field cf = rows[r]["coefficients"];
+      if (!cf.IsMap()) cf.Fail("expected a mapping of parameter names to coefficients");
+      for (const auto& kv : cf.node()) {
+        const std::string name = kv.first.as<std::string>();
+        const Field value(kv.second, cf.file(), cf.path() + "." + name);
+        study.equality_matrix(r, parameter_index(value, name)) = value.Num();
+      }
+      study.equality_rhs[r] = rows[r].Has("value") ? rows[r]["value"].Num() : 0.0;
     }
   }
   if (top.Has("truth")) {
@@ -507,24 +662,11 @@ Study LoadStudy(const std::string& path) {
       }
     }
   }
-  if (top.Has("solver")) {
-    const Field sf = top["solver"];
-    sf.ExpectKeys({"name", "rank_tolerance", "scale_columns"});
-    if (sf.Has("name")) study.solver_name = sf["name"].Str();
-    if (sf.Has("rank_tolerance")) {
-      study.solver_options.relative_rank_tolerance = sf["rank_tolerance"].Positive();
-    }
-    if (sf.Has("scale_columns"))
-      study.solver_options.scale_columns = sf["scale_columns"].Bool();
-    try {
-      CreateLinearSolver(study.solver_name, study.solver_options);
-    } catch (const InputError& e) {
-      sf.Fail(e.what());
-    }
-  }
+  if (top.Has("solver")) study.solver = ReadSolver(top["solver"], study.model);
   if (top.Has("noise_study")) {
     const Field nf = top["noise_study"];
-    nf.ExpectKeys({"levels", "draws", "seed", "distribution", "figure_level"});
+    nf.ExpectKeys({"levels", "draws", "seed", "distribution", "figure_level",
+                   "shape_level_ratio", "compare"});
     NoiseStudySpec spec;
     spec.levels = nf["levels"].Numbers();
     for (std::size_t i = 0; i < spec.levels.size(); ++i) {
@@ -547,6 +689,12 @@ Study LoadStudy(const std::string& path) {
       nf["distribution"].Fail("expected gaussian or uniform");
     }
     if (nf.Has("figure_level")) spec.figure_level = nf["figure_level"].NonNegative();
+    if (nf.Has("shape_level_ratio"))
+      spec.shape_level_ratio = nf["shape_level_ratio"].NonNegative();
+    if (nf.Has("compare")) {
+      for (const Field& item : nf["compare"].Items())
+        spec.compare.push_back(ReadSolver(item, study.model));
+    }
     if (!study.truth)
       nf.Fail("a noise study needs a 'truth' section (the preset factors)");
     study.noise_study = spec;

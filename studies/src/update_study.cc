@@ -10,6 +10,7 @@
 #include "femup/matrix_market.h"
 #include "femup/modal.h"
 #include "femup/plot.h"
+#include "femup/studies/factor_solve.h"
 #include "json_util.h"
 #include "render_staged.h"
 
@@ -77,17 +78,20 @@ UpdateResult RunUpdate(const Study& study) {
   r.num_fem_modes =
       study.system.num_fem_modes < 0 ? fem.size() : study.system.num_fem_modes;
 
-  // Step 2: Z d = F, and its solution.
+  // Step 2: the factors, by the linear method (Z d = F) or eigen-sensitivity.
   const std::vector<ModalData> measured = MeasuredStates(study);
-  r.problem = BuildCorrectionSystem(study.model, fem, measured, study.system);
-  r.identifiability_unconstrained =
-      AnalyseIdentifiability(r.problem.A, r.problem.names, r.problem.groups,
-                             study.solver_options.relative_rank_tolerance);
-  for (const auto& [name, value] : study.fixed) r.problem.Fix(name, value);
+  FactorSolve fs = SolveFactors(study, study.solver, fem, measured);
+  r.problem = std::move(fs.problem);
+  r.solution = std::move(fs.solution);
+  r.method = study.solver.method;
+  r.solver_name = study.solver.name;
+  if (r.problem.A.size() > 0) {
+    r.identifiability_unconstrained =
+        AnalyseIdentifiability(r.problem.A, r.problem.names, r.problem.groups,
+                               study.solver.linear.relative_rank_tolerance);
+  }
   r.fixed.assign(r.parameters.size(), false);
   for (const auto& f : r.problem.fixed) r.fixed[f.first] = true;
-  const auto solver = CreateLinearSolver(study.solver_name, study.solver_options);
-  r.solution = solver->Solve(r.problem);
 
   // Steps 3-4: the added-mass matrix, the updated model and the comparison.
   const Eigen::VectorXd& d = r.solution.x;
@@ -208,6 +212,15 @@ void WriteUpdateOutputs(const UpdateResult& r, bool plots, OutputDir* out,
                          {"elements", p.elements},
                          {"estimate", json_util::Number(r.solution.x[i])},
                          {"fixed", static_cast<bool>(r.fixed[i])}};
+    if (r.solution.standard_error.size() == static_cast<Eigen::Index>(r.parameters.size())) {
+      pj["standard_error"] = json_util::Number(r.solution.standard_error[i]);
+      pj["interval"] = {json_util::Number(r.solution.interval_lower[i]),
+                        json_util::Number(r.solution.interval_upper[i])};
+    }
+    if (r.solution.bias_estimate.size() == static_cast<Eigen::Index>(r.parameters.size())) {
+      pj["resolution"] = json_util::Number(r.solution.resolution(i, i));
+      pj["bias_estimate"] = json_util::Number(r.solution.bias_estimate[i]);
+    }
     if (r.preset) {
       pj["preset"] = (*r.preset)[i];
       pj["error"] = json_util::Number(r.solution.x[i] - (*r.preset)[i]);
@@ -229,7 +242,30 @@ void WriteUpdateOutputs(const UpdateResult& r, bool plots, OutputDir* out,
                  {"cost", r.solution.summary.cost},
                  {"time_seconds", r.solution.summary.time_seconds},
                  {"residual_norm", r.solution.residual.norm()},
-                 {"rhs_norm", r.problem.b.norm()}};
+                 {"rhs_norm", r.problem.b.norm()},
+                 {"method", r.method},
+                 {"name", r.solver_name},
+                 {"kkt_residual", json_util::Number(r.solution.summary.kkt_residual)},
+                 {"warnings", r.solution.summary.warnings},
+                 {"confidence_level", r.solution.confidence_level},
+                 {"noise_estimated_from_residual", r.solution.noise_estimated}};
+  const RegularisationReport& reg = r.solution.regularisation;
+  if (!reg.parameter_choice.empty()) {
+    j["regularisation"] = {{"parameter_choice", reg.parameter_choice},
+                           {"lambda", json_util::Number(reg.lambda)},
+                           {"truncation", reg.truncation},
+                           {"at_range_end", reg.at_range_end},
+                           {"note", reg.note},
+                           {"lambda_lcurve", json_util::Number(reg.lambda_lcurve)},
+                           {"lambda_gcv", json_util::Number(reg.lambda_gcv)},
+                           {"lambda_discrepancy", json_util::Number(reg.lambda_discrepancy)},
+                           {"lambda_quasi_optimality", json_util::Number(reg.lambda_quasi)},
+                           {"grid_lambda", reg.grid_lambda},
+                           {"grid_residual_norm", reg.grid_residual_norm},
+                           {"grid_solution_norm", reg.grid_solution_norm},
+                           {"grid_gcv", reg.grid_gcv},
+                           {"grid_curvature", reg.grid_curvature}};
+  }
   j["states"] = nlohmann::json::array();
   for (const StateComparison& c : r.states) {
     nlohmann::json sj = {{"state", c.state}, {"immersion", ToString(c.immersion)}};
@@ -277,6 +313,18 @@ void WriteUpdateOutputs(const UpdateResult& r, bool plots, OutputDir* out,
   }
   fp.series.push_back(est);
   if (r.preset) fp.series.push_back(pre);
+  if (r.solution.standard_error.size() == static_cast<Eigen::Index>(r.parameters.size())) {
+    std::ostringstream label;
+    label << r.solution.confidence_level * 100 << " % interval";
+    PlotSeries ci{label.str(), PlotSeries::Style::kErrorBars, {}, {}, {}, {}};
+    for (std::size_t i = 0; i < r.parameters.size(); ++i) {
+      ci.x.push_back(i + 1.0);
+      ci.y.push_back(r.solution.x[i]);
+      ci.y_low.push_back(r.solution.interval_lower[i]);
+      ci.y_high.push_back(r.solution.interval_upper[i]);
+    }
+    fp.series.push_back(ci);
+  }
   factors.panels.push_back(fp);
   std::vector<std::pair<std::string, Figure>> figures = {{"factors", factors}};
 
@@ -334,6 +382,43 @@ void WriteUpdateOutputs(const UpdateResult& r, bool plots, OutputDir* out,
     }
     figures.emplace_back("shapes_" + c.state, shapes);
   }
+  // The L-curve and the GCV function of a regularised solve (tikhonov: lambda;
+  // tsvd: the kept singular values), with the chosen point.
+  if (!reg.grid_lambda.empty()) {
+    Figure lf;
+    lf.columns = 2;
+    lf.width_px = 1100;
+    Plot lc;
+    lc.title = "L-curve (" + reg.parameter_choice + ")";
+    lc.x_label = "residual norm ||Z d - F||";
+    lc.y_label = "solution (semi)norm ||L (d - d0)||";
+    lc.log_x = lc.log_y = true;
+    lc.series.push_back({"path", PlotSeries::Style::kLines, reg.grid_residual_norm,
+                         reg.grid_solution_norm, {}, {}});
+    Plot gp;
+    gp.title = "GCV function";
+    gp.x_label = r.solution.regularisation.truncation > 0 ? "singular value kept" : "lambda";
+    gp.y_label = "GCV";
+    gp.log_x = gp.log_y = true;
+    gp.series.push_back({"GCV", PlotSeries::Style::kLines, reg.grid_lambda, reg.grid_gcv, {}, {}});
+    // The chosen point: the grid point nearest the chosen lambda (tsvd: k).
+    std::size_t at = 0;
+    for (std::size_t i = 0; i < reg.grid_lambda.size(); ++i) {
+      if (reg.truncation > 0) {
+        at = std::min<std::size_t>(reg.truncation - 1, reg.grid_lambda.size() - 1);
+        break;
+      }
+      if (std::abs(std::log(reg.grid_lambda[i] / reg.lambda)) <
+          std::abs(std::log(reg.grid_lambda[at] / reg.lambda)))
+        at = i;
+    }
+    lc.series.push_back({"chosen", PlotSeries::Style::kPoints, {reg.grid_residual_norm[at]},
+                         {reg.grid_solution_norm[at]}, {}, {}});
+    gp.series.push_back({"chosen", PlotSeries::Style::kPoints, {reg.grid_lambda[at]},
+                         {reg.grid_gcv[at]}, {}, {}});
+    lf.panels = {lc, gp};
+    figures.emplace_back("lcurve_gcv", lf);
+  }
   for (const auto& [name, figure] : figures) {
     RenderStaged(figure, name, out, warnings);
   }
@@ -361,13 +446,25 @@ std::string UpdateReport(const UpdateResult& r) {
   const Identifiability& s = r.solution.identifiability;
   o << "solver: " << ToString(r.solution.summary.status) << " (rank " << s.rank
     << ", condition " << std::setprecision(1) << s.condition_number_in_rank
-    << "): " << r.solution.summary.message << "\n\n";
+    << "): " << r.method << " method, " << r.solver_name << ": "
+    << r.solution.summary.message << "\n";
+  for (const auto& w : r.solution.summary.warnings) o << "  warning: " << w << "\n";
+  const bool has_se =
+      r.solution.standard_error.size() == static_cast<Eigen::Index>(r.parameters.size());
+  o << "\n";
   o << std::left << std::setw(22) << "parameter" << std::right << std::setw(14)
-    << "estimate" << std::setw(14) << (r.preset ? "preset" : "") << "\n";
+    << "estimate" << std::setw(14) << (r.preset ? "preset" : "") << std::setw(14)
+    << (has_se ? "std_error" : "") << "\n";
   for (std::size_t i = 0; i < r.parameters.size(); ++i) {
     o << std::left << std::setw(22) << r.parameters[i].name << std::right << std::setw(14)
       << std::setprecision(6) << r.solution.x[i];
-    if (r.preset) o << std::setw(14) << (*r.preset)[i];
+    o << std::setw(14);
+    if (r.preset) {
+      o << (*r.preset)[i];
+    } else {
+      o << "";
+    }
+    if (has_se) o << std::setw(14) << r.solution.standard_error[i];
     if (r.fixed[i]) o << "  (fixed)";
     o << "\n";
   }

@@ -10,7 +10,9 @@
 //   eigenvalue:  (lambda / lambda_meas - 1) / frequency_sigma,
 //                lambda_meas = (2 pi f_meas)^2; label "<state> mode <j> lambda".
 //   shape (when use_shapes and the state has shapes), one per sensor i:
-//                (sign * u_i - w_i) / (shape_sigma * max_i |w_i|),
+//                (sign * u_i - w_i) / (shape_sigma * max_i |w_i|) (shape_noise
+//                "max"), or / (shape_sigma * max(|w_i|, entry_floor max |w|))
+//                ("entry"),
 //                w = psi / ||psi|| (psi: the measured shape at the sensors),
 //                u = s / ||s|| (s: phi at the sensor DOFs), sign = +1 when
 //                s' psi >= 0, else -1; label "<state> mode <j> shape <dof label>".
@@ -50,6 +52,12 @@ struct EigenSensitivityOptions {
   // Standard deviation of a measured shape entry, relative to the shape's
   // largest-magnitude entry.
   double shape_sigma = 0.02;
+  // How shape noise scales: "max" (sigma times the shape's largest entry, the
+  // same for every sensor) or "entry" (sigma times each entry's own size, for
+  // noise proportional to the entry; floored at entry_floor times the largest
+  // entry so that near-nodal sensors do not get unbounded weight).
+  std::string shape_noise = "max";
+  double entry_floor = 0.05;
   // Model modes computed beyond the number measured in a state (capped at the
   // number of DOFs), so that pairing can pick a model mode out of order.
   int extra_modes = 4;

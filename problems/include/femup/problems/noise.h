@@ -22,6 +22,8 @@ struct NoiseModel {
   NoiseDistribution distribution = NoiseDistribution::kGaussian;
   bool eigenvalues = true;       // corrupt lambda = (2 pi f)^2
   bool shapes = true;            // corrupt every mode-shape entry
+  // Level for the shape entries; negative = the same as `level`.
+  double shape_level = -1;
   std::string Validate() const;  // empty when valid
 };
 

@@ -1,9 +1,11 @@
 // Nonlinear least squares on Ceres Solver (trust region: Levenberg-Marquardt or
 // dogleg, dense QR). Fixed parameters are held constant, bounds are Ceres's own
 // box constraints, and linear equalities C x = d are enforced by an
-// augmented-Lagrangian outer loop (see CeresSolver::Solve). Every bounded or
-// constrained answer is checked by its KKT conditions, since Ceres can report
-// convergence while stopped short of a bounded optimum.
+// augmented-Lagrangian outer loop (see CeresSolver::Solve). Ceres can report
+// convergence while stopped short of a bounded optimum (its projected steps
+// stall once a bound clips them); such stalls are detected and re-solved with
+// the bounds reached held, and every bounded or constrained answer is checked
+// by its KKT conditions.
 #pragma once
 
 #include <string>
@@ -25,7 +27,11 @@ class CeresSolver : public NonlinearSolver {
   // a factor 4. It stops once |C x - d|_inf < options.equality_tolerance, or
   // after options.max_outer_iterations (kNoConvergence; kInfeasible when x is a
   // KKT point of min |C x - d|^2 within the bounds, i.e. no feasible x exists).
-  // summary.iterations counts the trust-region steps of all outer iterations.
+  // Bounds: a solve that stalls on bounds, or converges short of its KKT
+  // conditions, is repeated with the bounds it reached (with multipliers of the
+  // right sign) held constant.
+  // summary.iterations counts the trust-region steps of all these solves; all
+  // share options.max_iterations.
   NonlinearSolution Solve(const NonlinearProblem& problem) const override;
 
  private:

@@ -15,6 +15,15 @@ struct RmStatistics {
   double mean = 0, std_dev = 0, median = 0, p90 = 0;
 };
 
+// One solver's scores in a comparison (every solver sees the same noisy draws).
+struct SolverScores {
+  std::string label;
+  std::vector<double> rm_average;  // per level: mean over factors of the mean Rm (%)
+  std::vector<double> rm_median;   // per level: median over draws of the factors' mean Rm
+  std::vector<int> usable_draws;   // per level
+  double seconds = 0;              // total solve time
+};
+
 struct NoiseStudyResult {
   std::string study_name;
   NoiseStudySpec spec;
@@ -28,6 +37,8 @@ struct NoiseStudyResult {
   // Estimates at spec.figure_level (or the nearest level): mean and std per parameter.
   double figure_level = 0;
   Eigen::VectorXd figure_mean, figure_std, figure_first_draw;
+  // Every solver compared (the first is the one the fields above describe).
+  std::vector<SolverScores> comparison;
 };
 
 // Runs the study described by study.noise_study (throws InputError if absent).

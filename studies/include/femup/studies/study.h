@@ -13,8 +13,10 @@
 #include "femup/measurement.h"
 #include "femup/model.h"
 #include "femup/problems/correction_system.h"
+#include "femup/problems/eigen_sensitivity.h"
 #include "femup/problems/noise.h"
 #include "femup/solvers/linear_solver.h"
+#include "femup/solvers/nonlinear_solver.h"
 #include "femup/structure.h"
 
 namespace femup {
@@ -27,8 +29,25 @@ struct MeasurementSpec {
   ModalData data;          // given modes (when simulate_modes == 0)
 };
 
+// How the factors are found: the paper's linear method (Z d = F) on a linear
+// solver, or iterative eigen-sensitivity updating on a nonlinear one.
+struct SolverSpec {
+  std::string label;              // for comparisons ("linear", "nonlinear + prior")
+  std::string method = "linear";  // "linear" or "sensitivity"
+  std::string name = "lstsq";     // a linear solver, or ceres / ipopt for sensitivity
+  LinearSolverOptions linear;
+  NonlinearSolverOptions nonlinear;
+  EigenSensitivityOptions sensitivity;  // prior_sigma there is per parameter
+  // Linear method: the regularisation prior x0 per parameter (empty = zero).
+  Eigen::VectorXd prior_mean;
+};
+
 struct NoiseStudySpec {
   std::vector<double> levels;  // relative corruption levels (0.05 = 5 %)
+  // Shape entries are corrupted at level * shape_level_ratio (eigenvalues at level).
+  double shape_level_ratio = 1.0;
+  // Solvers compared draw by draw on the same noisy data; empty = the study's solver.
+  std::vector<SolverSpec> compare;
   int draws = 200;             // random draws per level
   unsigned long long seed = 1;
   NoiseDistribution distribution = NoiseDistribution::kGaussian;
@@ -43,10 +62,14 @@ struct Study {
   ParametrisedModel model;
   std::optional<Eigen::VectorXd> truth;  // preset factors (model order), if given
   std::map<std::string, double> fixed;   // known factor values by name
+  // Bounds per parameter (model order; -inf / +inf where none; empty = none) and
+  // linear equalities C d = e over the factors.
+  Eigen::VectorXd lower, upper;
+  Eigen::MatrixXd equality_matrix;
+  Eigen::VectorXd equality_rhs;
   std::vector<MeasurementSpec> measurements;
   CorrectionSystemOptions system;
-  std::string solver_name = "lstsq";
-  LinearSolverOptions solver_options;
+  SolverSpec solver;
   std::optional<NoiseStudySpec> noise_study;
   bool plots = true;
 };

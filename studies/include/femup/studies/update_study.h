@@ -34,6 +34,8 @@ struct UpdateResult {
   std::vector<Parameter> parameters;  // without basis matrices
   std::optional<Eigen::VectorXd> preset;
   std::vector<bool> fixed;
+  std::string method = "linear";  // "linear" or "sensitivity"
+  std::string solver_name;
   LinearProblem problem;  // Z, F (fixed values recorded)
   SystemForm form = SystemForm::kStacked;
   int num_fem_modes = 0;

@@ -1,0 +1,33 @@
+// One identification of the correction factors from a study's measured states:
+// the paper's linear method (Z d = F on a linear solver) or iterative
+// eigen-sensitivity updating (on a nonlinear solver), with the study's fixed
+// values, bounds and equalities applied either way. The update and noise
+// pipelines both go through here, so every solver is reachable from both.
+#pragma once
+
+#include <vector>
+
+#include "femup/measurement.h"
+#include "femup/modal.h"
+#include "femup/problems/linear_problem.h"
+#include "femup/solvers/linear_solver.h"
+#include "femup/studies/study.h"
+
+namespace femup {
+
+struct FactorSolve {
+  // Z d = F with the constraints (empty A when the method is sensitivity and
+  // the shapes are not known at every DOF, so Z cannot be formed).
+  LinearProblem problem;
+  // The factors with status, message, uncertainty. For the sensitivity method:
+  // x, summary and covariance come from the nonlinear solve (residual = Z x - F
+  // when Z exists).
+  LinearSolution solution;
+  int nonlinear_residuals = 0;  // sensitivity: number of residuals fitted
+};
+
+// Throws InputError for unusable input (e.g. a fixed name that matches nothing).
+FactorSolve SolveFactors(const Study& study, const SolverSpec& spec, const Modes& fem_modes,
+                         const std::vector<ModalData>& measured);
+
+}  // namespace femup

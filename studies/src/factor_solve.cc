@@ -1,0 +1,78 @@
+#include "femup/studies/factor_solve.h"
+
+#include <algorithm>
+#include <boost/math/distributions/normal.hpp>
+
+#include "femup/errors.h"
+#include "femup/problems/correction_system.h"
+#include "femup/problems/eigen_sensitivity.h"
+#include "femup/solvers/nonlinear_solver.h"
+
+namespace femup {
+
+namespace {
+
+bool ShapesComplete(const std::vector<ModalData>& measured, int num_dofs) {
+  for (const ModalData& m : measured) {
+    if (!m.IsComplete(num_dofs)) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+FactorSolve SolveFactors(const Study& study, const SolverSpec& spec, const Modes& fem_modes,
+                         const std::vector<ModalData>& measured) {
+  FactorSolve out;
+  LinearProblem& p = out.problem;
+  const int n = study.model.num_parameters();
+  if (spec.method == "linear" || ShapesComplete(measured, study.model.num_dofs())) {
+    p = BuildCorrectionSystem(study.model, fem_modes, measured, study.system);
+  } else {
+    p.names = study.model.ParameterNames();
+    for (const Parameter& q : study.model.parameters()) p.groups.push_back(ToString(q.kind));
+  }
+  for (const auto& [name, value] : study.fixed) p.Fix(name, value);
+  p.lower = study.lower;
+  p.upper = study.upper;
+  p.equality_matrix = study.equality_matrix;
+  p.equality_rhs = study.equality_rhs;
+  p.prior = spec.prior_mean;
+
+  if (spec.method == "linear") {
+    out.solution = CreateLinearSolver(spec.name, spec.linear)->Solve(p);
+    return out;
+  }
+
+  NonlinearProblem np = BuildEigenSensitivityProblem(study.model, measured, spec.sensitivity);
+  np.fixed = p.fixed;
+  np.lower = study.lower;
+  np.upper = study.upper;
+  np.equality_matrix = study.equality_matrix;
+  np.equality_rhs = study.equality_rhs;
+  // Start at the nominal model, with fixed values in place, inside the bounds.
+  for (const auto& [i, value] : np.fixed) np.initial[i] = value;
+  for (int i = 0; i < n; ++i) {
+    if (np.lower.size() > 0) np.initial[i] = std::max(np.initial[i], np.lower[i]);
+    if (np.upper.size() > 0) np.initial[i] = std::min(np.initial[i], np.upper[i]);
+  }
+  out.nonlinear_residuals = np.num_residuals;
+  const NonlinearSolution ns = CreateNonlinearSolver(spec.name, spec.nonlinear)->Solve(np);
+  LinearSolution& s = out.solution;
+  s.x = ns.x;
+  s.summary = ns.summary;
+  s.noise_estimated = false;  // residuals are divided by the stated sigmas
+  s.confidence_level = spec.linear.confidence_level;
+  if (p.A.size() > 0 && ns.x.size() == n) s.residual = p.A * ns.x - p.b;
+  if (ns.covariance.size() > 0) {
+    s.covariance = ns.covariance;
+    s.standard_error = ns.covariance.diagonal().cwiseMax(0.0).cwiseSqrt();
+    const double q = boost::math::quantile(boost::math::normal_distribution<double>(),
+                                           0.5 + 0.5 * s.confidence_level);
+    s.interval_lower = s.x - q * s.standard_error;
+    s.interval_upper = s.x + q * s.standard_error;
+  }
+  return out;
+}
+
+}  // namespace femup

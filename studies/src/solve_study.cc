@@ -1,0 +1,238 @@
+#include "femup/studies/solve_study.h"
+
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "femup/errors.h"
+#include "femup/matrix_market.h"
+#include "femup/plot.h"
+#include "json_util.h"
+#include "render_staged.h"
+
+namespace femup {
+
+namespace {
+
+bool EndsWith(const std::string& s, const std::string& tail) {
+  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+}
+
+Eigen::MatrixXd ReadCsv(const std::string& path, std::vector<std::string>* names) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path, "cannot open the file");
+  std::vector<std::vector<double>> rows;
+  std::string line;
+  int number = 0;
+  while (std::getline(in, line)) {
+    ++number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.find_first_not_of(" \t") == std::string::npos) continue;
+    std::vector<std::string> cells;
+    std::stringstream ss(line);
+    std::string cell;
+    while (std::getline(ss, cell, ',')) cells.push_back(cell);
+    std::vector<double> values;
+    bool header = false;
+    for (std::size_t c = 0; c < cells.size(); ++c) {
+      const std::string t = cells[c];
+      std::size_t used = 0;
+      double v = 0;
+      try {
+        v = std::stod(t, &used);
+      } catch (...) {
+        used = 0;
+      }
+      while (used < t.size() && (t[used] == ' ' || t[used] == '\t')) ++used;
+      if (used == 0 || used != t.size()) {
+        if (rows.empty() && values.empty() && number == 1) {
+          header = true;
+          break;
+        }
+        throw InputError(path + ":" + std::to_string(number),
+                         "field " + std::to_string(c + 1) + ": expected a number, found '" +
+                             t + "'");
+      }
+      if (!std::isfinite(v))
+        throw InputError(path + ":" + std::to_string(number),
+                         "field " + std::to_string(c + 1) + " is not finite");
+      values.push_back(v);
+    }
+    if (header) {
+      if (names) {
+        for (auto& c : cells) {
+          const auto b = c.find_first_not_of(" \t\"");
+          const auto e = c.find_last_not_of(" \t\"");
+          names->push_back(b == std::string::npos ? "" : c.substr(b, e - b + 1));
+        }
+      }
+      continue;
+    }
+    if (!rows.empty() && values.size() != rows.front().size())
+      throw InputError(path + ":" + std::to_string(number),
+                       "expected " + std::to_string(rows.front().size()) + " fields, found " +
+                           std::to_string(values.size()));
+    rows.push_back(values);
+  }
+  if (rows.empty()) throw InputError(path, "no numbers in the file");
+  Eigen::MatrixXd m(rows.size(), rows.front().size());
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    for (std::size_t j = 0; j < rows[i].size(); ++j) m(i, j) = rows[i][j];
+  return m;
+}
+
+Eigen::VectorXd ReadVector(const std::string& path, const std::string& what) {
+  const Eigen::MatrixXd m = ReadMatrixFile(path, nullptr);
+  if (m.cols() != 1 && m.rows() != 1)
+    throw InputError(path, what + ": expected a vector (one row or one column), found " +
+                               std::to_string(m.rows()) + " x " + std::to_string(m.cols()));
+  return m.cols() == 1 ? Eigen::VectorXd(m.col(0)) : Eigen::VectorXd(m.row(0).transpose());
+}
+
+}  // namespace
+
+Eigen::MatrixXd ReadMatrixFile(const std::string& path, std::vector<std::string>* names) {
+  if (EndsWith(path, ".mtx")) return ReadMatrixMarketDense(path);
+  if (EndsWith(path, ".csv")) return ReadCsv(path, names);
+  throw InputError(path, "unknown file type: expected .mtx (Matrix Market) or .csv");
+}
+
+SolveResult RunSolve(const SolveFiles& files, const std::string& solver,
+                     const LinearSolverOptions& options) {
+  SolveResult r;
+  r.solver = solver;
+  const auto s = CreateLinearSolver(solver, options);  // bad names fail before reading
+  LinearProblem& p = r.problem;
+  p.A = ReadMatrixFile(files.a, &p.names);
+  p.b = ReadVector(files.b, "b");
+  if (p.b.size() != p.A.rows())
+    throw InputError(files.b, "b has " + std::to_string(p.b.size()) + " entries but A (" +
+                                  files.a + ") has " + std::to_string(p.A.rows()) + " rows");
+  if (!p.names.empty() && static_cast<Eigen::Index>(p.names.size()) != p.A.cols())
+    throw InputError(files.a, "the header names " + std::to_string(p.names.size()) +
+                                  " columns but rows have " + std::to_string(p.A.cols()));
+  if (p.names.empty()) {
+    for (Eigen::Index j = 0; j < p.A.cols(); ++j) p.names.push_back("x" + std::to_string(j + 1));
+  }
+  auto read_n = [&](const std::string& path, const std::string& what) {
+    Eigen::VectorXd v = ReadVector(path, what);
+    if (v.size() != p.A.cols())
+      throw InputError(path, what + " has " + std::to_string(v.size()) + " entries for " +
+                                 std::to_string(p.A.cols()) + " unknowns");
+    return v;
+  };
+  if (!files.lower.empty()) p.lower = read_n(files.lower, "lower");
+  if (!files.upper.empty()) p.upper = read_n(files.upper, "upper");
+  if (!files.truth.empty()) r.truth = read_n(files.truth, "truth");
+  if (files.data_sigma > 0)
+    p.row_weights = Eigen::VectorXd::Constant(p.A.rows(), 1.0 / files.data_sigma);
+  const std::string invalid = p.Validate();
+  if (!invalid.empty()) throw InputError(files.a, invalid);
+  r.solution = s->Solve(p);
+  return r;
+}
+
+void WriteSolveOutputs(const SolveResult& r, bool plots, OutputDir* out,
+                       std::vector<std::string>* warnings) {
+  const LinearSolution& s = r.solution;
+  nlohmann::json j;
+  j["femup_version"] = "0.1.0";
+  j["command"] = "solve";
+  j["solver"] = {{"name", r.solver},
+                 {"status", ToString(s.summary.status)},
+                 {"message", s.summary.message},
+                 {"warnings", s.summary.warnings},
+                 {"iterations", s.summary.iterations},
+                 {"cost", s.summary.cost},
+                 {"kkt_residual", json_util::Number(s.summary.kkt_residual)},
+                 {"time_seconds", s.summary.time_seconds}};
+  j["rows"] = r.problem.num_rows();
+  j["unknowns"] = r.problem.num_unknowns();
+  j["rank"] = s.identifiability.rank;
+  j["condition_number"] = json_util::Number(s.identifiability.condition_number);
+  j["x"] = json_util::Vector(s.x);
+  j["names"] = r.problem.names;
+  if (s.standard_error.size() > 0) j["standard_error"] = json_util::Vector(s.standard_error);
+  j["residual_norm"] = s.residual.norm();
+  if (r.truth.size() > 0)
+    j["relative_error"] = (s.x - r.truth).norm() / std::max(r.truth.norm(), 1e-300);
+  const RegularisationReport& reg = s.regularisation;
+  if (!reg.parameter_choice.empty()) {
+    j["regularisation"] = {{"parameter_choice", reg.parameter_choice},
+                           {"lambda", json_util::Number(reg.lambda)},
+                           {"truncation", reg.truncation},
+                           {"at_range_end", reg.at_range_end},
+                           {"note", reg.note},
+                           {"lambda_lcurve", json_util::Number(reg.lambda_lcurve)},
+                           {"lambda_gcv", json_util::Number(reg.lambda_gcv)},
+                           {"lambda_discrepancy", json_util::Number(reg.lambda_discrepancy)},
+                           {"lambda_quasi_optimality", json_util::Number(reg.lambda_quasi)}};
+  }
+  out->WriteText("solution.json", j.dump(2) + "\n");
+  std::ostringstream csv;
+  csv << std::setprecision(17) << "name,x" << (s.standard_error.size() ? ",standard_error" : "")
+      << "\n";
+  for (Eigen::Index i = 0; i < s.x.size(); ++i) {
+    csv << r.problem.names[i] << "," << s.x[i];
+    if (s.standard_error.size()) csv << "," << s.standard_error[i];
+    csv << "\n";
+  }
+  out->WriteText("x.csv", csv.str());
+  if (!plots) return;
+  Figure f;
+  Plot p;
+  p.title = r.solver + ": solution";
+  p.x_label = "unknown index";
+  p.y_label = "value";
+  PlotSeries xs{"estimate", PlotSeries::Style::kLinesPoints, {}, {}, {}, {}};
+  PlotSeries ts{"reference", PlotSeries::Style::kLines, {}, {}, {}, {}};
+  for (Eigen::Index i = 0; i < s.x.size(); ++i) {
+    xs.x.push_back(i + 1.0);
+    xs.y.push_back(s.x[i]);
+    if (r.truth.size() > 0) {
+      ts.x.push_back(i + 1.0);
+      ts.y.push_back(r.truth[i]);
+    }
+  }
+  p.series.push_back(xs);
+  if (r.truth.size() > 0) p.series.push_back(ts);
+  f.panels.push_back(p);
+  if (!reg.grid_lambda.empty()) {
+    f.columns = 3;
+    f.width_px = 1500;
+    Plot lc;
+    lc.title = "L-curve";
+    lc.x_label = "residual norm";
+    lc.y_label = "solution (semi)norm";
+    lc.log_x = lc.log_y = true;
+    lc.series.push_back(
+        {"path", PlotSeries::Style::kLines, reg.grid_residual_norm, reg.grid_solution_norm, {}, {}});
+    Plot gp;
+    gp.title = "GCV function";
+    gp.x_label = reg.truncation > 0 ? "singular value kept" : "lambda";
+    gp.y_label = "GCV";
+    gp.log_x = gp.log_y = true;
+    gp.series.push_back({"GCV", PlotSeries::Style::kLines, reg.grid_lambda, reg.grid_gcv, {}, {}});
+    f.panels.push_back(lc);
+    f.panels.push_back(gp);
+  }
+  RenderStaged(f, "solution", out, warnings);
+}
+
+std::string SolveReport(const SolveResult& r) {
+  std::ostringstream o;
+  const LinearSolution& s = r.solution;
+  o << "problem: " << r.problem.num_rows() << " x " << r.problem.num_unknowns() << ", rank "
+    << s.identifiability.rank << ", condition number " << s.identifiability.condition_number
+    << "\nsolver " << r.solver << ": " << ToString(s.summary.status) << ": "
+    << s.summary.message << "\n";
+  for (const auto& w : s.summary.warnings) o << "  warning: " << w << "\n";
+  if (r.truth.size() > 0)
+    o << "relative error vs reference: " << (s.x - r.truth).norm() / r.truth.norm() << "\n";
+  o << "residual norm: " << s.residual.norm() << "\n";
+  return o.str();
+}
+
+}  // namespace femup
