@@ -304,12 +304,12 @@ NonlinearProblem BuildEigenSensitivityProblem(const ParametrisedModel& model,
       st.shape_weights.resize(st.unit_shapes.rows(), data.num_modes());
       for (int j = 0; j < data.num_modes(); ++j) {
         const double peak = st.unit_shapes.col(j).cwiseAbs().maxCoeff();
-        for (Eigen::Index i = 0; i < st.unit_shapes.rows(); ++i) {
+        for (Eigen::Index k = 0; k < st.unit_shapes.rows(); ++k) {
           const double scale =
               options.shape_noise == "entry"
-                  ? std::max(std::abs(st.unit_shapes(i, j)), options.entry_floor * peak)
+                  ? std::max(std::abs(st.unit_shapes(k, j)), options.entry_floor * peak)
                   : peak;
-          st.shape_weights(i, j) = 1.0 / (options.shape_sigma * scale);
+          st.shape_weights(k, j) = 1.0 / (options.shape_sigma * scale);
         }
       }
     }
