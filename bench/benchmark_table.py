@@ -2,9 +2,12 @@
 """Turns solvers_bench's Google Benchmark JSON (--benchmark_out) into a Markdown table.
 
 Usage: benchmark_table.py solvers.json > solvers.md
-One row per benchmark: wall time per solve, the solver's status (the
-benchmark's label) and the counters solvers_bench.cc documents, printed in full
-(Google Benchmark's console output abbreviates them with SI prefixes).
+One row per benchmark: wall time per solve (the median over repetitions when
+the run had --benchmark_repetitions, with their coefficient of variation), the
+solver's status (the benchmark's label) and the counters solvers_bench.cc
+documents, printed in full (Google Benchmark's console output abbreviates them
+with SI prefixes). Counters are the first repetition's (every repetition solves
+the same problem), except the peak RSS growth: the largest over repetitions.
 Standard library only.
 """
 
@@ -30,15 +33,29 @@ def main():
     print(f"Google Benchmark run of {context['date']}, {context['num_cpus']} CPUs at "
           f"{context['mhz_per_cpu']} MHz, load average "
           f"{', '.join(f'{x:.2f}' for x in context.get('load_avg', []))}.\n")
-    print("| benchmark | time per solve (ms) | runs timed | status | "
-          + " | ".join(title for _, title, _ in COUNTERS) + " |")
-    print("|---|---|---|---|" + "---|" * len(COUNTERS))
+    runs = {}  # run name -> {"runs": [...], aggregate name -> entry}, in order
     for b in report["benchmarks"]:
-        if b.get("run_type", "iteration") != "iteration":
-            continue  # aggregates of --benchmark_repetitions
-        ms = b["real_time"] * SECONDS[b["time_unit"]] * 1e3
-        cells = [b["name"], f"{ms:.4g}", str(b["iterations"]), b.get("label", "")]
-        cells += [fmt.format(b[key]) if key in b else "" for key, _, fmt in COUNTERS]
+        entry = runs.setdefault(b["run_name"], {"runs": []})
+        if b.get("run_type", "iteration") == "iteration":
+            entry["runs"].append(b)
+        else:
+            entry[b["aggregate_name"]] = b
+
+    print("| benchmark | time per solve (ms) | CV | solves timed | status | "
+          + " | ".join(title for _, title, _ in COUNTERS) + " |")
+    print("|---|---|---|---|---|" + "---|" * len(COUNTERS))
+    for name, entry in runs.items():
+        first = entry["runs"][0]
+        timed = entry.get("median", first)
+        ms = timed["real_time"] * SECONDS[timed["time_unit"]] * 1e3
+        cv = f"{100 * entry['cv']['real_time']:.1f} %" if "cv" in entry else ""
+        solves = "+".join(str(b["iterations"]) for b in entry["runs"])
+        cells = [name, f"{ms:.4g}", cv, solves, first.get("label", "")]
+        for key, _, fmt in COUNTERS:
+            if key == "peak_rss_kib" and key in first:
+                cells.append(fmt.format(max(b[key] for b in entry["runs"])))
+            else:
+                cells.append(fmt.format(first[key]) if key in first else "")
         print("| " + " | ".join(cells) + " |")
 
 

@@ -32,8 +32,11 @@
 //   active        bounded: unknowns on a bound at the answer
 //   peak_rss_kib  growth of the process's peak resident set (VmHWM, reset
 //                 through /proc/self/clear_refs) over its resident set at the
-//                 start, across every solve of the benchmark; absent when the
-//                 peak cannot be reset (not Linux >= 4.0).
+//                 start, across every solve of the benchmark: the largest
+//                 working set of one solve, to within the heap. Blocks under
+//                 256 KiB come from a heap that earlier benchmarks may already
+//                 have grown, so small problems read 0. Absent when the peak
+//                 cannot be reset (not Linux >= 4.0) or mallopt failed.
 // The label is the solver's status.
 #include <benchmark/benchmark.h>
 #include <malloc.h>
@@ -102,6 +105,7 @@ class PeakRss {
   double start_kib_ = -1;
 };
 
+// The counters every solver's summary gives, and its status as the label.
 void ReportSummary(benchmark::State& state, const femup::SolverSummary& s) {
   state.SetLabel(femup::ToString(s.status));
   state.counters["solver_iters"] = s.iterations;

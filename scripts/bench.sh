@@ -6,15 +6,15 @@
 #   solvers.txt   its console output; solvers.md the same results as a Markdown table
 #   peer.md       femup's bounded solvers against scipy's lsq_linear
 #                 (bench/peer_compare.cc), ratios measured in this one run
-# Environment: FEMUP_BENCH_MIN_TIME (seconds per benchmark, default 0.5),
-# FEMUP_PEER_SIZES (default 500x50,2000x200,5000x500), FEMUP_BENCH_JOBS (build
-# jobs, default 2). The benchmarks take about 30 s, the peer comparison about
-# 3 minutes (most of it the 5000 x 500 problem), on 2 cores.
+# Each benchmark runs 3 repetitions of at least FEMUP_BENCH_MIN_TIME seconds
+# (default 0.2); the tables give the median and the spread. Environment:
+# FEMUP_BENCH_MIN_TIME, FEMUP_PEER_SIZES (default 500x50,2000x200,5000x500),
+# FEMUP_BENCH_JOBS (build jobs, default 2).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=build-bench
 out=out/bench
-min_time=${FEMUP_BENCH_MIN_TIME:-0.5}
+min_time=${FEMUP_BENCH_MIN_TIME:-0.2}
 sizes=${FEMUP_PEER_SIZES:-500x50,2000x200,5000x500}
 
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DFEMUP_BUILD_TESTS=OFF \
@@ -28,14 +28,18 @@ mkdir -p "$out"
   echo "cpu: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ //')"
   echo "load average: $(cut -d' ' -f1-3 /proc/loadavg)"
   echo "compiler: $(c++ --version | head -1)"
+  echo "source: $(git rev-parse --short HEAD 2>/dev/null || echo unknown)$(
+    git diff --quiet HEAD 2>/dev/null || echo ' plus uncommitted changes')"
   echo "command: scripts/bench.sh (FEMUP_BENCH_MIN_TIME=$min_time FEMUP_PEER_SIZES=$sizes)"
 } > "$out/machine.txt"
 cat "$out/machine.txt"
 
 echo "== solvers_bench"
-"$build/bench/solvers_bench" --benchmark_min_time="$min_time" \
-  --benchmark_out="$out/solvers.json" --benchmark_out_format=json | tee "$out/solvers.txt"
-/usr/bin/python3 bench/benchmark_table.py "$out/solvers.json" > "$out/solvers.md"
+"$build/bench/solvers_bench" --benchmark_min_time="$min_time" --benchmark_repetitions=3 \
+  --benchmark_display_aggregates_only=true --benchmark_out="$out/solvers.json" \
+  --benchmark_out_format=json | tee "$out/solvers.txt"
+/usr/bin/python3 bench/benchmark_table.py "$out/solvers.json" > "$out/solvers.md" ||
+  echo "solvers.md not written (needs /usr/bin/python3); solvers.json has the results"
 
 echo "== peer comparison (scipy.optimize.lsq_linear)"
 "$build/bench/femup_peer_compare" --sizes "$sizes" --markdown "$out/peer.md"

@@ -388,6 +388,32 @@ TEST_P(NonlinearSolverTest, EvaluateFailingInARegionStillSolves) {
   Record(s, Eigen::VectorXd::Constant(1, 2.0));
 }
 
+// NIST's BoxBOD, y = b1 (1 - exp(-b2 x)), started on the plateau where Ceres's
+// Levenberg-Marquardt ends from NIST's start 1: with b2 = 84 the exponential is
+// below rounding at every x, so the model is the constant b1 and does not depend
+// on b2, and with b1 the mean of y the gradient is zero. Certified values from
+// NIST's BoxBOD.dat.
+NonlinearProblem BoxBodOnItsPlateau() {
+  const Eigen::VectorXd x = (Eigen::VectorXd(6) << 1, 2, 3, 5, 7, 10).finished();
+  const Eigen::VectorXd y =
+      (Eigen::VectorXd(6) << 109, 149, 149, 191, 213, 224).finished();
+  NonlinearProblem p;
+  p.num_residuals = 6;
+  p.initial = Eigen::Vector2d(y.mean(), 84);
+  p.evaluate = [x, y](const Eigen::VectorXd& b, Eigen::VectorXd* r, Eigen::MatrixXd* j,
+                      std::string*) {
+    const Eigen::ArrayXd e = (-b[1] * x.array()).exp();
+    *r = (b[0] * (1 - e) - y.array()).matrix();
+    if (j != nullptr) {
+      j->resize(6, 2);
+      j->col(0) = (1 - e).matrix();
+      j->col(1) = (b[0] * x.array() * e).matrix();
+    }
+    return true;
+  };
+  return p;
+}
+
 TEST_P(NonlinearSolverTest, CovarianceOfALinearRegression) {
   // y = c0 + c1 t + noise (fixed seed); covariance (A'A)^-1 s^2, s^2 = |r|^2/(m-2).
   const int m = 20;
@@ -470,6 +496,12 @@ TEST_P(NonlinearSolverTest, BadOptionsNameTheField) {
   o = {};
   o.max_outer_iterations = 0;
   EXPECT_EQ(where(o).rfind("solver.max_outer_iterations | ", 0), 0u);
+  o = {};
+  o.initial_trust_region = 0;
+  EXPECT_EQ(where(o).rfind("solver.initial_trust_region | ", 0), 0u);
+  o = {};
+  o.max_restarts = -1;
+  EXPECT_EQ(where(o).rfind("solver.max_restarts | ", 0), 0u);
 }
 
 TEST_P(NonlinearSolverTest, InvalidProblemThrowsBeforeAnyEvaluation) {
@@ -517,6 +549,24 @@ INSTANTIATE_TEST_SUITE_P(Backends, NonlinearSolverTest,
                          [](const ::testing::TestParamInfo<std::string>& backend) {
                            return backend.param;
                          });
+
+// The restart is shared by both backends; Ceres is the one that stops on this
+// plateau (Ipopt's first, objective-scaled step leaves it).
+TEST(NonlinearSolverRestart, CeresLeavesADegenerateStationaryPoint) {
+  const Eigen::Vector2d certified(2.1380940889E+02, 5.4723748542E-01);
+  NonlinearSolverOptions no_restarts;
+  no_restarts.max_restarts = 0;
+  const NonlinearSolution plateau =
+      CreateNonlinearSolver("ceres", no_restarts)->Solve(BoxBodOnItsPlateau());
+  EXPECT_GT(plateau.summary.cost, 4000) << plateau.summary.message;
+  const NonlinearSolution s = CreateNonlinearSolver("ceres")->Solve(BoxBodOnItsPlateau());
+  EXPECT_EQ(s.summary.status, SolverStatus::kSolved) << s.summary.message;
+  EXPECT_NEAR(s.x[0], certified[0], 1e-6 * certified[0]) << s.summary.message;
+  EXPECT_NEAR(s.x[1], certified[1], 1e-6 * certified[1]);
+  EXPECT_NE(s.summary.message.find("degenerate stationary point"), std::string::npos)
+      << s.summary.message;
+  EXPECT_LT(s.summary.cost, 600);
+}
 
 TEST(NonlinearSolverFactory, UnknownNameListsTheAvailableOnes) {
   try {

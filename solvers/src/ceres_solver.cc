@@ -21,12 +21,6 @@ using RowMajorMatrix =
 // reach a tight equality tolerance, small enough to keep the QR well conditioned.
 constexpr double kInitialPenalty = 1e3;
 constexpr double kMaxPenaltyGrowth = 1e8;
-// Ceres's default first trust region (1e4) damps the first Levenberg-Marquardt
-// steps by 1e-4 relative, and Ceres stops once the cost no longer changes in
-// floating point, which leaves x only ~1e-8 accurate on a linear problem. With
-// a nearly undamped start the first step is Gauss-Newton; failed steps shrink
-// the region as usual.
-constexpr double kInitialTrustRegion = 1e10;
 // Most re-solves with stalled bounds held between two multiplier updates.
 constexpr int kMaxHolds = 20;
 // A solve has stalled on a bound when this many successful steps in a row
@@ -252,7 +246,12 @@ nonlinear_internal::BackendResult RunCeres(const NonlinearProblem& problem,
   ceres_options.linear_solver_type = ceres::DENSE_QR;
   ceres_options.trust_region_strategy_type =
       options.trust_region == "dogleg" ? ceres::DOGLEG : ceres::LEVENBERG_MARQUARDT;
-  ceres_options.initial_trust_region_radius = kInitialTrustRegion;
+  // The default (see NonlinearSolverOptions) is nearly undamped: Ceres's own
+  // first region (1e4) damps the first Levenberg-Marquardt steps by 1e-4
+  // relative, and Ceres stops once the cost no longer changes in floating
+  // point, which leaves x only ~1e-8 accurate on a linear problem. Failed steps
+  // shrink the region as usual.
+  ceres_options.initial_trust_region_radius = options.initial_trust_region;
   ceres_options.function_tolerance = options.function_tolerance;
   // Ceres's gradient tolerance is absolute; ours is relative to the start.
   ceres_options.gradient_tolerance = options.gradient_tolerance * gradient_scale;

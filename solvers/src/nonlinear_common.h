@@ -67,6 +67,13 @@ using Backend = std::function<BackendResult(const NonlinearProblem& problem,
 //    the start;
 //  - fills r, J, cost, covariance and time at the answer (kFailed when the model
 //    cannot be evaluated there);
+//  - without bounds or equalities, restarts (up to options.max_restarts times)
+//    from an answer where the Jacobian in relative units (column j times |x_j|)
+//    loses rank: a degenerate stationary point (a plateau where a term has
+//    vanished, two terms merged) where the Gauss-Newton model is flat along some
+//    direction though the cost may not be. The best of a few steps along that
+//    direction that lowers the cost is the new start; the restart is kept when
+//    it ends lower (NIST's BoxBOD from start 1 ends on such a plateau);
 //  - when the problem has bounds or equalities, checks the KKT conditions with
 //    the gradient J'r relative to |J'r|_inf at the start. A converged answer
 //    that fails them, or that lies near but not on bounds it should be on, is

@@ -81,6 +81,9 @@ std::string NonlinearSolverOptions::Validate() const {
            Require(nonnegative(parameter_tolerance), "parameter_tolerance",
                    "finite and >= 0", parameter_tolerance),
            OneOf(trust_region, "trust_region", {"levenberg_marquardt", "dogleg"}),
+           Require(positive(initial_trust_region), "initial_trust_region",
+                   "finite and > 0", initial_trust_region),
+           Require(max_restarts >= 0, "max_restarts", ">= 0", max_restarts),
            OneOf(hessian, "hessian", {"gauss_newton", "limited_memory"}),
            Require(positive(kkt_tolerance), "kkt_tolerance", "finite and > 0",
                    kkt_tolerance),
@@ -210,6 +213,76 @@ std::vector<std::pair<int, double>> BoundsToHold(const NonlinearProblem& problem
   return held;
 }
 
+// A stationary point where the Jacobian of the free parameters, in relative
+// units (column j times |x_j|), has a singular value below this times the
+// largest is degenerate (see EscapeDegeneratePoint).
+constexpr double kDegenerateRatio = 1e-8;
+// Steps tried along the degenerate direction, as a fraction of each parameter's
+// magnitude, and the relative decrease of the cost that makes one worth taking.
+constexpr double kEscapeSteps[] = {1e-3,  -1e-3, 1e-2, -1e-2, 1e-1,
+                                   -1e-1, 0.5,   -0.5, 0.9,   -0.9};
+constexpr double kEscapeDecrease = 1e-9;
+// Cost changes below this times the cost at the user's start are rounding (on a
+// zero-residual problem the cost at the answer is itself rounding).
+constexpr double kCostNoise = 1e-12;
+// A step escapes only when the cost falls by more than this times what the
+// Gauss-Newton model 0.5 |r + J dx|^2 predicts: otherwise it only continues the
+// solve the backend ended (on a linear problem the two are the same).
+constexpr double kBeyondGaussNewton = 2;
+
+// Where to restart from when `solution` is a degenerate stationary point of an
+// unconstrained problem: the model does not depend on some combination of the
+// parameters there (a plateau where a term has vanished, or two terms merged),
+// so the Gauss-Newton model both backends use is flat along it and neither
+// leaves; the cost itself may still fall along it (the curvature J'J leaves
+// out). Tries steps along that direction and returns false unless one lowers
+// the cost by kEscapeDecrease relative (and above the rounding of
+// `initial_cost`, the cost at the user's start) and by more than the
+// Gauss-Newton model predicts (kBeyondGaussNewton).
+bool EscapeDegeneratePoint(const NonlinearProblem& problem,
+                           const NonlinearSolution& solution, double initial_cost,
+                           Eigen::VectorXd* start) {
+  const std::vector<int> free = problem.FreeUnknowns();
+  const auto m = solution.jacobian.rows();
+  if (free.empty() || m == 0) return false;
+  // Relative units; a parameter at zero is scaled by its column's norm instead.
+  Eigen::VectorXd unit(free.size());
+  Eigen::MatrixXd j(m, free.size());
+  for (std::size_t k = 0; k < free.size(); ++k) {
+    const double x = std::abs(solution.x[free[k]]);
+    const double norm = solution.jacobian.col(free[k]).norm();
+    unit[k] = x > 0 ? x : (norm > 0 ? 1 / norm : 1.0);
+    j.col(k) = solution.jacobian.col(free[k]) * unit[k];
+  }
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(j, Eigen::ComputeFullV);
+  const Eigen::VectorXd& s = svd.singularValues();
+  const auto last = static_cast<Eigen::Index>(free.size()) - 1;
+  // With fewer residuals than parameters the last singular values are zero.
+  const double smallest = last < s.size() ? s[last] : 0.0;
+  if (!(s.size() > 0 && s[0] > 0 && smallest < kDegenerateRatio * s[0])) return false;
+  const Eigen::VectorXd direction = unit.cwiseProduct(svd.matrixV().col(last));
+  Eigen::VectorXd change = Eigen::VectorXd::Zero(solution.x.size());
+  for (std::size_t k = 0; k < free.size(); ++k) change[free[k]] = direction[k];
+  const Eigen::VectorXd slope = solution.jacobian * change;  // J along the step
+  const double cost0 = solution.summary.cost;
+  double best = cost0 - std::max(kEscapeDecrease * cost0, kCostNoise * initial_cost);
+  bool found = false;
+  Eigen::VectorXd r;
+  std::string why;
+  for (double t : kEscapeSteps) {
+    const Eigen::VectorXd x = solution.x + t * change;
+    if (!Evaluate(problem, x, &r, nullptr, &why)) continue;
+    const double cost = 0.5 * r.squaredNorm();
+    const double modelled = 0.5 * (solution.residual + t * slope).squaredNorm();
+    if (cost < best && cost0 - cost > kBeyondGaussNewton * (cost0 - modelled)) {
+      best = cost;
+      *start = x;
+      found = true;
+    }
+  }
+  return found;
+}
+
 }  // namespace
 
 void ValidateOptions(const NonlinearSolverOptions& options) {
@@ -311,6 +384,35 @@ NonlinearSolution Solve(const std::string& name, const NonlinearProblem& problem
   const double scale = GradientScale(problem, j0, r0);
   const BackendResult first = backend(problem, options, scale);
   NonlinearSolution solution = Complete(problem, options, scale, first);
+
+  // Restart off degenerate stationary points (unconstrained problems only: the
+  // escape step does not respect bounds or equalities), keeping a restart only
+  // when it ends lower.
+  for (int restart = 1; restart <= options.max_restarts && !Constrained(problem) &&
+                        solution.summary.status != SolverStatus::kFailed &&
+                        solution.summary.iterations < options.max_iterations;
+       ++restart) {
+    NonlinearProblem moved = problem;
+    if (!EscapeDegeneratePoint(problem, solution, 0.5 * r0.squaredNorm(),
+                               &moved.initial)) {
+      break;
+    }
+    NonlinearSolverOptions remaining = options;
+    remaining.max_iterations = options.max_iterations - solution.summary.iterations;
+    BackendResult result = backend(moved, remaining, scale);
+    std::ostringstream msg;
+    msg << solution.summary.message << "; the Jacobian lost rank there (a degenerate "
+        << "stationary point): restarted from a lower point along that direction ("
+        << restart << "): " << result.message;
+    result.message = msg.str();
+    result.iterations += solution.summary.iterations;
+    NonlinearSolution next = Complete(problem, options, scale, result);
+    if (next.summary.status == SolverStatus::kFailed ||
+        !(next.summary.cost < solution.summary.cost)) {
+      break;
+    }
+    solution = std::move(next);
+  }
 
   // Polish a converged answer (see the header): hold the bounds it should be on
   // and re-solve the rest, while that is needed (it stopped short, or some of

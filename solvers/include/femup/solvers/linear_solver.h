@@ -3,8 +3,9 @@
 // input (sizes, NaN, unknown names, lower > upper) throws InputError, before any
 // work.
 //
-//   lstsq     least squares by SVD of the column-scaled matrix; minimum-norm when
-//             rank deficient. Fixed values and equalities (eliminated exactly).
+//   lstsq     least squares by SVD of the column-scaled matrix, refined with
+//             residuals in long double; minimum-norm when rank deficient. Fixed
+//             values and equalities (eliminated exactly).
 //   tsvd      truncated SVD; the truncation index given or chosen (GCV, L-curve,
 //             discrepancy). Fixed values and equalities.
 //   tikhonov  min ||A x - b||^2 + lambda^2 ||L (x - x0)||^2, L the identity or a

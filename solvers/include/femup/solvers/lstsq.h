@@ -1,7 +1,10 @@
 // Plain least squares by the singular value decomposition of the column-scaled
 // matrix of the free unknowns: the unique solution when A has full column rank,
 // otherwise the minimum-norm one (in scaled variables), with a warning that
-// names the directions the data cannot determine.
+// names the directions the data cannot determine. The answer is then refined
+// twice on the augmented system [I A; A' 0] [r; x] = [b; 0] with its residuals in
+// long double, which recovers the digits a plain solve loses on ill-conditioned
+// problems with a large residual (docs/validation.md: NIST's Wampler4 and 5).
 #pragma once
 
 #include "femup/solvers/linear_solver.h"

@@ -22,6 +22,16 @@ struct NonlinearSolverOptions {
   double parameter_tolerance = 1e-14;  // relative size of the step
   // Ceres: "levenberg_marquardt" or "dogleg". Ipopt: ignored.
   std::string trust_region = "levenberg_marquardt";
+  // Ceres: the first trust-region radius. The default makes the first step
+  // Gauss-Newton, exact for linear residuals (Ceres's own default, 1e4, damps it,
+  // and Ceres then stops with linear problems only ~1e-8 accurate). Far from the
+  // optimum of a nonlinear problem a full Gauss-Newton step can land in a region
+  // it does not return from; 1e4 is safer there (docs/validation.md). Ipopt:
+  // ignored.
+  double initial_trust_region = 1e10;
+  // Restarts off a degenerate stationary point (problems without bounds or
+  // equalities; see Solve in nonlinear_common.h); 0 = none.
+  int max_restarts = 3;
   // Ipopt: "gauss_newton" (J'J, exact for linear residuals) or "limited_memory".
   std::string hessian = "gauss_newton";
   // A bounded/constrained answer whose KKT residual exceeds this is reported as
