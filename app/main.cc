@@ -7,12 +7,12 @@
 
 #include "femup/errors.h"
 #include "femup/output_dir.h"
+#include "femup/solvers/nonlinear_solver.h"
 #include "femup/studies/modes_study.h"
 #include "femup/studies/noise_study.h"
 #include "femup/studies/solve_study.h"
 #include "femup/studies/study.h"
 #include "femup/studies/update_study.h"
-#include "femup/solvers/nonlinear_solver.h"
 
 namespace {
 
@@ -33,19 +33,21 @@ void AddCommon(CLI::App* cmd, Common* c) {
 }
 
 void AddSolverOverride(CLI::App* cmd, Common* c) {
-  cmd->add_option("--solver", c->solver,
-                  "solver name, overriding the study file (linear: lstsq, tsvd, tikhonov, "
-                  "bvls, ceres, ipopt; sensitivity: ceres, ipopt)");
-  cmd->add_option("--method", c->method,
-                  "linear (the paper's Z d = F) or sensitivity (iterative eigen-sensitivity)");
+  cmd->add_option(
+      "--solver", c->solver,
+      "solver name, overriding the study file (linear: lstsq, tsvd, tikhonov, "
+      "bvls, ceres, ipopt; sensitivity: ceres, ipopt)");
+  cmd->add_option(
+      "--method", c->method,
+      "linear (the paper's Z d = F) or sensitivity (iterative eigen-sensitivity)");
 }
 
 // Applies --solver / --method and checks the result before any work.
 void ApplyOverride(const Common& c, femup::Study* study) {
   if (!c.method.empty()) {
     if (c.method != "linear" && c.method != "sensitivity")
-      throw femup::InputError("--method", "expected linear or sensitivity, got '" + c.method +
-                                              "'");
+      throw femup::InputError("--method",
+                              "expected linear or sensitivity, got '" + c.method + "'");
     study->solver.method = c.method;
     if (c.solver.empty() && c.method == "sensitivity") study->solver.name = "ceres";
   }
@@ -113,18 +115,23 @@ int main(int argc, char** argv) {
   check->add_option("study", check_opts.study, "study file (YAML or JSON)")->required();
 
   CLI::App* solve = app.add_subcommand(
-      "solve", "solve a general linear inverse problem A x ~ b from files (.mtx or .csv)");
+      "solve",
+      "solve a general linear inverse problem A x ~ b from files (.mtx or .csv)");
   femup::SolveFiles files;
   std::string solve_solver = "lstsq", solve_out = "out/solve";
   femup::LinearSolverOptions solve_options;
   bool solve_no_plots = false, solve_quiet = false;
-  solve->add_option("--A", files.a, "matrix A (.mtx or .csv; a CSV header names the unknowns)")
+  solve
+      ->add_option("--A", files.a,
+                   "matrix A (.mtx or .csv; a CSV header names the unknowns)")
       ->required();
   solve->add_option("--b", files.b, "right-hand side b (.mtx or .csv)")->required();
   solve->add_option("--lower", files.lower, "lower bounds (vector file)");
   solve->add_option("--upper", files.upper, "upper bounds (vector file)");
-  solve->add_option("--truth", files.truth, "a reference solution to report the error against");
-  solve->add_option("--sigma", files.data_sigma, "noise standard deviation of b (known noise)");
+  solve->add_option("--truth", files.truth,
+                    "a reference solution to report the error against");
+  solve->add_option("--sigma", files.data_sigma,
+                    "noise standard deviation of b (known noise)");
   solve->add_option("--solver", solve_solver,
                     "lstsq, tsvd, tikhonov, bvls, ceres or ipopt (default lstsq)");
   solve->add_option("--parameter-choice", solve_options.regularisation.parameter_choice,
@@ -135,7 +142,8 @@ int main(int argc, char** argv) {
                     "discrepancy principle: ||e||");
   solve->add_option("--operator", solve_options.regularisation.op,
                     "tikhonov: identity, first_difference or second_difference");
-  solve->add_option("--truncation", solve_options.truncation, "tsvd: singular values kept");
+  solve->add_option("--truncation", solve_options.truncation,
+                    "tsvd: singular values kept");
   solve->add_option("-o,--out", solve_out, "output folder (default out/solve)");
   solve->add_flag("--no-plots", solve_no_plots, "write JSON and CSV only");
   solve->add_flag("-q,--quiet", solve_quiet, "print nothing but errors and warnings");
@@ -182,7 +190,8 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (*solve) {
-      const femup::SolveResult result = femup::RunSolve(files, solve_solver, solve_options);
+      const femup::SolveResult result =
+          femup::RunSolve(files, solve_solver, solve_options);
       femup::OutputDir dir(solve_out);
       femup::WriteSolveOutputs(result, !solve_no_plots, &dir, &warnings);
       if (!solve_quiet) std::cout << femup::SolveReport(result);

@@ -209,8 +209,7 @@ std::string EigenSensitivityOptions::Validate() const {
   }
   if (shape_noise != "max" && shape_noise != "entry")
     return "shape_noise: expected max or entry, got '" + shape_noise + "'";
-  if (!(entry_floor > 0 && entry_floor <= 1))
-    return "entry_floor: must be in (0, 1]";
+  if (!(entry_floor > 0 && entry_floor <= 1)) return "entry_floor: must be in (0, 1]";
   if (!(shape_sigma > 0) || !std::isfinite(shape_sigma)) {
     return "shape_sigma: must be positive and finite";
   }

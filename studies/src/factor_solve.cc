@@ -21,8 +21,8 @@ bool ShapesComplete(const std::vector<ModalData>& measured, int num_dofs) {
 
 }  // namespace
 
-FactorSolve SolveFactors(const Study& study, const SolverSpec& spec, const Modes& fem_modes,
-                         const std::vector<ModalData>& measured) {
+FactorSolve SolveFactors(const Study& study, const SolverSpec& spec,
+                         const Modes& fem_modes, const std::vector<ModalData>& measured) {
   FactorSolve out;
   LinearProblem& p = out.problem;
   const int n = study.model.num_parameters();
@@ -30,7 +30,8 @@ FactorSolve SolveFactors(const Study& study, const SolverSpec& spec, const Modes
     p = BuildCorrectionSystem(study.model, fem_modes, measured, study.system);
   } else {
     p.names = study.model.ParameterNames();
-    for (const Parameter& q : study.model.parameters()) p.groups.push_back(ToString(q.kind));
+    for (const Parameter& q : study.model.parameters())
+      p.groups.push_back(ToString(q.kind));
   }
   for (const auto& [name, value] : study.fixed) p.Fix(name, value);
   p.lower = study.lower;
@@ -44,7 +45,8 @@ FactorSolve SolveFactors(const Study& study, const SolverSpec& spec, const Modes
     return out;
   }
 
-  NonlinearProblem np = BuildEigenSensitivityProblem(study.model, measured, spec.sensitivity);
+  NonlinearProblem np =
+      BuildEigenSensitivityProblem(study.model, measured, spec.sensitivity);
   np.fixed = p.fixed;
   np.lower = study.lower;
   np.upper = study.upper;
@@ -57,7 +59,8 @@ FactorSolve SolveFactors(const Study& study, const SolverSpec& spec, const Modes
     if (np.upper.size() > 0) np.initial[i] = std::min(np.initial[i], np.upper[i]);
   }
   out.nonlinear_residuals = np.num_residuals;
-  const NonlinearSolution ns = CreateNonlinearSolver(spec.name, spec.nonlinear)->Solve(np);
+  const NonlinearSolution ns =
+      CreateNonlinearSolver(spec.name, spec.nonlinear)->Solve(np);
   LinearSolution& s = out.solution;
   s.x = ns.x;
   s.summary = ns.summary;

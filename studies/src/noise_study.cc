@@ -76,7 +76,8 @@ NoiseStudyResult RunNoiseStudy(const Study& study) {
   const std::vector<SolverSpec> variants =
       spec.compare.empty() ? std::vector<SolverSpec>{study.solver} : spec.compare;
   r.comparison.resize(variants.size());
-  for (std::size_t v = 0; v < variants.size(); ++v) r.comparison[v].label = variants[v].label;
+  for (std::size_t v = 0; v < variants.size(); ++v)
+    r.comparison[v].label = variants[v].label;
 
   // The level shown in the estimated-vs-preset figure: the nearest one.
   std::size_t figure_index = 0;
@@ -117,7 +118,8 @@ NoiseStudyResult RunNoiseStudy(const Study& study) {
         for (std::size_t k = 0; k < r.added_mass_indices.size(); ++k) {
           const int i = r.added_mass_indices[k];
           const double e =
-              ok ? std::abs(sol.x[i] - r.preset[i]) / std::abs(r.preset[i]) * 100.0 : kNaN;
+              ok ? std::abs(sol.x[i] - r.preset[i]) / std::abs(r.preset[i]) * 100.0
+                 : kNaN;
           sum += e;
           if (v == 0) rm[k].push_back(e);
         }
@@ -206,7 +208,8 @@ void WriteNoiseOutputs(const NoiseStudyResult& r, bool plots, OutputDir* out,
     cj["usable_draws"] = c.usable_draws;
     cj["rm_average_percent"] = nlohmann::json::array();
     cj["rm_median_percent"] = nlohmann::json::array();
-    for (double v : c.rm_average) cj["rm_average_percent"].push_back(json_util::Number(v));
+    for (double v : c.rm_average)
+      cj["rm_average_percent"].push_back(json_util::Number(v));
     for (double v : c.rm_median) cj["rm_median_percent"].push_back(json_util::Number(v));
     j["comparison"].push_back(cj);
   }
@@ -268,7 +271,8 @@ void WriteNoiseOutputs(const NoiseStudyResult& r, bool plots, OutputDir* out,
     pc.x_label = "corruption level of eigenvalues (%)";
     pc.y_label = "mean Rm over factors and draws (%)";
     for (const SolverScores& c : r.comparison)
-      pc.series.push_back({c.label, PlotSeries::Style::kLinesPoints, x, c.rm_average, {}, {}});
+      pc.series.push_back(
+          {c.label, PlotSeries::Style::kLinesPoints, x, c.rm_average, {}, {}});
     fc.panels.push_back(pc);
     RenderStaged(fc, "rm_by_solver", out, warnings);
   }
@@ -303,7 +307,8 @@ std::string NoiseReport(const NoiseStudyResult& r) {
       o << "\n";
     }
     o << "  solve time (s):";
-    for (const SolverScores& c : r.comparison) o << " " << c.label << " " << c.seconds << ";";
+    for (const SolverScores& c : r.comparison)
+      o << " " << c.label << " " << c.seconds << ";";
     o << "\n";
   }
   return o.str();

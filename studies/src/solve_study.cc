@@ -17,7 +17,8 @@ namespace femup {
 namespace {
 
 bool EndsWith(const std::string& s, const std::string& tail) {
-  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+  return s.size() >= tail.size() &&
+         s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
 }
 
 Eigen::MatrixXd ReadCsv(const std::string& path, std::vector<std::string>* names) {
@@ -51,9 +52,9 @@ Eigen::MatrixXd ReadCsv(const std::string& path, std::vector<std::string>* names
           header = true;
           break;
         }
-        throw InputError(path + ":" + std::to_string(number),
-                         "field " + std::to_string(c + 1) + ": expected a number, found '" +
-                             t + "'");
+        throw InputError(
+            path + ":" + std::to_string(number),
+            "field " + std::to_string(c + 1) + ": expected a number, found '" + t + "'");
       }
       if (!std::isfinite(v))
         throw InputError(path + ":" + std::to_string(number),
@@ -72,8 +73,8 @@ Eigen::MatrixXd ReadCsv(const std::string& path, std::vector<std::string>* names
     }
     if (!rows.empty() && values.size() != rows.front().size())
       throw InputError(path + ":" + std::to_string(number),
-                       "expected " + std::to_string(rows.front().size()) + " fields, found " +
-                           std::to_string(values.size()));
+                       "expected " + std::to_string(rows.front().size()) +
+                           " fields, found " + std::to_string(values.size()));
     rows.push_back(values);
   }
   if (rows.empty()) throw InputError(path, "no numbers in the file");
@@ -87,8 +88,10 @@ Eigen::VectorXd ReadVector(const std::string& path, const std::string& what) {
   const Eigen::MatrixXd m = ReadMatrixFile(path, nullptr);
   if (m.cols() != 1 && m.rows() != 1)
     throw InputError(path, what + ": expected a vector (one row or one column), found " +
-                               std::to_string(m.rows()) + " x " + std::to_string(m.cols()));
-  return m.cols() == 1 ? Eigen::VectorXd(m.col(0)) : Eigen::VectorXd(m.row(0).transpose());
+                               std::to_string(m.rows()) + " x " +
+                               std::to_string(m.cols()));
+  return m.cols() == 1 ? Eigen::VectorXd(m.col(0))
+                       : Eigen::VectorXd(m.row(0).transpose());
 }
 
 }  // namespace
@@ -109,12 +112,14 @@ SolveResult RunSolve(const SolveFiles& files, const std::string& solver,
   p.b = ReadVector(files.b, "b");
   if (p.b.size() != p.A.rows())
     throw InputError(files.b, "b has " + std::to_string(p.b.size()) + " entries but A (" +
-                                  files.a + ") has " + std::to_string(p.A.rows()) + " rows");
+                                  files.a + ") has " + std::to_string(p.A.rows()) +
+                                  " rows");
   if (!p.names.empty() && static_cast<Eigen::Index>(p.names.size()) != p.A.cols())
     throw InputError(files.a, "the header names " + std::to_string(p.names.size()) +
                                   " columns but rows have " + std::to_string(p.A.cols()));
   if (p.names.empty()) {
-    for (Eigen::Index j = 0; j < p.A.cols(); ++j) p.names.push_back("x" + std::to_string(j + 1));
+    for (Eigen::Index j = 0; j < p.A.cols(); ++j)
+      p.names.push_back("x" + std::to_string(j + 1));
   }
   auto read_n = [&](const std::string& path, const std::string& what) {
     Eigen::VectorXd v = ReadVector(path, what);
@@ -154,26 +159,28 @@ void WriteSolveOutputs(const SolveResult& r, bool plots, OutputDir* out,
   j["condition_number"] = json_util::Number(s.identifiability.condition_number);
   j["x"] = json_util::Vector(s.x);
   j["names"] = r.problem.names;
-  if (s.standard_error.size() > 0) j["standard_error"] = json_util::Vector(s.standard_error);
+  if (s.standard_error.size() > 0)
+    j["standard_error"] = json_util::Vector(s.standard_error);
   j["residual_norm"] = s.residual.norm();
   if (r.truth.size() > 0)
     j["relative_error"] = (s.x - r.truth).norm() / std::max(r.truth.norm(), 1e-300);
   const RegularisationReport& reg = s.regularisation;
   if (!reg.parameter_choice.empty()) {
-    j["regularisation"] = {{"parameter_choice", reg.parameter_choice},
-                           {"lambda", json_util::Number(reg.lambda)},
-                           {"truncation", reg.truncation},
-                           {"at_range_end", reg.at_range_end},
-                           {"note", reg.note},
-                           {"lambda_lcurve", json_util::Number(reg.lambda_lcurve)},
-                           {"lambda_gcv", json_util::Number(reg.lambda_gcv)},
-                           {"lambda_discrepancy", json_util::Number(reg.lambda_discrepancy)},
-                           {"lambda_quasi_optimality", json_util::Number(reg.lambda_quasi)}};
+    j["regularisation"] = {
+        {"parameter_choice", reg.parameter_choice},
+        {"lambda", json_util::Number(reg.lambda)},
+        {"truncation", reg.truncation},
+        {"at_range_end", reg.at_range_end},
+        {"note", reg.note},
+        {"lambda_lcurve", json_util::Number(reg.lambda_lcurve)},
+        {"lambda_gcv", json_util::Number(reg.lambda_gcv)},
+        {"lambda_discrepancy", json_util::Number(reg.lambda_discrepancy)},
+        {"lambda_quasi_optimality", json_util::Number(reg.lambda_quasi)}};
   }
   out->WriteText("solution.json", j.dump(2) + "\n");
   std::ostringstream csv;
-  csv << std::setprecision(17) << "name,x" << (s.standard_error.size() ? ",standard_error" : "")
-      << "\n";
+  csv << std::setprecision(17) << "name,x"
+      << (s.standard_error.size() ? ",standard_error" : "") << "\n";
   for (Eigen::Index i = 0; i < s.x.size(); ++i) {
     csv << r.problem.names[i] << "," << s.x[i];
     if (s.standard_error.size()) csv << "," << s.standard_error[i];
@@ -207,14 +214,19 @@ void WriteSolveOutputs(const SolveResult& r, bool plots, OutputDir* out,
     lc.x_label = "residual norm";
     lc.y_label = "solution (semi)norm";
     lc.log_x = lc.log_y = true;
-    lc.series.push_back(
-        {"path", PlotSeries::Style::kLines, reg.grid_residual_norm, reg.grid_solution_norm, {}, {}});
+    lc.series.push_back({"path",
+                         PlotSeries::Style::kLines,
+                         reg.grid_residual_norm,
+                         reg.grid_solution_norm,
+                         {},
+                         {}});
     Plot gp;
     gp.title = "GCV function";
     gp.x_label = reg.truncation > 0 ? "singular value kept" : "lambda";
     gp.y_label = "GCV";
     gp.log_x = gp.log_y = true;
-    gp.series.push_back({"GCV", PlotSeries::Style::kLines, reg.grid_lambda, reg.grid_gcv, {}, {}});
+    gp.series.push_back(
+        {"GCV", PlotSeries::Style::kLines, reg.grid_lambda, reg.grid_gcv, {}, {}});
     f.panels.push_back(lc);
     f.panels.push_back(gp);
   }
@@ -224,13 +236,14 @@ void WriteSolveOutputs(const SolveResult& r, bool plots, OutputDir* out,
 std::string SolveReport(const SolveResult& r) {
   std::ostringstream o;
   const LinearSolution& s = r.solution;
-  o << "problem: " << r.problem.num_rows() << " x " << r.problem.num_unknowns() << ", rank "
-    << s.identifiability.rank << ", condition number " << s.identifiability.condition_number
-    << "\nsolver " << r.solver << ": " << ToString(s.summary.status) << ": "
-    << s.summary.message << "\n";
+  o << "problem: " << r.problem.num_rows() << " x " << r.problem.num_unknowns()
+    << ", rank " << s.identifiability.rank << ", condition number "
+    << s.identifiability.condition_number << "\nsolver " << r.solver << ": "
+    << ToString(s.summary.status) << ": " << s.summary.message << "\n";
   for (const auto& w : s.summary.warnings) o << "  warning: " << w << "\n";
   if (r.truth.size() > 0)
-    o << "relative error vs reference: " << (s.x - r.truth).norm() / r.truth.norm() << "\n";
+    o << "relative error vs reference: " << (s.x - r.truth).norm() / r.truth.norm()
+      << "\n";
   o << "residual norm: " << s.residual.norm() << "\n";
   return o.str();
 }

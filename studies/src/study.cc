@@ -401,7 +401,8 @@ void ForEachParameterKey(const Field& f, const ParametrisedModel& model, Read re
         const int i = model.FindParameter(key);
         if (i < 0) {
           std::string names;
-          for (const auto& n : model.ParameterNames()) names += (names.empty() ? "" : ", ") + n;
+          for (const auto& n : model.ParameterNames())
+            names += (names.empty() ? "" : ", ") + n;
           value.Fail("no parameter or kind is called '" + key +
                      "' (kinds: mass, stiffness, added_mass; parameters: " + names + ")");
         }
@@ -415,20 +416,22 @@ double BoundValue(const Field& f) {
   if (f.IsScalar()) {
     const std::string s = f.node().Scalar();
     if (s == "-inf" || s == "-.inf") return -std::numeric_limits<double>::infinity();
-    if (s == "inf" || s == ".inf" || s == "+inf") return std::numeric_limits<double>::infinity();
+    if (s == "inf" || s == ".inf" || s == "+inf")
+      return std::numeric_limits<double>::infinity();
     if (s == "null" || s == "~" || s.empty()) return std::nan("");
   }
   return f.Num();
 }
 
 RegularisationOptions ReadRegularisation(const Field& f) {
-  f.ExpectKeys({"parameter_choice", "lambda", "noise_norm", "discrepancy_factor", "operator",
-                "grid_points", "lambda_min", "lambda_max"});
+  f.ExpectKeys({"parameter_choice", "lambda", "noise_norm", "discrepancy_factor",
+                "operator", "grid_points", "lambda_min", "lambda_max"});
   RegularisationOptions o;
   if (f.Has("parameter_choice")) o.parameter_choice = f["parameter_choice"].Str();
   if (f.Has("lambda")) o.lambda = f["lambda"].NonNegative();
   if (f.Has("noise_norm")) o.noise_norm = f["noise_norm"].Positive();
-  if (f.Has("discrepancy_factor")) o.discrepancy_factor = f["discrepancy_factor"].Positive();
+  if (f.Has("discrepancy_factor"))
+    o.discrepancy_factor = f["discrepancy_factor"].Positive();
   if (f.Has("operator")) o.op = f["operator"].Str();
   if (f.Has("grid_points")) o.grid_points = f["grid_points"].Int();
   if (f.Has("lambda_min")) o.lambda_min = f["lambda_min"].NonNegative();
@@ -442,25 +445,32 @@ RegularisationOptions ReadRegularisation(const Field& f) {
 }
 
 SolverSpec ReadSolver(const Field& sf, const ParametrisedModel& model) {
-  sf.ExpectKeys({"label", "method", "name", "rank_tolerance", "scale_columns", "truncation",
-                 "regularisation", "prior_mean", "max_iterations", "kkt_tolerance",
-                 "confidence_level", "trust_region", "hessian", "sensitivity"});
+  sf.ExpectKeys({"label", "method", "name", "rank_tolerance", "scale_columns",
+                 "truncation", "regularisation", "prior_mean", "max_iterations",
+                 "kkt_tolerance", "confidence_level", "trust_region", "hessian",
+                 "sensitivity"});
   SolverSpec spec;
   if (sf.Has("method")) spec.method = sf["method"].Str();
   if (spec.method != "linear" && spec.method != "sensitivity")
-    sf["method"].Fail("unknown method '" + spec.method +
-                      "' (expected linear: the paper's Z d = F, or sensitivity: iterative "
-                      "eigen-sensitivity updating)");
-  spec.name = sf.Has("name") ? sf["name"].Str() : (spec.method == "linear" ? "lstsq" : "ceres");
+    sf["method"].Fail(
+        "unknown method '" + spec.method +
+        "' (expected linear: the paper's Z d = F, or sensitivity: iterative "
+        "eigen-sensitivity updating)");
+  spec.name =
+      sf.Has("name") ? sf["name"].Str() : (spec.method == "linear" ? "lstsq" : "ceres");
   spec.label = sf.Has("label") ? sf["label"].Str() : spec.method + " (" + spec.name + ")";
   LinearSolverOptions& lo = spec.linear;
   NonlinearSolverOptions& no = spec.nonlinear;
-  if (sf.Has("rank_tolerance")) lo.relative_rank_tolerance = sf["rank_tolerance"].Positive();
+  if (sf.Has("rank_tolerance"))
+    lo.relative_rank_tolerance = sf["rank_tolerance"].Positive();
   if (sf.Has("scale_columns")) lo.scale_columns = sf["scale_columns"].Bool();
   if (sf.Has("truncation")) lo.truncation = sf["truncation"].Int();
-  if (sf.Has("regularisation")) lo.regularisation = ReadRegularisation(sf["regularisation"]);
-  if (sf.Has("max_iterations")) lo.max_iterations = no.max_iterations = sf["max_iterations"].Int();
-  if (sf.Has("kkt_tolerance")) lo.kkt_tolerance = no.kkt_tolerance = sf["kkt_tolerance"].Positive();
+  if (sf.Has("regularisation"))
+    lo.regularisation = ReadRegularisation(sf["regularisation"]);
+  if (sf.Has("max_iterations"))
+    lo.max_iterations = no.max_iterations = sf["max_iterations"].Int();
+  if (sf.Has("kkt_tolerance"))
+    lo.kkt_tolerance = no.kkt_tolerance = sf["kkt_tolerance"].Positive();
   if (sf.Has("confidence_level")) lo.confidence_level = sf["confidence_level"].Positive();
   if (sf.Has("trust_region")) no.trust_region = sf["trust_region"].Str();
   if (sf.Has("hessian")) no.hessian = sf["hessian"].Str();
@@ -482,8 +492,9 @@ SolverSpec ReadSolver(const Field& sf, const ParametrisedModel& model) {
     if (tf.Has("min_mac")) so.min_mac = tf["min_mac"].NonNegative();
     if (tf.Has("prior_sigma")) {
       so.prior_sigma = Eigen::VectorXd::Zero(model.num_parameters());
-      ForEachParameterKey(tf["prior_sigma"], model,
-                          [&](const Field& v, int i) { so.prior_sigma[i] = v.NonNegative(); });
+      ForEachParameterKey(tf["prior_sigma"], model, [&](const Field& v, int i) {
+        so.prior_sigma[i] = v.NonNegative();
+      });
       if (spec.prior_mean.size() > 0) so.prior_mean = spec.prior_mean;
     }
     const std::string invalid = so.Validate();
@@ -583,19 +594,23 @@ Study LoadStudy(const std::string& path) {
     const int n = study.model.num_parameters();
     study.lower = Eigen::VectorXd::Constant(n, -std::numeric_limits<double>::infinity());
     study.upper = Eigen::VectorXd::Constant(n, std::numeric_limits<double>::infinity());
-    ForEachParameterKey(top["parameters"]["bounds"], study.model, [&](const Field& v, int i) {
-      const std::vector<Field> pair = v.Items();
-      if (pair.size() != 2) v.Fail("expected [lower, upper] (use -inf / inf for none)");
-      const double lo = BoundValue(pair[0]), hi = BoundValue(pair[1]);
-      if (std::isnan(lo) || std::isnan(hi)) v.Fail("a bound is empty; use -inf / inf for none");
-      if (lo > hi) v.Fail("lower bound exceeds upper bound");
-      study.lower[i] = lo;
-      study.upper[i] = hi;
-    });
+    ForEachParameterKey(top["parameters"]["bounds"], study.model,
+                        [&](const Field& v, int i) {
+                          const std::vector<Field> pair = v.Items();
+                          if (pair.size() != 2)
+                            v.Fail("expected [lower, upper] (use -inf / inf for none)");
+                          const double lo = BoundValue(pair[0]), hi = BoundValue(pair[1]);
+                          if (std::isnan(lo) || std::isnan(hi))
+                            v.Fail("a bound is empty; use -inf / inf for none");
+                          if (lo > hi) v.Fail("lower bound exceeds upper bound");
+                          study.lower[i] = lo;
+                          study.upper[i] = hi;
+                        });
     for (const auto& [name, value] : study.fixed) {
       const int i = study.model.FindParameter(name);
       if (value < study.lower[i] || value > study.upper[i])
-        top["parameters"]["fix"][name].Fail("the fixed value is outside the parameter's bounds");
+        top["parameters"]["fix"][name].Fail(
+            "the fixed value is outside the parameter's bounds");
     }
   }
   if (top.Has("parameters") && top["parameters"].Has("equalities")) {

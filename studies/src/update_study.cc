@@ -212,12 +212,14 @@ void WriteUpdateOutputs(const UpdateResult& r, bool plots, OutputDir* out,
                          {"elements", p.elements},
                          {"estimate", json_util::Number(r.solution.x[i])},
                          {"fixed", static_cast<bool>(r.fixed[i])}};
-    if (r.solution.standard_error.size() == static_cast<Eigen::Index>(r.parameters.size())) {
+    if (r.solution.standard_error.size() ==
+        static_cast<Eigen::Index>(r.parameters.size())) {
       pj["standard_error"] = json_util::Number(r.solution.standard_error[i]);
       pj["interval"] = {json_util::Number(r.solution.interval_lower[i]),
                         json_util::Number(r.solution.interval_upper[i])};
     }
-    if (r.solution.bias_estimate.size() == static_cast<Eigen::Index>(r.parameters.size())) {
+    if (r.solution.bias_estimate.size() ==
+        static_cast<Eigen::Index>(r.parameters.size())) {
       pj["resolution"] = json_util::Number(r.solution.resolution(i, i));
       pj["bias_estimate"] = json_util::Number(r.solution.bias_estimate[i]);
     }
@@ -251,20 +253,21 @@ void WriteUpdateOutputs(const UpdateResult& r, bool plots, OutputDir* out,
                  {"noise_estimated_from_residual", r.solution.noise_estimated}};
   const RegularisationReport& reg = r.solution.regularisation;
   if (!reg.parameter_choice.empty()) {
-    j["regularisation"] = {{"parameter_choice", reg.parameter_choice},
-                           {"lambda", json_util::Number(reg.lambda)},
-                           {"truncation", reg.truncation},
-                           {"at_range_end", reg.at_range_end},
-                           {"note", reg.note},
-                           {"lambda_lcurve", json_util::Number(reg.lambda_lcurve)},
-                           {"lambda_gcv", json_util::Number(reg.lambda_gcv)},
-                           {"lambda_discrepancy", json_util::Number(reg.lambda_discrepancy)},
-                           {"lambda_quasi_optimality", json_util::Number(reg.lambda_quasi)},
-                           {"grid_lambda", reg.grid_lambda},
-                           {"grid_residual_norm", reg.grid_residual_norm},
-                           {"grid_solution_norm", reg.grid_solution_norm},
-                           {"grid_gcv", reg.grid_gcv},
-                           {"grid_curvature", reg.grid_curvature}};
+    j["regularisation"] = {
+        {"parameter_choice", reg.parameter_choice},
+        {"lambda", json_util::Number(reg.lambda)},
+        {"truncation", reg.truncation},
+        {"at_range_end", reg.at_range_end},
+        {"note", reg.note},
+        {"lambda_lcurve", json_util::Number(reg.lambda_lcurve)},
+        {"lambda_gcv", json_util::Number(reg.lambda_gcv)},
+        {"lambda_discrepancy", json_util::Number(reg.lambda_discrepancy)},
+        {"lambda_quasi_optimality", json_util::Number(reg.lambda_quasi)},
+        {"grid_lambda", reg.grid_lambda},
+        {"grid_residual_norm", reg.grid_residual_norm},
+        {"grid_solution_norm", reg.grid_solution_norm},
+        {"grid_gcv", reg.grid_gcv},
+        {"grid_curvature", reg.grid_curvature}};
   }
   j["states"] = nlohmann::json::array();
   for (const StateComparison& c : r.states) {
@@ -313,7 +316,8 @@ void WriteUpdateOutputs(const UpdateResult& r, bool plots, OutputDir* out,
   }
   fp.series.push_back(est);
   if (r.preset) fp.series.push_back(pre);
-  if (r.solution.standard_error.size() == static_cast<Eigen::Index>(r.parameters.size())) {
+  if (r.solution.standard_error.size() ==
+      static_cast<Eigen::Index>(r.parameters.size())) {
     std::ostringstream label;
     label << r.solution.confidence_level * 100 << " % interval";
     PlotSeries ci{label.str(), PlotSeries::Style::kErrorBars, {}, {}, {}, {}};
@@ -393,14 +397,20 @@ void WriteUpdateOutputs(const UpdateResult& r, bool plots, OutputDir* out,
     lc.x_label = "residual norm ||Z d - F||";
     lc.y_label = "solution (semi)norm ||L (d - d0)||";
     lc.log_x = lc.log_y = true;
-    lc.series.push_back({"path", PlotSeries::Style::kLines, reg.grid_residual_norm,
-                         reg.grid_solution_norm, {}, {}});
+    lc.series.push_back({"path",
+                         PlotSeries::Style::kLines,
+                         reg.grid_residual_norm,
+                         reg.grid_solution_norm,
+                         {},
+                         {}});
     Plot gp;
     gp.title = "GCV function";
-    gp.x_label = r.solution.regularisation.truncation > 0 ? "singular value kept" : "lambda";
+    gp.x_label =
+        r.solution.regularisation.truncation > 0 ? "singular value kept" : "lambda";
     gp.y_label = "GCV";
     gp.log_x = gp.log_y = true;
-    gp.series.push_back({"GCV", PlotSeries::Style::kLines, reg.grid_lambda, reg.grid_gcv, {}, {}});
+    gp.series.push_back(
+        {"GCV", PlotSeries::Style::kLines, reg.grid_lambda, reg.grid_gcv, {}, {}});
     // The chosen point: the grid point nearest the chosen lambda (tsvd: k).
     std::size_t at = 0;
     for (std::size_t i = 0; i < reg.grid_lambda.size(); ++i) {
@@ -412,10 +422,18 @@ void WriteUpdateOutputs(const UpdateResult& r, bool plots, OutputDir* out,
           std::abs(std::log(reg.grid_lambda[at] / reg.lambda)))
         at = i;
     }
-    lc.series.push_back({"chosen", PlotSeries::Style::kPoints, {reg.grid_residual_norm[at]},
-                         {reg.grid_solution_norm[at]}, {}, {}});
-    gp.series.push_back({"chosen", PlotSeries::Style::kPoints, {reg.grid_lambda[at]},
-                         {reg.grid_gcv[at]}, {}, {}});
+    lc.series.push_back({"chosen",
+                         PlotSeries::Style::kPoints,
+                         {reg.grid_residual_norm[at]},
+                         {reg.grid_solution_norm[at]},
+                         {},
+                         {}});
+    gp.series.push_back({"chosen",
+                         PlotSeries::Style::kPoints,
+                         {reg.grid_lambda[at]},
+                         {reg.grid_gcv[at]},
+                         {},
+                         {}});
     lf.panels = {lc, gp};
     figures.emplace_back("lcurve_gcv", lf);
   }

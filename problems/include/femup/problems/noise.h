@@ -20,8 +20,8 @@ bool NoiseDistributionFromString(const std::string& text, NoiseDistribution* d);
 struct NoiseModel {
   double level = 0;  // Nl, relative (0.05 = 5 %)
   NoiseDistribution distribution = NoiseDistribution::kGaussian;
-  bool eigenvalues = true;       // corrupt lambda = (2 pi f)^2
-  bool shapes = true;            // corrupt every mode-shape entry
+  bool eigenvalues = true;  // corrupt lambda = (2 pi f)^2
+  bool shapes = true;       // corrupt every mode-shape entry
   // Level for the shape entries; negative = the same as `level`.
   double shape_level = -1;
   std::string Validate() const;  // empty when valid

@@ -27,7 +27,7 @@ struct FactorSolve {
 };
 
 // Throws InputError for unusable input (e.g. a fixed name that matches nothing).
-FactorSolve SolveFactors(const Study& study, const SolverSpec& spec, const Modes& fem_modes,
-                         const std::vector<ModalData>& measured);
+FactorSolve SolveFactors(const Study& study, const SolverSpec& spec,
+                         const Modes& fem_modes, const std::vector<ModalData>& measured);
 
 }  // namespace femup

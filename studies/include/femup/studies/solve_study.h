@@ -19,10 +19,10 @@ namespace femup {
 Eigen::MatrixXd ReadMatrixFile(const std::string& path, std::vector<std::string>* names);
 
 struct SolveFiles {
-  std::string a, b;               // required
-  std::string lower, upper;       // optional vectors (n)
-  std::string truth;              // optional reference solution (n), for the report
-  double data_sigma = 0;          // > 0: the noise standard deviation of b (weights 1/sigma)
+  std::string a, b;          // required
+  std::string lower, upper;  // optional vectors (n)
+  std::string truth;         // optional reference solution (n), for the report
+  double data_sigma = 0;     // > 0: the noise standard deviation of b (weights 1/sigma)
 };
 
 struct SolveResult {

@@ -48,7 +48,7 @@ struct NoiseStudySpec {
   double shape_level_ratio = 1.0;
   // Solvers compared draw by draw on the same noisy data; empty = the study's solver.
   std::vector<SolverSpec> compare;
-  int draws = 200;             // random draws per level
+  int draws = 200;  // random draws per level
   unsigned long long seed = 1;
   NoiseDistribution distribution = NoiseDistribution::kGaussian;
   double figure_level = 0.05;  // level shown in the estimated-vs-preset figure
