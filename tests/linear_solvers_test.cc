@@ -114,10 +114,6 @@ LinearSolverOptions Unregularised(const std::string& name) {
   return o;
 }
 
-bool Bounded(const std::string& name) {
-  return name == "bvls" || name == "ceres" || name == "ipopt";
-}
-
 class EverySolver : public ::testing::TestWithParam<std::string> {
  protected:
   std::unique_ptr<LinearSolver> Solver() const {
