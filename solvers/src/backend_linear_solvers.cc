@@ -1,14 +1,13 @@
 #include "femup/solvers/backend_linear_solvers.h"
 
 #include <algorithm>
-#include <boost/math/distributions/normal.hpp>
-#include <boost/math/distributions/students_t.hpp>
 #include <cmath>
 #include <sstream>
 
 #include "femup/errors.h"
 #include "femup/problems/nonlinear_problem.h"
 #include "femup/solvers/nonlinear_solver.h"
+#include "femup/solvers/uncertainty.h"
 #include "nonlinear_common.h"
 
 namespace femup {
@@ -18,10 +17,6 @@ namespace {
 // How close to a bound (relative to max(1, |bound|)) counts as on it, as in
 // CheckKkt.
 constexpr double kActiveTolerance = 1e-9;
-
-// Quantiles in double precision (Boost's default promotes to long double).
-using Policy =
-    boost::math::policies::policy<boost::math::policies::promote_double<false>>;
 
 // Names of the free unknowns that lie on one of their bounds.
 std::vector<std::string> OnBounds(const LinearProblem& problem,
@@ -71,20 +66,12 @@ LinearSolution SolveOnBackend(const std::string& backend,
   solution.covariance = answer.covariance;
   if (solution.covariance.size() == 0) return solution;
 
-  solution.standard_error = solution.covariance.diagonal().cwiseMax(0.0).cwiseSqrt();
-  const double p = 0.5 * (1 + options.confidence_level);
-  double quantile = 0;
-  if (solution.noise_estimated) {
-    const double dof =
-        problem.num_rows() - nonlinear_internal::EstimatedParameters(nonlinear);
-    quantile = boost::math::quantile(
-        boost::math::students_t_distribution<double, Policy>(dof), p);
-  } else {
-    quantile =
-        boost::math::quantile(boost::math::normal_distribution<double, Policy>(), p);
-  }
-  solution.interval_lower = solution.x - quantile * solution.standard_error;
-  solution.interval_upper = solution.x + quantile * solution.standard_error;
+  // Student t on the residual's degrees of freedom when the noise is estimated.
+  SetIntervals(
+      solution.noise_estimated
+          ? problem.num_rows() - nonlinear_internal::EstimatedParameters(nonlinear)
+          : 0.0,
+      &solution);
   const std::vector<std::string> on_bounds = OnBounds(problem, solution.x);
   if (!on_bounds.empty()) {
     std::string list;

@@ -2,12 +2,11 @@
 
 #include <Eigen/QR>
 #include <Eigen/SVD>
-#include <boost/math/distributions/normal.hpp>
-#include <boost/math/distributions/students_t.hpp>
 #include <cmath>
 #include <sstream>
 
 #include "femup/errors.h"
+#include "femup/solvers/uncertainty.h"
 
 namespace femup::internal {
 
@@ -15,10 +14,14 @@ Eigen::MatrixXd ReducedProblem::ToX(const Eigen::VectorXd& z) const {
   return particular + basis * z;
 }
 
-ReducedProblem Reduce(const LinearProblem& problem) {
+ReducedProblem Reduce(const LinearProblem& problem, const std::string& solver) {
   const std::string invalid = problem.Validate();
   if (!invalid.empty()) throw InputError("linear problem", invalid);
   ReducedProblem r;
+  if (problem.has_bounds()) {
+    r.warnings.push_back("bounds ignored: " + solver +
+                         " does not take bounds (bvls, ceres and ipopt do)");
+  }
   const int n = problem.num_unknowns();
   r.weighted = Weighted(problem);
   r.free = problem.FreeUnknowns();
@@ -61,13 +64,6 @@ ReducedProblem Reduce(const LinearProblem& problem) {
   return r;
 }
 
-double IntervalQuantile(double confidence_level, double dof) {
-  const double p = 0.5 + 0.5 * confidence_level;
-  if (dof <= 0)
-    return boost::math::quantile(boost::math::normal_distribution<double>(), p);
-  return boost::math::quantile(boost::math::students_t_distribution<double>(dof), p);
-}
-
 void FillUncertainty(const LinearProblem& problem, const Eigen::MatrixXd& x_map,
                      const Eigen::VectorXd& weighted_residual, double parameters_used,
                      double confidence_level, LinearSolution* solution) {
@@ -86,10 +82,7 @@ void FillUncertainty(const LinearProblem& problem, const Eigen::MatrixXd& x_map,
     variance = weighted_residual.squaredNorm() / dof;
   }
   solution->covariance = variance * x_map * x_map.transpose();
-  solution->standard_error = solution->covariance.diagonal().cwiseMax(0.0).cwiseSqrt();
-  const double q = IntervalQuantile(confidence_level, dof);
-  solution->interval_lower = solution->x - q * solution->standard_error;
-  solution->interval_upper = solution->x + q * solution->standard_error;
+  SetIntervals(dof, solution);
 }
 
 }  // namespace femup::internal

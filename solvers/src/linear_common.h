@@ -25,12 +25,14 @@ struct ReducedProblem {
   // Labels of z: the free unknowns' names and groups without equalities,
   // "combination[k]" with them.
   std::vector<std::string> names, groups;
-  WeightedSystem weighted;  // the full weighted system (n columns)
+  WeightedSystem weighted;            // the full weighted system (n columns)
+  std::vector<std::string> warnings;  // e.g. bounds the solver cannot take
   Eigen::MatrixXd ToX(const Eigen::VectorXd& z) const;
 };
 
-// Validates (InputError "linear problem" before any work) and reduces.
-ReducedProblem Reduce(const LinearProblem& problem);
+// Validates (InputError "linear problem" before any work) and reduces. Bounds
+// are dropped: `solver` (its name) cannot take them, and a warning says so.
+ReducedProblem Reduce(const LinearProblem& problem, const std::string& solver);
 
 // Covariance, standard errors and intervals of an estimator x = particular + X b_w
 // (X: n x m), `parameters_used` the degrees of freedom the fit consumed (rank or
@@ -39,9 +41,6 @@ ReducedProblem Reduce(const LinearProblem& problem);
 void FillUncertainty(const LinearProblem& problem, const Eigen::MatrixXd& x_map,
                      const Eigen::VectorXd& weighted_residual, double parameters_used,
                      double confidence_level, LinearSolution* solution);
-
-// Two-sided quantile: normal (dof <= 0) or Student t with `dof` degrees of freedom.
-double IntervalQuantile(double confidence_level, double dof);
 
 class Stopwatch {
  public:

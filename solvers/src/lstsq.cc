@@ -48,7 +48,7 @@ Eigen::VectorXd Refine(const Eigen::MatrixXd& a, const Eigen::VectorXd& b,
 
 LinearSolution LstsqSolver::Solve(const LinearProblem& problem) const {
   const internal::Stopwatch clock;
-  const internal::ReducedProblem r = internal::Reduce(problem);
+  const internal::ReducedProblem r = internal::Reduce(problem, name());
   const int k = static_cast<int>(r.A.cols());
 
   LinearSolution solution;
@@ -111,10 +111,8 @@ LinearSolution LstsqSolver::Solve(const LinearProblem& problem) const {
         "scale_columns = true may keep directions this one truncated");
   }
   solution.summary.message = msg.str();
-  if (problem.has_bounds()) {
-    solution.summary.warnings.push_back(
-        "bounds ignored: lstsq does not take bounds (bvls, ceres and ipopt do)");
-  }
+  solution.summary.warnings.insert(solution.summary.warnings.end(), r.warnings.begin(),
+                                   r.warnings.end());
   solution.summary.time_seconds = clock.Seconds();
   return solution;
 }

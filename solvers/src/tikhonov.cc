@@ -27,7 +27,7 @@ LinearSolution TikhonovSolver::Solve(const LinearProblem& problem) const {
   const internal::Stopwatch clock;
   const std::string invalid = options_.regularisation.Validate();
   if (!invalid.empty()) throw InputError("solver.regularisation", invalid);
-  const internal::ReducedProblem r = internal::Reduce(problem);
+  const internal::ReducedProblem r = internal::Reduce(problem, name());
   const Eigen::MatrixXd l = Operator(problem, options_.regularisation.op);
 
   // ||L (x - x0)|| in the reduced coordinates: x = p + N z, so L N z - L (x0 - p);
@@ -69,10 +69,8 @@ LinearSolution TikhonovSolver::Solve(const LinearProblem& problem) const {
       << " effective parameters of " << r.A.cols();
   solution.summary.message = msg.str();
   if (!rep.note.empty()) solution.summary.warnings.push_back(rep.note);
-  if (problem.has_bounds()) {
-    solution.summary.warnings.push_back(
-        "bounds ignored: tikhonov does not take bounds (bvls, ceres and ipopt do)");
-  }
+  solution.summary.warnings.insert(solution.summary.warnings.end(), r.warnings.begin(),
+                                   r.warnings.end());
   solution.summary.time_seconds = clock.Seconds();
   return solution;
 }

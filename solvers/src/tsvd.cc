@@ -28,7 +28,7 @@ LinearSolution TsvdSolver::Solve(const LinearProblem& problem) const {
   const internal::Stopwatch clock;
   const std::string invalid = options_.regularisation.Validate();
   if (!invalid.empty()) throw InputError("solver.regularisation", invalid);
-  const internal::ReducedProblem r = internal::Reduce(problem);
+  const internal::ReducedProblem r = internal::Reduce(problem, name());
   const int m = static_cast<int>(r.A.rows());
 
   LinearSolution solution;
@@ -147,10 +147,8 @@ LinearSolution TsvdSolver::Solve(const LinearProblem& problem) const {
       << rep.parameter_choice << ")";
   solution.summary.message = msg.str();
   if (!rep.note.empty()) solution.summary.warnings.push_back(rep.note);
-  if (problem.has_bounds()) {
-    solution.summary.warnings.push_back(
-        "bounds ignored: tsvd does not take bounds (bvls, ceres and ipopt do)");
-  }
+  solution.summary.warnings.insert(solution.summary.warnings.end(), r.warnings.begin(),
+                                   r.warnings.end());
   solution.summary.time_seconds = clock.Seconds();
   return solution;
 }

@@ -1,12 +1,12 @@
 #include "femup/studies/factor_solve.h"
 
 #include <algorithm>
-#include <boost/math/distributions/normal.hpp>
 
 #include "femup/errors.h"
 #include "femup/problems/correction_system.h"
 #include "femup/problems/eigen_sensitivity.h"
 #include "femup/solvers/nonlinear_solver.h"
+#include "femup/solvers/uncertainty.h"
 
 namespace femup {
 
@@ -67,14 +67,8 @@ FactorSolve SolveFactors(const Study& study, const SolverSpec& spec,
   s.noise_estimated = false;  // residuals are divided by the stated sigmas
   s.confidence_level = spec.linear.confidence_level;
   if (p.A.size() > 0 && ns.x.size() == n) s.residual = p.A * ns.x - p.b;
-  if (ns.covariance.size() > 0) {
-    s.covariance = ns.covariance;
-    s.standard_error = ns.covariance.diagonal().cwiseMax(0.0).cwiseSqrt();
-    const double q = boost::math::quantile(boost::math::normal_distribution<double>(),
-                                           0.5 + 0.5 * s.confidence_level);
-    s.interval_lower = s.x - q * s.standard_error;
-    s.interval_upper = s.x + q * s.standard_error;
-  }
+  s.covariance = ns.covariance;
+  SetIntervals(0.0, &s);  // known noise: normal quantile
   return out;
 }
 

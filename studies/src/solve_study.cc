@@ -10,6 +10,7 @@
 #include "femup/matrix_market.h"
 #include "femup/plot.h"
 #include "json_util.h"
+#include "regularisation_output.h"
 #include "render_staged.h"
 
 namespace femup {
@@ -166,16 +167,7 @@ void WriteSolveOutputs(const SolveResult& r, bool plots, OutputDir* out,
     j["relative_error"] = (s.x - r.truth).norm() / std::max(r.truth.norm(), 1e-300);
   const RegularisationReport& reg = s.regularisation;
   if (!reg.parameter_choice.empty()) {
-    j["regularisation"] = {
-        {"parameter_choice", reg.parameter_choice},
-        {"lambda", json_util::Number(reg.lambda)},
-        {"truncation", reg.truncation},
-        {"at_range_end", reg.at_range_end},
-        {"note", reg.note},
-        {"lambda_lcurve", json_util::Number(reg.lambda_lcurve)},
-        {"lambda_gcv", json_util::Number(reg.lambda_gcv)},
-        {"lambda_discrepancy", json_util::Number(reg.lambda_discrepancy)},
-        {"lambda_quasi_optimality", json_util::Number(reg.lambda_quasi)}};
+    j["regularisation"] = RegularisationJson(reg);
   }
   out->WriteText("solution.json", j.dump(2) + "\n");
   std::ostringstream csv;
@@ -209,26 +201,9 @@ void WriteSolveOutputs(const SolveResult& r, bool plots, OutputDir* out,
   if (!reg.grid_lambda.empty()) {
     f.columns = 3;
     f.width_px = 1500;
-    Plot lc;
-    lc.title = "L-curve";
-    lc.x_label = "residual norm";
-    lc.y_label = "solution (semi)norm";
-    lc.log_x = lc.log_y = true;
-    lc.series.push_back({"path",
-                         PlotSeries::Style::kLines,
-                         reg.grid_residual_norm,
-                         reg.grid_solution_norm,
-                         {},
-                         {}});
-    Plot gp;
-    gp.title = "GCV function";
-    gp.x_label = reg.truncation > 0 ? "singular value kept" : "lambda";
-    gp.y_label = "GCV";
-    gp.log_x = gp.log_y = true;
-    gp.series.push_back(
-        {"GCV", PlotSeries::Style::kLines, reg.grid_lambda, reg.grid_gcv, {}, {}});
-    f.panels.push_back(lc);
-    f.panels.push_back(gp);
+    for (const Plot& panel :
+         RegularisationPlots(reg, "residual norm", "solution (semi)norm"))
+      f.panels.push_back(panel);
   }
   RenderStaged(f, "solution", out, warnings);
 }

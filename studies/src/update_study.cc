@@ -12,6 +12,7 @@
 #include "femup/plot.h"
 #include "femup/studies/factor_solve.h"
 #include "json_util.h"
+#include "regularisation_output.h"
 #include "render_staged.h"
 
 namespace femup {
@@ -253,21 +254,7 @@ void WriteUpdateOutputs(const UpdateResult& r, bool plots, OutputDir* out,
                  {"noise_estimated_from_residual", r.solution.noise_estimated}};
   const RegularisationReport& reg = r.solution.regularisation;
   if (!reg.parameter_choice.empty()) {
-    j["regularisation"] = {
-        {"parameter_choice", reg.parameter_choice},
-        {"lambda", json_util::Number(reg.lambda)},
-        {"truncation", reg.truncation},
-        {"at_range_end", reg.at_range_end},
-        {"note", reg.note},
-        {"lambda_lcurve", json_util::Number(reg.lambda_lcurve)},
-        {"lambda_gcv", json_util::Number(reg.lambda_gcv)},
-        {"lambda_discrepancy", json_util::Number(reg.lambda_discrepancy)},
-        {"lambda_quasi_optimality", json_util::Number(reg.lambda_quasi)},
-        {"grid_lambda", reg.grid_lambda},
-        {"grid_residual_norm", reg.grid_residual_norm},
-        {"grid_solution_norm", reg.grid_solution_norm},
-        {"grid_gcv", reg.grid_gcv},
-        {"grid_curvature", reg.grid_curvature}};
+    j["regularisation"] = RegularisationJson(reg);
   }
   j["states"] = nlohmann::json::array();
   for (const StateComparison& c : r.states) {
@@ -392,49 +379,8 @@ void WriteUpdateOutputs(const UpdateResult& r, bool plots, OutputDir* out,
     Figure lf;
     lf.columns = 2;
     lf.width_px = 1100;
-    Plot lc;
-    lc.title = "L-curve (" + reg.parameter_choice + ")";
-    lc.x_label = "residual norm ||Z d - F||";
-    lc.y_label = "solution (semi)norm ||L (d - d0)||";
-    lc.log_x = lc.log_y = true;
-    lc.series.push_back({"path",
-                         PlotSeries::Style::kLines,
-                         reg.grid_residual_norm,
-                         reg.grid_solution_norm,
-                         {},
-                         {}});
-    Plot gp;
-    gp.title = "GCV function";
-    gp.x_label =
-        r.solution.regularisation.truncation > 0 ? "singular value kept" : "lambda";
-    gp.y_label = "GCV";
-    gp.log_x = gp.log_y = true;
-    gp.series.push_back(
-        {"GCV", PlotSeries::Style::kLines, reg.grid_lambda, reg.grid_gcv, {}, {}});
-    // The chosen point: the grid point nearest the chosen lambda (tsvd: k).
-    std::size_t at = 0;
-    for (std::size_t i = 0; i < reg.grid_lambda.size(); ++i) {
-      if (reg.truncation > 0) {
-        at = std::min<std::size_t>(reg.truncation - 1, reg.grid_lambda.size() - 1);
-        break;
-      }
-      if (std::abs(std::log(reg.grid_lambda[i] / reg.lambda)) <
-          std::abs(std::log(reg.grid_lambda[at] / reg.lambda)))
-        at = i;
-    }
-    lc.series.push_back({"chosen",
-                         PlotSeries::Style::kPoints,
-                         {reg.grid_residual_norm[at]},
-                         {reg.grid_solution_norm[at]},
-                         {},
-                         {}});
-    gp.series.push_back({"chosen",
-                         PlotSeries::Style::kPoints,
-                         {reg.grid_lambda[at]},
-                         {reg.grid_gcv[at]},
-                         {},
-                         {}});
-    lf.panels = {lc, gp};
+    lf.panels = RegularisationPlots(reg, "residual norm ||Z d - F||",
+                                    "solution (semi)norm ||L (d - d0)||");
     figures.emplace_back("lcurve_gcv", lf);
   }
   for (const auto& [name, figure] : figures) {
