@@ -123,10 +123,67 @@ TEST(EigenSensitivity, ZeroResidualsAtTheTrueFactors) {
   EXPECT_GT(Residuals(p, Eigen::VectorXd::Zero(13)).norm(), 10.0);
 }
 
-// The documented definitions, computed another way: the measured shape scaled
-// so that its largest-magnitude entry is +-1, the model shape scaled to the same
-// Euclidean norm and sign.
-TEST(EigenSensitivity, ResidualsFollowTheirDefinition) {
+// "mass": mass-normalised data are compared as they are, so any other scaling of
+// the data shows, and the common scaling of mass and stiffness is no longer free.
+TEST(EigenSensitivity, MassScaledShapesCarryTheScale) {
+  const PaperChainScenario s = PaperChain(3);
+  std::vector<ModalData> data = TrueData(s, 2, 2);  // mass-normalised shapes
+  data[1].shapes.col(1) *= -1;                      // the sign stays free
+  EigenSensitivityOptions options;
+  options.shape_scaling = "mass";
+  options.shape_noise = "entry";
+  const NonlinearProblem p = BuildEigenSensitivityProblem(s.model, data, options);
+  EXPECT_LT(Residuals(p, s.preset).cwiseAbs().maxCoeff(), 1e-9);
+  data[1].shapes.col(1) *= 1.1;
+  const NonlinearProblem scaled = BuildEigenSensitivityProblem(s.model, data, options);
+  // 10 % larger data, each entry 2 % noise relative to itself: 5 sigma per entry.
+  EXPECT_NEAR(std::abs(Residuals(scaled, s.preset)[Row(scaled, "water mode 2 shape x3")]),
+              0.1 / 1.1 / 0.02, 1e-6);
+
+  Eigen::VectorXd r;
+  Eigen::MatrixXd jac;
+  std::string why;
+  ASSERT_TRUE(p.evaluate(s.preset, &r, &jac, &why)) << why;
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(jac);
+  EXPECT_GT(svd.singularValues()[12], 1e-4 * svd.singularValues()[0]);
+}
+
+// "fit": the measured shape scaled so that its largest-magnitude entry is +-1,
+// the model shape by the scale that minimises the weighted residuals of the
+// mode, here found by a one-dimensional least-squares fit written out.
+TEST(EigenSensitivity, FittedScaleResidualsFollowTheirDefinition) {
+  const PaperChainScenario s = PaperChain(3);
+  std::mt19937_64 rng(42);
+  NoiseModel noise;
+  noise.level = 0.02;
+  std::vector<ModalData> data = TrueData(s, 2, 2);
+  for (ModalData& d : data) d = Corrupt(d, noise, &rng);
+  data[1] = AtSensors(data[1], {0, 1, 3});
+  EigenSensitivityOptions options;
+  options.shape_sigma = 0.05;
+  options.shape_noise = "entry";
+  const NonlinearProblem p = BuildEigenSensitivityProblem(s.model, data, options);
+  const Eigen::VectorXd x = 0.5 * s.preset;
+  const Eigen::VectorXd r = Residuals(p, x);
+
+  const Modes wet = SolveModes(s.model.UpdatedStiffness(x), s.model.UpdatedWetMass(x));
+  const Eigen::VectorXd measured =
+      data[1].shapes.col(1) / data[1].shapes.col(1).cwiseAbs().maxCoeff();
+  const Eigen::VectorXd model = wet.shapes.col(1)(data[1].sensor_dofs);
+  const Eigen::VectorXd w = (0.05 * measured.cwiseAbs()).cwiseInverse();
+  const Eigen::VectorXd a = w.cwiseProduct(model), b = w.cwiseProduct(measured);
+  const double c = a.colPivHouseholderQr().solve(b)[0];
+  const std::vector<std::string> dofs = {"x1", "x2", "x4"};
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(r[Row(p, "water mode 2 shape " + dofs[i])],
+                (c * model[i] - measured[i]) / (0.05 * std::abs(measured[i])), 1e-9);
+  }
+}
+
+// "unit", computed another way: the measured shape scaled so that its
+// largest-magnitude entry is +-1, the model shape scaled to the same Euclidean
+// norm and sign.
+TEST(EigenSensitivity, UnitScaledResidualsFollowTheirDefinition) {
   const PaperChainScenario s = PaperChain(3);
   std::mt19937_64 rng(42);
   NoiseModel noise;
@@ -137,6 +194,7 @@ TEST(EigenSensitivity, ResidualsFollowTheirDefinition) {
   EigenSensitivityOptions options;
   options.frequency_sigma = 0.01;
   options.shape_sigma = 0.05;
+  options.shape_scaling = "unit";
   const NonlinearProblem p = BuildEigenSensitivityProblem(s.model, data, options);
   const Eigen::VectorXd x = 0.5 * s.preset;
   const Eigen::VectorXd r = Residuals(p, x);
@@ -176,10 +234,16 @@ TEST(EigenSensitivity, JacobianMatchesFiniteDifferences) {
   options.tikhonov_operator(0, 1) = -1;
   options.tikhonov_operator(1, 5) = 1;
   options.tikhonov_operator(1, 6) = -1;
-  const NonlinearProblem p = BuildEigenSensitivityProblem(s.model, data, options);
-  for (const Eigen::VectorXd& x :
-       {Eigen::VectorXd(Eigen::VectorXd::Zero(13)), Eigen::VectorXd(0.7 * s.preset)}) {
-    EXPECT_LT(JacobianError(p, x, 1e-4), 1e-8);  // measured: 8e-11
+  for (const char* scaling : {"fit", "unit", "mass"}) {
+    for (const char* noise_model : {"max", "entry"}) {
+      options.shape_scaling = scaling;
+      options.shape_noise = noise_model;
+      const NonlinearProblem p = BuildEigenSensitivityProblem(s.model, data, options);
+      for (const Eigen::VectorXd& x : {Eigen::VectorXd(Eigen::VectorXd::Zero(13)),
+                                       Eigen::VectorXd(0.7 * s.preset)}) {
+        EXPECT_LT(JacobianError(p, x, 1e-4), 1e-8) << scaling << " " << noise_model;
+      }
+    }
   }
 }
 
@@ -403,6 +467,9 @@ TEST(EigenSensitivity, BadInputNamesTheField) {
   o = ok;
   o.shape_sigma = -1;
   expect_error(data, o, "shape_sigma");
+  o = ok;
+  o.shape_scaling = "peak";
+  expect_error(data, o, "shape_scaling");
   o = ok;
   o.extra_modes = -1;
   expect_error(data, o, "extra_modes");

@@ -15,6 +15,7 @@
 #include "femup/measurement.h"
 #include "femup/modal.h"
 #include "femup/problems/correction_system.h"
+#include "femup/problems/nist_strd.h"
 #include "femup/problems/paper_chain.h"
 #include "femup/solvers/linear_solver.h"
 
@@ -325,6 +326,64 @@ TEST(Lstsq, CovarianceFromResidualUsesStudentT) {
   // t_{0.975, 9} = 2.262157 (tables).
   const double half = s.interval_upper[0] - s.x[0];
   EXPECT_NEAR(half / std::sqrt(cov(0, 0)), 2.262157, 1e-5);
+}
+
+// The backends stop on first-order tolerances; on NIST Wampler5 (huge residual)
+// Ceres stops with about 1 correct digit and Ipopt keeps none on Filip (condition
+// number 5e9). Both must say so instead of reporting "solved".
+TEST(BackendLinearSolvers, TooFewCorrectDigitsAreNotSolved) {
+  const std::string dir = std::string(FEMUP_TEST_DATA_DIR) + "/nist/linear/";
+  const struct {
+    const char* dataset;
+    const char* solver;
+  } cases[] = {{"Wampler5", "ceres"}, {"Filip", "ipopt"}};
+  for (const auto& c : cases) {
+    const NistLinearDataset data = ReadNistLinear(dir + c.dataset + ".dat");
+    const LinearSolution s = CreateLinearSolver(c.solver)->Solve(data.Problem());
+    // The measured error behind the status, against the certified values.
+    double worst = 0;
+    for (int i = 0; i < data.num_parameters(); ++i) {
+      const double cert = static_cast<double>(data.certified[i]);
+      worst = std::max(worst, std::abs(s.x[i] - cert) / std::abs(cert));
+    }
+    EXPECT_GT(worst, 1e-4) << c.dataset << " " << c.solver;
+    EXPECT_EQ(s.summary.status, SolverStatus::kNoConvergence)
+        << c.dataset << " " << c.solver;
+    EXPECT_NE(s.summary.message.find("correct digits"), std::string::npos)
+        << s.summary.message;
+  }
+  // Where the backend does reach the minimiser, no such complaint.
+  const NistLinearDataset norris = ReadNistLinear(dir + "Norris.dat");
+  for (const char* solver : {"ceres", "ipopt"}) {
+    const LinearSolution s = CreateLinearSolver(solver)->Solve(norris.Problem());
+    EXPECT_EQ(s.summary.status, SolverStatus::kSolved) << solver;
+    for (const std::string& w : s.summary.warnings) {
+      EXPECT_EQ(w.find("correct digits"), std::string::npos) << solver << ": " << w;
+    }
+  }
+}
+
+// The paper's form without a fixed factor has the common-scaling null space:
+// the backends find a minimiser but must say it is not unique, and which
+// direction the data cannot see.
+TEST(BackendLinearSolvers, RankDeficiencyIsReported) {
+  const PaperChainScenario sc = PaperChain(3);
+  const Modes fem = SolveModes(sc.model.stiffness(), sc.model.mass());
+  const std::vector<ModalData> states = {
+      PredictModes(sc.model, sc.preset, Immersion::kDry, 2, "air"),
+      PredictModes(sc.model, sc.preset, Immersion::kWet, 2, "water")};
+  const LinearProblem p = BuildCorrectionSystem(sc.model, fem, states, {});
+  for (const char* solver : {"ceres", "ipopt"}) {
+    const LinearSolution s = CreateLinearSolver(solver)->Solve(p);
+    bool reported = false;
+    for (const std::string& w : s.summary.warnings) {
+      reported =
+          reported || (w.find("rank deficient (rank 12 of 13") != std::string::npos &&
+                       w.find("common scaling") != std::string::npos);
+    }
+    EXPECT_TRUE(reported) << solver;
+    EXPECT_LT((p.A * s.x - p.b).norm(), 1e-6 * p.b.norm()) << solver;  // a minimiser
+  }
 }
 
 TEST(Tsvd, MatchesTheTruncatedPseudoInverse) {

@@ -17,12 +17,15 @@ namespace {
 struct StateTerms {
   std::string name;
   bool wet = false;
-  std::vector<int> sensors;       // model DOF of each shape row
-  Eigen::VectorXd lambdas;        // measured eigenvalues
-  Eigen::MatrixXd shapes;         // measured shapes at the sensors (or empty)
-  Eigen::MatrixXd unit_shapes;    // w = psi / ||psi||, when shape residuals are on
+  std::vector<int> sensors;  // model DOF of each shape row
+  Eigen::VectorXd lambdas;   // measured eigenvalues
+  Eigen::MatrixXd shapes;    // measured shapes at the sensors (or empty)
+  // The measured shapes as the residuals compare them, when shape residuals
+  // are on: psi / max |psi| ("fit"), psi / ||psi|| ("unit") or psi ("mass").
+  Eigen::MatrixXd targets;
   Eigen::MatrixXd shape_weights;  // 1 / standard deviation, per sensor and mode
   bool shape_residuals = false;
+  std::string scaling;  // EigenSensitivityOptions::shape_scaling
   bool pair_by_mac = false;
   int num_model_modes = 0;  // model modes solved for pairing
   int first_row = 0;
@@ -115,22 +118,33 @@ bool EvaluateState(const Context& c, const StateTerms& st, const SparseMatrix& k
     const double lambda_weight = 1.0 / (st.lambdas[j] * c.frequency_sigma);
     (*r)[row] = (lambda / st.lambdas[j] - 1.0) / c.frequency_sigma;
 
-    Eigen::VectorXd u;  // unit model shape at the sensors
-    double s_norm = 0, sign = 1;
+    // The model shape at the sensors enters as c s: c = sign / ||s|| ("unit"),
+    // sign ("mass") or the fitted N / D ("fit").
+    Eigen::VectorXd s;
+    double c_scale = 1, fit_d = 0;
     const Eigen::Index num_sensors = static_cast<Eigen::Index>(st.sensors.size());
     if (st.shape_residuals) {
-      const Eigen::VectorXd s = phi(st.sensors);
-      s_norm = s.norm();
-      if (!(s_norm > 0)) {
+      s = phi(st.sensors);
+      const Eigen::VectorXd target = st.targets.col(j);
+      if (!(s.norm() > 0)) {
         std::ostringstream msg;
         msg << st.name << " mode " << j + 1 << ": the paired model mode "
             << pairing[j] + 1 << " is zero at every sensor";
         return Fail(why, msg.str());
       }
-      u = s / s_norm;
-      sign = u.dot(st.unit_shapes.col(j)) >= 0 ? 1.0 : -1.0;
+      const double sign = s.dot(target) >= 0 ? 1.0 : -1.0;
+      if (st.scaling == "fit") {
+        // c minimises sum_i W_i^2 (c s_i - psi_i)^2.
+        const Eigen::ArrayXd w2 = st.shape_weights.col(j).array().square();
+        fit_d = (w2 * s.array().square()).sum();
+        c_scale = (w2 * target.array() * s.array()).sum() / fit_d;
+      } else if (st.scaling == "unit") {
+        c_scale = sign / s.norm();
+      } else {
+        c_scale = sign;
+      }
       r->segment(row + 1, num_sensors) =
-          st.shape_weights.col(j).cwiseProduct(sign * u - st.unit_shapes.col(j));
+          st.shape_weights.col(j).cwiseProduct(c_scale * s - target);
     }
     if (jac == nullptr) continue;
 
@@ -153,10 +167,19 @@ bool EvaluateState(const Context& c, const StateTerms& st, const SparseMatrix& k
       }
       const EigenpairDerivative d = nelson->Derivative(*dk, *dm);
       (*jac)(row, p) = lambda_weight * d.eigenvalue;
-      // d(s / ||s||) = (I - u u') ds / ||s||.
       const Eigen::VectorXd ds = d.eigenvector(st.sensors);
+      // d(c s) = dc s + c ds.
+      double dc = 0;
+      if (st.scaling == "fit") {  // dc = (dN - c dD) / D
+        const Eigen::ArrayXd w2 = st.shape_weights.col(j).array().square();
+        const double dn = (w2 * st.targets.col(j).array() * ds.array()).sum();
+        const double dd = 2.0 * (w2 * s.array() * ds.array()).sum();
+        dc = (dn - c_scale * dd) / fit_d;
+      } else if (st.scaling == "unit") {  // d(1 / ||s||) = -s' ds / ||s||^3
+        dc = -c_scale * s.dot(ds) / s.squaredNorm();
+      }
       jac->block(row + 1, p, num_sensors, 1) =
-          (sign / s_norm) * st.shape_weights.col(j).cwiseProduct(ds - u * u.dot(ds));
+          st.shape_weights.col(j).cwiseProduct(dc * s + c_scale * ds);
     }
   }
   return true;
@@ -207,6 +230,8 @@ std::string EigenSensitivityOptions::Validate() const {
   if (!(frequency_sigma > 0) || !std::isfinite(frequency_sigma)) {
     return "frequency_sigma: must be positive and finite";
   }
+  if (shape_scaling != "fit" && shape_scaling != "unit" && shape_scaling != "mass")
+    return "shape_scaling: expected fit, unit or mass, got '" + shape_scaling + "'";
   if (shape_noise != "max" && shape_noise != "entry")
     return "shape_noise: expected max or entry, got '" + shape_noise + "'";
   if (!(entry_floor > 0 && entry_floor <= 1)) return "entry_floor: must be in (0, 1]";
@@ -299,14 +324,23 @@ NonlinearProblem BuildEigenSensitivityProblem(const ParametrisedModel& model,
     st.num_model_modes = std::min(num_dofs, data.num_modes() + options.extra_modes);
     st.first_row = row;
     if (st.shape_residuals) {
-      st.unit_shapes = data.shapes.colwise().normalized();
-      st.shape_weights.resize(st.unit_shapes.rows(), data.num_modes());
+      st.scaling = options.shape_scaling;
+      st.targets = data.shapes;
+      st.shape_weights.resize(data.shapes.rows(), data.num_modes());
       for (int j = 0; j < data.num_modes(); ++j) {
-        const double peak = st.unit_shapes.col(j).cwiseAbs().maxCoeff();
-        for (Eigen::Index k = 0; k < st.unit_shapes.rows(); ++k) {
+        double peak = data.shapes.col(j).cwiseAbs().maxCoeff();
+        if (!(peak > 0)) {
+          throw InputError(where + ".shapes",
+                           "mode " + std::to_string(j + 1) + " is zero at every sensor");
+        }
+        if (st.scaling == "fit") st.targets.col(j) /= peak;
+        if (st.scaling == "unit") st.targets.col(j).normalize();
+        // The noise is relative to the shape in the residual's scale.
+        peak = st.targets.col(j).cwiseAbs().maxCoeff();
+        for (Eigen::Index k = 0; k < st.targets.rows(); ++k) {
           const double scale =
               options.shape_noise == "entry"
-                  ? std::max(std::abs(st.unit_shapes(k, j)), options.entry_floor * peak)
+                  ? std::max(std::abs(st.targets(k, j)), options.entry_floor * peak)
                   : peak;
           st.shape_weights(k, j) = 1.0 / (options.shape_sigma * scale);
         }

@@ -1,13 +1,17 @@
 #include "femup/solvers/backend_linear_solvers.h"
 
+#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 
 #include "femup/errors.h"
 #include "femup/problems/nonlinear_problem.h"
+#include "femup/solvers/identifiability.h"
 #include "femup/solvers/nonlinear_solver.h"
 #include "femup/solvers/uncertainty.h"
+#include "linear_common.h"
 #include "nonlinear_common.h"
 
 namespace femup {
@@ -38,6 +42,99 @@ std::vector<std::string> OnBounds(const LinearProblem& problem,
   return out;
 }
 
+// Fewer estimated correct digits than this: the answer is not "solved".
+constexpr double kMinimumDigits = 4.0;
+// Fewer than this: a warning.
+constexpr double kWarningDigits = 8.0;
+
+// The backends stop on first-order tolerances, which on an ill-conditioned
+// problem can leave the answer far from the exact minimiser while they report
+// convergence (Ceres on NIST Wampler5 kept 1 digit, Ipopt on Filip none). This
+// checks the answer by the data, on the unknowns that are free and off their
+// bounds: a rank-deficient system is reported with the directions it cannot
+// see, and the distance to the exact minimiser (one least-squares correction
+// from a column-scaled SVD) is turned into correct digits. Too few digits make
+// the answer "no_convergence".
+void CheckAgainstExactMinimiser(const LinearProblem& problem,
+                                const LinearSolverOptions& options,
+                                const std::string& backend, LinearSolution* solution) {
+  if (solution->x.size() != problem.num_unknowns() || !solution->x.allFinite()) return;
+  const internal::ReducedProblem reduced = internal::Reduce(problem, backend);
+  const Eigen::VectorXd z =
+      reduced.basis.transpose() * (solution->x - reduced.particular);
+  // Without equalities z are the free unknowns: leave out those on a bound.
+  std::vector<int> inactive;
+  const std::vector<std::string> on_bounds = OnBounds(problem, solution->x);
+  for (Eigen::Index k = 0; k < z.size(); ++k) {
+    if (!reduced.has_equalities && !reduced.names.empty() &&
+        std::find(on_bounds.begin(), on_bounds.end(), reduced.names[k]) !=
+            on_bounds.end()) {
+      continue;
+    }
+    if (reduced.has_equalities && !on_bounds.empty()) return;  // not separable
+    inactive.push_back(static_cast<int>(k));
+  }
+  if (inactive.empty() || reduced.A.rows() == 0) return;
+  Eigen::MatrixXd a = reduced.A(Eigen::all, inactive);
+  std::vector<std::string> names, groups;
+  for (int k : inactive) {
+    if (k < static_cast<int>(reduced.names.size())) names.push_back(reduced.names[k]);
+    if (k < static_cast<int>(reduced.groups.size())) groups.push_back(reduced.groups[k]);
+  }
+  const Identifiability id = AnalyseIdentifiability(
+      a, names, groups, options.relative_rank_tolerance, options.scale_columns);
+  if (id.rank < static_cast<int>(inactive.size())) {
+    std::ostringstream msg;
+    msg << "rank deficient (rank " << id.rank << " of " << inactive.size()
+        << " unknowns): the data do not determine";
+    for (std::size_t i = 0; i < id.null_directions.size(); ++i) {
+      msg << (i == 0 ? " " : "; ") << id.null_directions[i].description;
+    }
+    msg << ". This answer is one of many minimisers (where " << backend
+        << " stopped from its start), not the minimum-norm one: fix "
+        << (id.null_directions.empty() ? std::string("an unknown")
+                                       : id.null_directions[0].best_to_fix)
+        << " or add an equality, or use lstsq for the minimum-norm answer";
+    solution->summary.warnings.push_back(msg.str());
+    return;
+  }
+  // One exact least-squares correction on the inactive unknowns.
+  Eigen::VectorXd scale = Eigen::VectorXd::Ones(a.cols());
+  if (options.scale_columns) {
+    for (Eigen::Index j = 0; j < a.cols(); ++j) {
+      const double norm = a.col(j).norm();
+      if (norm > 0) scale[j] = 1.0 / norm;
+    }
+  }
+  const Eigen::VectorXd r = reduced.b - reduced.A * z;
+  const Eigen::BDCSVD<Eigen::MatrixXd> svd(a * scale.asDiagonal(),
+                                           Eigen::ComputeThinU | Eigen::ComputeThinV);
+  const Eigen::VectorXd step = scale.asDiagonal() * svd.solve(r);
+  double worst = 0;  // largest relative change of an unknown
+  const double zmax = z(inactive).cwiseAbs().maxCoeff();
+  for (Eigen::Index k = 0; k < step.size(); ++k) {
+    const double size = std::max(std::abs(z[inactive[k]]), 1e-300 + 1e-12 * zmax);
+    worst = std::max(worst, std::abs(step[k]) / size);
+  }
+  if (!std::isfinite(worst)) return;
+  const double digits = worst > 0 ? -std::log10(worst) : 16.0;
+  if (digits >= kWarningDigits) return;
+  std::ostringstream msg;
+  msg << std::fixed << std::setprecision(1) << backend
+      << " stopped short of the exact least-squares minimiser: about "
+      << std::max(digits, 0.0) << " correct digits (largest relative change "
+      << std::scientific << std::setprecision(1) << worst
+      << " of an unknown under one exact correction; column-scaled condition number "
+      << id.condition_number << "). Use lstsq for ill-conditioned unconstrained "
+      << "problems, or bvls with bounds";
+  if (digits < kMinimumDigits && solution->summary.usable()) {
+    solution->summary.status = SolverStatus::kNoConvergence;
+    solution->summary.message = msg.str();
+  } else {
+    solution->summary.warnings.push_back(msg.str());
+  }
+}
+
 // Solves `problem` on the nonlinear backend called `backend` and reports it as
 // a linear solution.
 LinearSolution SolveOnBackend(const std::string& backend,
@@ -61,6 +158,7 @@ LinearSolution SolveOnBackend(const std::string& backend,
   solution.x = answer.x;
   solution.residual = problem.A * answer.x - problem.b;
   solution.summary = answer.summary;
+  CheckAgainstExactMinimiser(problem, options, backend, &solution);
   solution.confidence_level = options.confidence_level;
   solution.noise_estimated = !problem.noise_known();
   solution.covariance = answer.covariance;

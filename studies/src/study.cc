@@ -481,12 +481,13 @@ SolverSpec ReadSolver(const Field& sf, const ParametrisedModel& model) {
   }
   if (sf.Has("sensitivity")) {
     const Field tf = sf["sensitivity"];
-    tf.ExpectKeys({"frequency_sigma", "shape_sigma", "shape_noise", "use_shapes",
-                   "extra_modes", "min_mac", "prior_sigma"});
+    tf.ExpectKeys({"frequency_sigma", "shape_sigma", "shape_noise", "shape_scaling",
+                   "use_shapes", "extra_modes", "min_mac", "prior_sigma"});
     EigenSensitivityOptions& so = spec.sensitivity;
     if (tf.Has("frequency_sigma")) so.frequency_sigma = tf["frequency_sigma"].Positive();
     if (tf.Has("shape_sigma")) so.shape_sigma = tf["shape_sigma"].Positive();
     if (tf.Has("shape_noise")) so.shape_noise = tf["shape_noise"].Str();
+    if (tf.Has("shape_scaling")) so.shape_scaling = tf["shape_scaling"].Str();
     if (tf.Has("use_shapes")) so.use_shapes = tf["use_shapes"].Bool();
     if (tf.Has("extra_modes")) so.extra_modes = tf["extra_modes"].Int();
     if (tf.Has("min_mac")) so.min_mac = tf["min_mac"].NonNegative();

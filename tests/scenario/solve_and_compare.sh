@@ -61,7 +61,7 @@ open("compare.yaml", "w").write(text)
 PY
 "$FEMUP" noise compare.yaml -o out_cmp -q || fail "noise compare"
 [ -s out_cmp/rm_by_solver.png ] || fail "comparison plot"
-[ "$(json out_cmp/noise.json "len(j['comparison'])")" = 6 ] || fail "six solvers"
+[ "$(json out_cmp/noise.json "len(j['comparison'])")" = 8 ] || fail "eight solvers"
 [ "$(json out_cmp/noise.json "j['comparison'][2]['rm_average_percent'][0] < j['comparison'][0]['rm_average_percent'][0]")" = True ] \
   || fail "sensitivity not better than linear"
 echo "solve_and_compare: ok"

@@ -10,27 +10,31 @@
 //   eigenvalue:  (lambda / lambda_meas - 1) / frequency_sigma,
 //                lambda_meas = (2 pi f_meas)^2; label "<state> mode <j> lambda".
 //   shape (when use_shapes and the state has shapes), one per sensor i:
-//                (sign * u_i - w_i) / (shape_sigma * max_i |w_i|) (shape_noise
-//                "max"), or / (shape_sigma * max(|w_i|, entry_floor max |w|))
-//                ("entry"),
-//                w = psi / ||psi|| (psi: the measured shape at the sensors),
-//                u = s / ||s|| (s: phi at the sensor DOFs), sign = +1 when
-//                s' psi >= 0, else -1; label "<state> mode <j> shape <dof label>".
-//     That is: the measured shape scaled so that its largest-magnitude entry is
-//     +-1, the model shape scaled to the same Euclidean norm and sign, their
-//     difference over shape_sigma.
-//     The data's shape scaling is free: a positive factor leaves the residuals
-//     unchanged, a negative one negates them.
+//                (c s_i - t_i) / (shape_sigma * max_i |t_i|) (shape_noise "max"),
+//                or / (shape_sigma * max(|t_i|, entry_floor max_i |t_i|))
+//                ("entry"); label "<state> mode <j> shape <dof label>".
+//                s: phi at the sensor DOFs; psi: the measured shape there;
+//                t and c by shape_scaling:
+//                  "fit"  t = psi / max_i |psi_i| (largest entry +-1), c the
+//                         modal scale factor that minimises the mode's weighted
+//                         shape residuals (it also carries the sign);
+//                  "unit" t = psi / ||psi||, c = sign / ||s||;
+//                  "mass" t = psi (mass-normalised data), c = sign;
+//                sign = +1 when s' psi >= 0, else -1.
+//     With "fit" and "unit" the data's shape scaling is free: a positive factor
+//     leaves the residuals unchanged, a negative one negates them. "mass" uses
+//     the scale, which fixes the mass/stiffness scaling below.
 // then, optionally:
 //   prior:       (x_i - prior_mean_i) / prior_sigma_i for each parameter with a
 //                prior (0 < prior_sigma_i < inf); label "prior <name>".
 //   Tikhonov:    tikhonov_lambda * L (x - prior_mean) (prior_mean empty: zero),
 //                L = tikhonov_operator (empty: identity); label "tikhonov <row>".
 //
-// Mass and stiffness scale together without changing eigenvalues or unit-scaled
-// shapes, so (1 + mass and stiffness factors, added-mass factors) scaled by a
-// common number is a null direction of the data residuals: fix one factor
-// (problem.fixed; the paper fixes mass 4), or give a prior.
+// Mass and stiffness scale together without changing eigenvalues or the
+// directions of the shapes, so (1 + mass and stiffness factors, added-mass
+// factors) scaled by a common number is a null direction of the data residuals
+// unless shape_scaling is "mass": fix one factor (problem.fixed; the paper fixes
+// mass 4), or give a prior.
 #pragma once
 
 #include <Eigen/Core>
@@ -58,6 +62,11 @@ struct EigenSensitivityOptions {
   // entry so that near-nodal sensors do not get unbounded weight).
   std::string shape_noise = "max";
   double entry_floor = 0.05;
+  // How the model shape is scaled to the measured one: "fit" (by the weighted
+  // least-squares modal scale factor), "unit" (both to unit Euclidean norm) or
+  // "mass" (the measured shapes are mass-normalised, e.g. from FRFs with a
+  // measured force: compared as they are, only the sign aligned).
+  std::string shape_scaling = "fit";
   // Model modes computed beyond the number measured in a state (capped at the
   // number of DOFs), so that pairing can pick a model mode out of order.
   int extra_modes = 4;
