@@ -31,6 +31,15 @@ std::string LinearProblem::Validate() const {
   }
   if (!A.allFinite()) return "A has a NaN or infinite entry";
   if (!b.allFinite()) return "b has a NaN or infinite entry";
+  if (source_rows != 0 && source_rows < A.rows()) {
+    msg << "source_rows is " << source_rows << "; expected 0 or at least A's " << A.rows()
+        << " rows";
+    return msg.str();
+  }
+  if (!(residual_offset >= 0) || !std::isfinite(residual_offset)) {
+    msg << "residual_offset is " << residual_offset << "; expected finite and >= 0";
+    return msg.str();
+  }
   for (std::size_t k = 0; k < fixed.size(); ++k) {
     const int i = fixed[k].first;
     if (i < 0 || i >= A.cols()) {

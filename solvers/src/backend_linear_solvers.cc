@@ -167,7 +167,7 @@ LinearSolution SolveOnBackend(const std::string& backend,
   // Student t on the residual's degrees of freedom when the noise is estimated.
   SetIntervals(
       solution.noise_estimated
-          ? problem.num_rows() - nonlinear_internal::EstimatedParameters(nonlinear)
+          ? problem.data_rows() - nonlinear_internal::EstimatedParameters(nonlinear)
           : 0.0,
       &solution);
   const std::vector<std::string> on_bounds = OnBounds(problem, solution.x);

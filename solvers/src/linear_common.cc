@@ -67,7 +67,7 @@ ReducedProblem Reduce(const LinearProblem& problem, const std::string& solver) {
 void FillUncertainty(const LinearProblem& problem, const Eigen::MatrixXd& x_map,
                      const Eigen::VectorXd& weighted_residual, double parameters_used,
                      double confidence_level, LinearSolution* solution) {
-  const double m = problem.num_rows();
+  const double m = problem.data_rows();
   solution->confidence_level = confidence_level;
   solution->noise_estimated = !problem.noise_known();
   double variance = 1.0, dof = 0.0;
@@ -79,7 +79,7 @@ void FillUncertainty(const LinearProblem& problem, const Eigen::MatrixXd& x_map,
           "(give data_sigma or weights)");
       return;
     }
-    variance = weighted_residual.squaredNorm() / dof;
+    variance = (weighted_residual.squaredNorm() + problem.residual_offset) / dof;
   }
   solution->covariance = variance * x_map * x_map.transpose();
   SetIntervals(dof, solution);

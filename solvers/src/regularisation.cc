@@ -59,7 +59,8 @@ std::string RegularisationOptions::Validate() const {
 }
 
 TikhonovPath::TikhonovPath(const Eigen::MatrixXd& a, const Eigen::VectorXd& b,
-                           const Eigen::MatrixXd& l, const Eigen::VectorXd& x0)
+                           const Eigen::MatrixXd& l, const Eigen::VectorXd& x0,
+                           int source_rows, double residual_offset)
     : m_(static_cast<int>(a.rows())), n_(static_cast<int>(a.cols())), a_(a) {
   if (b.size() != a.rows()) throw InputError("tikhonov", "A and b sizes differ");
   if (l.size() > 0 && l.cols() != a.cols())
@@ -107,7 +108,9 @@ TikhonovPath::TikhonovPath(const Eigen::MatrixXd& a, const Eigen::VectorXd& b,
   u_ = svd.matrixU();
   v_ = svd.matrixV();
   beta_ = u_.transpose() * b_bar;
-  delta0_ = std::sqrt(std::max(0.0, b_bar.squaredNorm() - beta_.squaredNorm()));
+  delta0_ = std::sqrt(std::max(0.0, b_bar.squaredNorm() - beta_.squaredNorm()) +
+                      std::max(0.0, residual_offset));
+  gcv_rows_ = std::max(m_, source_rows);
 }
 
 namespace {
@@ -152,7 +155,7 @@ double TikhonovPath::EffectiveParameters(double lambda) const {
 }
 
 double TikhonovPath::Gcv(double lambda) const {
-  const double dof = m_ - EffectiveParameters(lambda);
+  const double dof = gcv_rows_ - EffectiveParameters(lambda);
   if (dof <= 0) return std::numeric_limits<double>::infinity();
   const double r = ResidualNorm(lambda);
   return r * r / (dof * dof);

@@ -43,7 +43,7 @@ LinearSolution TikhonovSolver::Solve(const LinearProblem& problem) const {
   LinearSolution solution;
   solution.identifiability = AnalyseIdentifiability(
       r.A, r.names, r.groups, options_.relative_rank_tolerance, true);
-  const TikhonovPath path(r.A, r.b, ln, z0);
+  const TikhonovPath path(r.A, r.b, ln, z0, problem.data_rows(), problem.residual_offset);
   RegularisationReport& rep = solution.regularisation;
   const double lambda = ChooseLambda(path, options_.regularisation, &rep);
 

@@ -29,7 +29,7 @@ LinearSolution TsvdSolver::Solve(const LinearProblem& problem) const {
   const std::string invalid = options_.regularisation.Validate();
   if (!invalid.empty()) throw InputError("solver.regularisation", invalid);
   const internal::ReducedProblem r = internal::Reduce(problem, name());
-  const int m = static_cast<int>(r.A.rows());
+  const int m = problem.data_rows();
 
   LinearSolution solution;
   solution.identifiability = AnalyseIdentifiability(
@@ -44,7 +44,8 @@ LinearSolution TsvdSolver::Solve(const LinearProblem& problem) const {
     solution.summary.message = "tsvd: the matrix is zero";
     return solution;
   }
-  const double delta0_sq = std::max(0.0, r.b.squaredNorm() - beta.squaredNorm());
+  const double delta0_sq =
+      std::max(0.0, r.b.squaredNorm() - beta.squaredNorm()) + problem.residual_offset;
   // Residual and solution norms for k = 1..rank.
   std::vector<double> res(rank + 1), norm(rank + 1);
   double tail = beta.squaredNorm(), head = 0;

@@ -40,7 +40,16 @@ struct LinearProblem {
   Eigen::MatrixXd regulariser;
   Eigen::VectorXd prior;
 
+  // A compressed problem (e.g. normal_correction_system.h): A and b stand for a
+  // larger system of `source_rows` rows whose squared residual norm is
+  // ||A x - b||^2 + residual_offset for every x. Degrees of freedom, noise
+  // estimates and parameter-choice rules use these. 0 and 0: an ordinary problem.
+  int source_rows = 0;
+  double residual_offset = 0;
+
   int num_rows() const { return static_cast<int>(A.rows()); }
+  // Rows of the data the problem stands for (source_rows, or A's rows).
+  int data_rows() const { return source_rows > 0 ? source_rows : num_rows(); }
   int num_unknowns() const { return static_cast<int>(A.cols()); }
   bool has_bounds() const;  // any finite bound on a free unknown
   bool has_equalities() const { return equality_matrix.rows() > 0; }

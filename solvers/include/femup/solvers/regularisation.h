@@ -50,9 +50,13 @@ struct RegularisationReport {
 // identity), x0 (n; empty = zero).
 class TikhonovPath {
  public:
+  // `source_rows` and `residual_offset`: for a compressed problem (see
+  // LinearProblem), the rows it stands for (GCV's degrees of freedom) and the
+  // squared residual that no x changes; 0 and 0 for an ordinary one.
   TikhonovPath(const Eigen::MatrixXd& a, const Eigen::VectorXd& b,
                const Eigen::MatrixXd& l = Eigen::MatrixXd(),
-               const Eigen::VectorXd& x0 = Eigen::VectorXd());
+               const Eigen::VectorXd& x0 = Eigen::VectorXd(), int source_rows = 0,
+               double residual_offset = 0);
 
   Eigen::VectorXd Solve(double lambda) const;
   double ResidualNorm(double lambda) const;  // ||A x - b||
@@ -77,6 +81,7 @@ class TikhonovPath {
 
  private:
   int m_ = 0, n_ = 0, p_ = 0;
+  int gcv_rows_ = 0;              // rows the data stand for (GCV)
   Eigen::VectorXd sigma_, beta_;  // standard-form singular values and U' b_bar
   Eigen::MatrixXd v_;             // standard-form right singular vectors (p x p')
   Eigen::MatrixXd l_pinv_a_;      // A-weighted pseudo-inverse of L (n x p)

@@ -1,0 +1,42 @@
+// A large 2D plane frame (storeys x bays of columns and beams, each member
+// split into several Euler-Bernoulli beam-column elements, columns clamped at
+// the base), built directly as a ParametrisedModel with correction factors on
+// substructures: a test model of 10^5 DOF and 10^3 factors for the solver
+// benchmarks (the element-by-element Structure does not scale to that size).
+//
+// Substructures: in every storey, the columns and the beams are cut into
+// `blocks_per_storey` blocks of consecutive bays; each block of columns and each
+// block of beams carries one stiffness factor ("stiffness[s<storey>:col<block>]",
+// "stiffness[s<storey>:beam<block>]"), one mass factor per storey
+// ("mass[s<storey>]", all its members), and one added-mass factor per column
+// block in the lowest `wet_storeys` storeys ("added_mass[s<storey>:col<block>]",
+// transverse consistent mass of the columns, the members that water loads).
+// Storeys are numbered from 1 at the base, blocks from 1 at the left.
+// DOFs: three per free node, "n<k>:ux", "n<k>:uy", "n<k>:rz"; joints first
+// (column line by column line, bottom up, k from 1), then the nodes inside the
+// members.
+#pragma once
+
+#include "femup/fe.h"
+#include "femup/model.h"
+
+namespace femup {
+
+struct PlaneFrameSpec {
+  int storeys = 10;
+  int bays = 5;
+  double storey_height = 3.5;  // m
+  double bay_width = 6.0;      // m
+  int elements_per_member = 4;
+  int blocks_per_storey = 1;  // column and beam blocks per storey (<= bays)
+  int wet_storeys = 0;        // lowest storeys whose columns carry added mass
+  BeamSection column{210e9, 0.02, 4e-4, 7850};
+  BeamSection beam{210e9, 0.012, 2.5e-4, 7850};
+  // Empty when valid; otherwise "<field>: what is wrong".
+  std::string Validate() const;
+};
+
+// Throws InputError naming the field for an invalid spec.
+ParametrisedModel BuildPlaneFrame(const PlaneFrameSpec& spec);
+
+}  // namespace femup

@@ -1,0 +1,206 @@
+#include "femup/plane_frame.h"
+
+#include <Eigen/SparseCore>
+#include <array>
+#include <cmath>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "femup/errors.h"
+
+namespace femup {
+namespace {
+
+using Triplets = std::vector<Eigen::Triplet<double>>;
+
+void Scatter(const Matrix6& ke, const std::array<int, 6>& dof, Triplets* out) {
+  for (int i = 0; i < 6; ++i) {
+    if (dof[i] < 0) continue;
+    for (int j = 0; j < 6; ++j) {
+      if (dof[j] >= 0 && ke(i, j) != 0.0) out->emplace_back(dof[i], dof[j], ke(i, j));
+    }
+  }
+}
+
+SparseMatrix Assemble(int n, const Triplets& t) {
+  SparseMatrix m(n, n);
+  m.setFromTriplets(t.begin(), t.end());
+  m.makeCompressed();
+  return m;
+}
+
+std::string CheckSection(const BeamSection& s, const std::string& field) {
+  const double v[4] = {s.E, s.A, s.I, s.rho};
+  for (double x : v) {
+    if (!(x > 0) || !std::isfinite(x)) {
+      return field + ": E, A, I and rho must be positive and finite";
+    }
+  }
+  return "";
+}
+
+}  // namespace
+
+std::string PlaneFrameSpec::Validate() const {
+  std::ostringstream msg;
+  if (storeys < 1)
+    msg << "storeys: must be >= 1, got " << storeys;
+  else if (bays < 1)
+    msg << "bays: must be >= 1, got " << bays;
+  else if (!(storey_height > 0) || !std::isfinite(storey_height))
+    msg << "storey_height: must be positive and finite";
+  else if (!(bay_width > 0) || !std::isfinite(bay_width))
+    msg << "bay_width: must be positive and finite";
+  else if (elements_per_member < 1)
+    msg << "elements_per_member: must be >= 1, got " << elements_per_member;
+  else if (blocks_per_storey < 1 || blocks_per_storey > bays)
+    msg << "blocks_per_storey: must be in 1.." << bays << ", got " << blocks_per_storey;
+  else if (wet_storeys < 0 || wet_storeys > storeys)
+    msg << "wet_storeys: must be in 0.." << storeys << ", got " << wet_storeys;
+  if (!msg.str().empty()) return msg.str();
+  std::string bad = CheckSection(column, "column");
+  if (bad.empty()) bad = CheckSection(beam, "beam");
+  return bad;
+}
+
+ParametrisedModel BuildPlaneFrame(const PlaneFrameSpec& spec) {
+  const std::string invalid = spec.Validate();
+  if (!invalid.empty()) {
+    const auto colon = invalid.find(':');
+    throw InputError("model." + invalid.substr(0, colon), invalid.substr(colon + 2));
+  }
+  const int lines = spec.bays + 1;
+  const int e = spec.elements_per_member;
+  // Joint (c, s): column line c, level s (0 = base, clamped).
+  std::vector<double> x, y;  // free node coordinates
+  auto joint = [&](int c, int s) { return s == 0 ? -1 : c * spec.storeys + (s - 1); };
+  for (int c = 0; c < lines; ++c) {
+    for (int s = 1; s <= spec.storeys; ++s) {
+      x.push_back(c * spec.bay_width);
+      y.push_back(s * spec.storey_height);
+    }
+  }
+  // Block of bay/column line c: consecutive lines share a block.
+  auto block = [&](int c) {
+    return std::min(spec.blocks_per_storey - 1, c * spec.blocks_per_storey / lines);
+  };
+  auto beam_block = [&](int bay) { return bay * spec.blocks_per_storey / spec.bays; };
+
+  struct Member {
+    int a, b;  // end nodes (-1 = base)
+    double xa, ya, xb, yb;
+    bool column;
+    int storey, blk;
+  };
+  std::vector<Member> members;
+  for (int s = 1; s <= spec.storeys; ++s) {
+    for (int c = 0; c < lines; ++c) {
+      members.push_back({joint(c, s - 1), joint(c, s), c * spec.bay_width,
+                         (s - 1) * spec.storey_height, c * spec.bay_width,
+                         s * spec.storey_height, true, s, block(c)});
+    }
+    for (int c = 0; c < spec.bays; ++c) {
+      members.push_back({joint(c, s), joint(c + 1, s), c * spec.bay_width,
+                         s * spec.storey_height, (c + 1) * spec.bay_width,
+                         s * spec.storey_height, false, s, beam_block(c)});
+    }
+  }
+  // Internal nodes, then the DOF count.
+  struct Element {
+    int a, b;
+    double xa, ya, xb, yb;
+    std::size_t member;
+  };
+  std::vector<Element> elements;
+  for (std::size_t m = 0; m < members.size(); ++m) {
+    const Member& mb = members[m];
+    int prev = mb.a;
+    double px = mb.xa, py = mb.ya;
+    for (int k = 1; k <= e; ++k) {
+      const double t = static_cast<double>(k) / e;
+      const double qx = mb.xa + t * (mb.xb - mb.xa), qy = mb.ya + t * (mb.yb - mb.ya);
+      int next = mb.b;
+      if (k < e) {
+        next = static_cast<int>(x.size());
+        x.push_back(qx);
+        y.push_back(qy);
+      }
+      elements.push_back({prev, next, px, py, qx, qy, m});
+      prev = next;
+      px = qx;
+      py = qy;
+    }
+  }
+  const int n = 3 * static_cast<int>(x.size());
+  std::vector<std::string> labels;
+  labels.reserve(n);
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    for (const char* d : {":ux", ":uy", ":rz"}) {
+      labels.push_back("n" + std::to_string(k + 1) + d);
+    }
+  }
+
+  // Triplets per substructure.
+  const int blocks = spec.blocks_per_storey;
+  auto col_index = [&](int s, int b) { return (s - 1) * blocks + b; };
+  std::vector<Triplets> k_col(spec.storeys * blocks), k_beam(spec.storeys * blocks),
+      m_storey(spec.storeys), w_col(spec.wet_storeys * blocks);
+  Triplets kt, mt;
+  for (const Element& el : elements) {
+    const Member& mb = members[el.member];
+    const BeamSection& sec = mb.column ? spec.column : spec.beam;
+    const std::array<int, 6> d = {el.a < 0 ? -1 : 3 * el.a,
+                                  el.a < 0 ? -1 : 3 * el.a + 1,
+                                  el.a < 0 ? -1 : 3 * el.a + 2,
+                                  3 * el.b,
+                                  3 * el.b + 1,
+                                  3 * el.b + 2};
+    const Matrix6 ke = Frame2dStiffness(sec, el.xa, el.ya, el.xb, el.yb);
+    const Matrix6 me = Frame2dConsistentMass(sec, el.xa, el.ya, el.xb, el.yb);
+    Triplets& kg = mb.column ? k_col[col_index(mb.storey, mb.blk)]
+                             : k_beam[col_index(mb.storey, mb.blk)];
+    Scatter(ke, d, &kg);
+    Scatter(ke, d, &kt);
+    Scatter(me, d, &m_storey[mb.storey - 1]);
+    Scatter(me, d, &mt);
+    if (mb.column && mb.storey <= spec.wet_storeys) {
+      Scatter(Frame2dTransverseMass(sec.rho * sec.A, el.xa, el.ya, el.xb, el.yb), d,
+              &w_col[col_index(mb.storey, mb.blk)]);
+    }
+  }
+
+  ParametrisedModel model(Assemble(n, kt), Assemble(n, mt), std::move(labels));
+  auto add = [&](const std::string& name, ParameterKind kind, const Triplets& t,
+                 const std::string& tag) {
+    Parameter p;
+    p.name = name;
+    p.kind = kind;
+    p.basis = Assemble(n, t);
+    p.tags = {tag};
+    model.AddParameter(std::move(p));
+  };
+  // Parameter order: mass, stiffness, added mass (as BuildModel orders them).
+  for (int s = 1; s <= spec.storeys; ++s) {
+    add("mass[s" + std::to_string(s) + "]", ParameterKind::kMass, m_storey[s - 1],
+        s <= spec.wet_storeys ? "wet" : "dry");
+  }
+  for (int s = 1; s <= spec.storeys; ++s) {
+    for (int b = 0; b < blocks; ++b) {
+      const std::string where = "s" + std::to_string(s) + ":";
+      add("stiffness[" + where + "col" + std::to_string(b + 1) + "]",
+          ParameterKind::kStiffness, k_col[col_index(s, b)], "columns");
+      add("stiffness[" + where + "beam" + std::to_string(b + 1) + "]",
+          ParameterKind::kStiffness, k_beam[col_index(s, b)], "beams");
+    }
+  }
+  for (int s = 1; s <= spec.wet_storeys; ++s) {
+    for (int b = 0; b < blocks; ++b) {
+      add("added_mass[s" + std::to_string(s) + ":col" + std::to_string(b + 1) + "]",
+          ParameterKind::kAddedMass, w_col[col_index(s, b)], "wet");
+    }
+  }
+  return model;
+}
+
+}  // namespace femup

@@ -1,0 +1,40 @@
+// The correction-factor equations of a large model, compressed to one row per
+// unknown. For every measured mode (lambda_j, phi_j) with shapes on all DOFs,
+// the physical residual of the updated model is linear in the factors d:
+//   K~ phi_j - lambda_j M~ phi_j = F_j - Z_j d  (as in correction_system.h),
+// and the stacked form of correction_system.h with ALL FEM modes weights it by
+// M^-1 (Phi Phi' = M^-1, method.md). This builds the same least-squares problem
+// without the eigenbasis, from a sparse Cholesky factor of M:
+//   G = sum_j Z_j' M^-1 Z_j,  h = sum_j Z_j' M^-1 F_j,  f = sum_j F_j' M^-1 F_j,
+// and returns A (n x n) and b with A'A = G, A'b = h, so that for every x
+//   ||A x - b||^2 + residual_offset = sum_j (Z_j x - F_j)' M^-1 (Z_j x - F_j),
+// source_rows = (number of DOFs) x (number of modes). Memory is O(n^2 + nnz)
+// instead of O(DOFs x modes x n).
+//
+// The price of the normal equations: A's small singular values are accurate
+// only to about sqrt(machine epsilon) times the largest (column-scaled); G's
+// eigen-directions below n * eps * max are dropped (zero rows) and counted in
+// `dropped`. Use correction_system.h where the dense form fits in memory.
+#pragma once
+
+#include <vector>
+
+#include "femup/measurement.h"
+#include "femup/model.h"
+#include "femup/problems/linear_problem.h"
+
+namespace femup {
+
+struct NormalCorrectionStats {
+  int dropped = 0;              // eigen-directions of G below the threshold
+  double seconds_assembly = 0;  // Z_j, M^-1 Z_j and G
+  double seconds_compress = 0;  // eigen-decomposition of G
+};
+
+// Throws InputError for shapes that are not on every DOF, a model without
+// parameters, or no state; a mass matrix that is not positive definite.
+LinearProblem BuildNormalCorrectionSystem(const ParametrisedModel& model,
+                                          const std::vector<ModalData>& states,
+                                          NormalCorrectionStats* stats = nullptr);
+
+}  // namespace femup

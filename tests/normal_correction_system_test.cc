@@ -1,0 +1,106 @@
+// The compressed (normal-equation) correction system
+// (problems/normal_correction_system.h), checked against the dense stacked
+// form of correction_system.h with every FEM mode, which weights the same
+// physical residuals by M^-1: same normal matrix, same residual norm for any x
+// (with the offset), same least-squares factors; and, on noise-free data, the
+// preset factors themselves.
+#include "femup/problems/normal_correction_system.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <random>
+
+#include "femup/errors.h"
+#include "femup/modal.h"
+#include "femup/plane_frame.h"
+#include "femup/problems/correction_system.h"
+#include "femup/problems/paper_chain.h"
+#include "femup/solvers/linear_solver.h"
+
+namespace femup {
+namespace {
+
+struct Case {
+  ParametrisedModel model;
+  Eigen::VectorXd truth;
+  std::vector<ModalData> states;
+};
+
+Case Frame() {
+  PlaneFrameSpec spec;
+  spec.storeys = 3;
+  spec.bays = 2;
+  spec.elements_per_member = 2;
+  spec.blocks_per_storey = 2;
+  spec.wet_storeys = 1;
+  Case c{BuildPlaneFrame(spec), {}, {}};
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-0.1, 0.1);
+  c.truth = Eigen::VectorXd(c.model.num_parameters());
+  for (Eigen::Index i = 0; i < c.truth.size(); ++i) c.truth[i] = u(rng);
+  for (int k : c.model.ParametersOfKind(ParameterKind::kAddedMass)) c.truth[k] = 0.3;
+  c.states = {PredictModes(c.model, c.truth, Immersion::kDry, 6, "air"),
+              PredictModes(c.model, c.truth, Immersion::kWet, 6, "water")};
+  return c;
+}
+
+Case Chain() {
+  const PaperChainScenario s = PaperChain(3);
+  return {s.model,
+          s.preset,
+          {PredictModes(s.model, s.preset, Immersion::kDry, 2, "air"),
+           PredictModes(s.model, s.preset, Immersion::kWet, 3, "water")}};
+}
+
+TEST(NormalCorrectionSystem, SameLeastSquaresProblemAsTheStackedFormWithEveryFemMode) {
+  for (const Case& c : {Chain(), Frame()}) {
+    const Modes fem = SolveModes(c.model.stiffness(), c.model.mass());
+    const LinearProblem dense = BuildCorrectionSystem(c.model, fem, c.states, {});
+    NormalCorrectionStats stats;
+    const LinearProblem compact = BuildNormalCorrectionSystem(c.model, c.states, &stats);
+    ASSERT_EQ(compact.num_unknowns(), dense.num_unknowns());
+    EXPECT_EQ(compact.num_rows(), dense.num_unknowns());
+    EXPECT_EQ(compact.data_rows(), dense.num_rows());
+    EXPECT_EQ(compact.names, dense.names);
+
+    const Eigen::MatrixXd g = dense.A.transpose() * dense.A;
+    EXPECT_LT((compact.A.transpose() * compact.A - g).cwiseAbs().maxCoeff(),
+              1e-9 * g.cwiseAbs().maxCoeff());
+    std::mt19937_64 rng(3);
+    std::normal_distribution<double> normal(0.0, 0.1);
+    for (int trial = 0; trial < 3; ++trial) {
+      Eigen::VectorXd x(dense.num_unknowns());
+      for (Eigen::Index i = 0; i < x.size(); ++i) x[i] = normal(rng);
+      const double full = (dense.A * x - dense.b).squaredNorm();
+      const double reduced =
+          (compact.A * x - compact.b).squaredNorm() + compact.residual_offset;
+      EXPECT_NEAR(reduced, full, 1e-8 * full);
+    }
+    // Noise-free data: with one mass factor fixed (the common scaling), the
+    // preset factors.
+    LinearProblem fixed = compact;
+    fixed.fixed = {{0, c.truth[0]}};
+    const LinearSolution s = CreateLinearSolver("lstsq")->Solve(fixed);
+    EXPECT_LT((s.x - c.truth).cwiseAbs().maxCoeff(), 1e-6);
+    EXPECT_EQ(stats.dropped, 1);  // the common scaling
+  }
+}
+
+TEST(NormalCorrectionSystem, BadInputNamesTheField) {
+  const Case c = Chain();
+  EXPECT_THROW(BuildNormalCorrectionSystem(c.model, {}), InputError);
+  std::vector<ModalData> partial = c.states;
+  partial[0].sensor_dofs = {0, 1};
+  partial[0].shapes = partial[0].shapes.topRows(2).eval();
+  try {
+    BuildNormalCorrectionSystem(c.model, partial);
+    ADD_FAILURE() << "incomplete shapes accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("measurements.air"), std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace femup
