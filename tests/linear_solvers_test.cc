@@ -281,6 +281,36 @@ TEST(Bvls, InfeasibleIsReportedAsInfeasible) {
   EXPECT_NE(s.summary.message.find("no x within the bounds"), std::string::npos);
 }
 
+TEST(Bvls, StartsFromTheClippedLeastSquaresAnswer) {
+  // Half of x_true far outside the box [-1, 1], half well inside, little noise:
+  // the unconstrained answer clipped to the box already has the optimum's active
+  // set, so a few iterations confirm it (starting from x = 0 with every unknown
+  // free took one iteration per active bound, and more).
+  for (unsigned seed = 0; seed < 4; ++seed) {
+    const int n = 8;
+    const Eigen::MatrixXd a = Random(20 * n, n, 300 + seed);
+    Eigen::VectorXd x_true(n);
+    x_true << 3.0, 0.2, -2.5, -0.3, 4.0, 0.1, -3.5, 0.4;
+    LinearProblem p = Make(a, a * x_true + 0.01 * Random(20 * n, 1, 400 + seed));
+    p.lower = -Eigen::VectorXd::Ones(n);
+    p.upper = Eigen::VectorXd::Ones(n);
+    const Eigen::VectorXd ref = BruteForceBounded(p.A, p.b, p.lower, p.upper);
+    const Eigen::VectorXd clipped =
+        KktReference(p.A, p.b, Eigen::MatrixXd(0, n), Eigen::VectorXd())
+            .cwiseMax(p.lower)
+            .cwiseMin(p.upper);
+    for (int j = 0; j < n; ++j) {  // the premise: same active set
+      ASSERT_EQ(std::abs(clipped[j]) == 1.0, std::abs(ref[j]) > 1.0 - 1e-12)
+          << "seed " << seed << ", unknown " << j;
+    }
+    const LinearSolution s = CreateLinearSolver("bvls")->Solve(p);
+    ASSERT_EQ(s.summary.status, SolverStatus::kSolved)
+        << "seed " << seed << ": " << s.summary.message;
+    EXPECT_LE(s.summary.iterations, 2) << "seed " << seed << ": " << s.summary.message;
+    EXPECT_LT((s.x - ref).cwiseAbs().maxCoeff(), 1e-9) << "seed " << seed;
+  }
+}
+
 TEST(Lstsq, RankDeficientPaperChainNamesTheMissingConstraint) {
   const PaperChainScenario sc = PaperChain(3);
   const Modes fem = SolveModes(sc.model.stiffness(), sc.model.mass());

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <utility>
 
 #include "femup/errors.h"
 #include "femup/solvers/kkt.h"
@@ -28,6 +29,20 @@ Eigen::MatrixXd NullSpace(const Eigen::MatrixXd& e, int n) {
   return svd.matrixV().rightCols(n - rank);
 }
 
+// min ||M s - r||, the minimum-norm s when M is rank deficient. Householder QR
+// when its diagonal shows full column rank by a wide margin; otherwise (and for
+// a wide M) the complete orthogonal decomposition, which decides the rank.
+Eigen::VectorXd LeastSquares(const Eigen::MatrixXd& m, const Eigen::VectorXd& r) {
+  if (m.cols() == 0) return Eigen::VectorXd(0);
+  if (m.rows() >= m.cols()) {
+    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(m);
+    const Eigen::VectorXd diagonal = qr.matrixQR().diagonal().cwiseAbs();
+    constexpr double kMargin = 1e-8;  // far above the decomposition's n * epsilon
+    if (diagonal.minCoeff() > kMargin * diagonal.maxCoeff()) return qr.solve(r);
+  }
+  return Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(m).solve(r);
+}
+
 struct ActiveSet {
   Eigen::VectorXd x;
   std::vector<int> state;  // -1 at lower bound, +1 at upper, 0 free
@@ -37,7 +52,9 @@ struct ActiveSet {
 
 // min 0.5 ||A x - b||^2  s.t.  E x = e (kept by every step),  l <= x <= u,
 // from a feasible x. Steps solve the free unknowns' least-squares problem in
-// null(E_F) (minimum-norm step when that is rank deficient).
+// null(E_F) (minimum-norm step when that is rank deficient). A may be the
+// triangular factor R of the problem's A = Q R with Q' b for b (same minimisers,
+// same gradient A' (A x - b) = R' (R x - Q' b)).
 ActiveSet SolveActiveSet(const Eigen::MatrixXd& a, const Eigen::VectorXd& b,
                          const Eigen::MatrixXd& e, const Eigen::VectorXd& l,
                          const Eigen::VectorXd& u, Eigen::VectorXd x,
@@ -67,17 +84,17 @@ ActiveSet SolveActiveSet(const Eigen::MatrixXd& a, const Eigen::VectorXd& b,
     }
     const int nf = static_cast<int>(f.size());
     if (!at_subspace_minimum && nf > 0) {
-      Eigen::MatrixXd af(a.rows(), nf), ef(e.rows(), nf);
-      for (int k = 0; k < nf; ++k) {
-        af.col(k) = a.col(f[k]);
-        ef.col(k) = e.col(f[k]);
-      }
-      const Eigen::MatrixXd nsp = NullSpace(ef, nf);
+      Eigen::MatrixXd af(a.rows(), nf);
+      for (int k = 0; k < nf; ++k) af.col(k) = a.col(f[k]);
       const Eigen::VectorXd rhs = b - a * x;
       Eigen::VectorXd step = Eigen::VectorXd::Zero(nf);
-      if (nsp.cols() > 0) {
-        Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(af * nsp);
-        step = nsp * cod.solve(rhs);
+      if (e.rows() == 0) {
+        step = LeastSquares(af, rhs);
+      } else {
+        Eigen::MatrixXd ef(e.rows(), nf);
+        for (int k = 0; k < nf; ++k) ef.col(k) = e.col(f[k]);
+        const Eigen::MatrixXd nsp = NullSpace(ef, nf);
+        if (nsp.cols() > 0) step = nsp * LeastSquares(af * nsp, rhs);
       }
       double alpha = 1.0;
       int block = -1, side = 0;
@@ -165,16 +182,48 @@ LinearSolution BvlsSolver::Solve(const LinearProblem& problem) const {
           ? Eigen::VectorXd(problem.equality_rhs - problem.equality_matrix * xfixed)
           : Eigen::VectorXd();
 
-  LinearSolution solution;
-  Eigen::VectorXd start(nf);
-  for (int k = 0; k < nf; ++k) start[k] = std::clamp(0.0, l[k], u[k]);
-  if (problem.prior.size() > 0) {
-    for (int k = 0; k < nf; ++k)
-      start[k] = std::clamp(problem.prior[free[k]], l[k], u[k]);
+  // A = Q R (Householder, thin) for a tall A: min ||A x - b|| and min ||R x - c||,
+  // c = Q' b, have the same minimisers (the costs differ by ||b - Q c||^2, also
+  // when A is rank deficient), so the iterations work on n x n instead of m x n.
+  Eigen::MatrixXd r;
+  Eigen::VectorXd c;
+  if (a.rows() > nf && nf > 0) {
+    const Eigen::HouseholderQR<Eigen::Ref<Eigen::MatrixXd>> qr(a);  // in place
+    r = qr.matrixQR().topRows(nf).triangularView<Eigen::Upper>();
+    c = (qr.householderQ().adjoint() * b).head(nf);
+    a.resize(0, 0);
+  } else {
+    r = std::move(a);
+    c = b;
   }
+
+  LinearSolution solution;
+  // Start (as Stark and Parker's BVLS) from the unconstrained least-squares
+  // answer clipped to the box: mostly the right active set already. Rank
+  // deficient, the answer closest to the prior (clipped) or to 0.
+  Eigen::VectorXd base(nf);
+  for (int k = 0; k < nf; ++k) base[k] = std::clamp(0.0, l[k], u[k]);
+  if (problem.prior.size() > 0) {
+    for (int k = 0; k < nf; ++k) base[k] = std::clamp(problem.prior[free[k]], l[k], u[k]);
+  }
+  Eigen::VectorXd start;
+  if (e.rows() == 0) {
+    start = base + LeastSquares(r, c - r * base);
+  } else {
+    // Within the equalities: their point closest to `base`, then least squares
+    // in null(C).
+    const Eigen::VectorXd on_equalities =
+        base +
+        Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(e).solve(d - e * base);
+    const Eigen::MatrixXd nsp = NullSpace(e, nf);
+    start = on_equalities;
+    if (nsp.cols() > 0) start += nsp * LeastSquares(r * nsp, c - r * on_equalities);
+  }
+  start = start.cwiseMax(l).cwiseMin(u);
   int iterations = 0;
   if (e.rows() > 0) {
-    // Phase 1: a point of the box closest to C x = d (bounded least squares).
+    // Phase 1: a point of the box closest to C x = d (bounded least squares),
+    // from the clipped start (its clipping may have left the equalities).
     const ActiveSet phase1 = SolveActiveSet(e, d, Eigen::MatrixXd(0, nf), l, u, start,
                                             options_.max_iterations);
     iterations += phase1.iterations;
@@ -196,7 +245,7 @@ LinearSolution BvlsSolver::Solve(const LinearProblem& problem) const {
     }
     start = phase1.x;
   }
-  const ActiveSet result = SolveActiveSet(a, b, e, l, u, start, options_.max_iterations);
+  const ActiveSet result = SolveActiveSet(r, c, e, l, u, start, options_.max_iterations);
   iterations += result.iterations;
 
   solution.x = xfixed;
@@ -207,22 +256,27 @@ LinearSolution BvlsSolver::Solve(const LinearProblem& problem) const {
   solution.summary.iterations = iterations;
 
   // Linearised uncertainty with the active bounds held: the least-squares map of
-  // the unknowns off their bounds within the equalities.
+  // the unknowns off their bounds within the equalities, x_off = N (A_off N)^+ b_w.
+  // With A = Q R that map is N (R_off N)^+ Q', and as Q' Q = I the n-column
+  // N (R_off N)^+ gives FillUncertainty the same X X' without any m x m work.
   std::vector<int> off;
   for (int k = 0; k < nf; ++k) {
     if (result.state[k] == 0) off.push_back(k);
   }
-  Eigen::MatrixXd aoff(a.rows(), off.size()), eoff(e.rows(), off.size());
+  Eigen::MatrixXd roff(r.rows(), off.size()), eoff(e.rows(), off.size());
   for (std::size_t k = 0; k < off.size(); ++k) {
-    aoff.col(k) = a.col(off[k]);
+    roff.col(k) = r.col(off[k]);
     eoff.col(k) = e.col(off[k]);
   }
   const Eigen::MatrixXd nsp = NullSpace(eoff, static_cast<int>(off.size()));
-  Eigen::MatrixXd x_map = Eigen::MatrixXd::Zero(n, a.rows());
+  Eigen::MatrixXd x_map = Eigen::MatrixXd::Zero(n, r.rows());
   int rank = 0;
   if (nsp.cols() > 0) {
-    Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(aoff * nsp);
-    cod.setThreshold(options_.relative_rank_tolerance);
+    const Eigen::MatrixXd reduced = roff * nsp;
+    Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(reduced.rows(),
+                                                                reduced.cols());
+    cod.setThreshold(options_.relative_rank_tolerance);  // before the decomposition
+    cod.compute(reduced);
     rank = static_cast<int>(cod.rank());
     const Eigen::MatrixXd local = nsp * cod.pseudoInverse();
     for (std::size_t k = 0; k < off.size(); ++k) x_map.row(free[off[k]]) = local.row(k);

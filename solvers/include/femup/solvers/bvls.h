@@ -3,7 +3,9 @@
 // Statistics 10, 1995), generalised to linear equalities C x = d: every
 // iteration solves the least-squares problem of the unknowns off their bounds
 // within the null space of C, steps to the first bound it meets, and frees the
-// bound whose multiplier has the wrong sign. With equalities a first phase
+// bound whose multiplier has the wrong sign. It starts, as BVLS does, from the
+// unconstrained least-squares answer clipped to the box, and a tall A is
+// reduced once to the n x n factor R of A = Q R. With equalities a first phase
 // finds a feasible point (bounded least squares on C x = d) or reports the
 // problem infeasible. The answer is checked by its KKT conditions.
 #pragma once
