@@ -110,11 +110,17 @@ void CheckAgainstExactMinimiser(const LinearProblem& problem,
   const Eigen::BDCSVD<Eigen::MatrixXd> svd(a * scale.asDiagonal(),
                                            Eigen::ComputeThinU | Eigen::ComputeThinV);
   const Eigen::VectorXd step = scale.asDiagonal() * svd.solve(r);
-  double worst = 0;  // largest relative change of an unknown
-  const double zmax = z(inactive).cwiseAbs().maxCoeff();
+  // Largest relative change of an unknown, in column-scaled units (z_k ||a_k||,
+  // what each unknown contributes to the fit); unknowns contributing less than
+  // kNegligible of the largest are judged against that floor, so that a factor
+  // near zero does not count as wrong for a tiny absolute change.
+  constexpr double kNegligible = 1e-3;
+  double worst = 0;
+  Eigen::VectorXd w(step.size());
+  for (Eigen::Index k = 0; k < step.size(); ++k) w[k] = z[inactive[k]] / scale[k];
+  const double floor = std::max(kNegligible * w.cwiseAbs().maxCoeff(), 1e-300);
   for (Eigen::Index k = 0; k < step.size(); ++k) {
-    const double size = std::max(std::abs(z[inactive[k]]), 1e-300 + 1e-12 * zmax);
-    worst = std::max(worst, std::abs(step[k]) / size);
+    worst = std::max(worst, std::abs(step[k] / scale[k]) / std::max(std::abs(w[k]), floor));
   }
   if (!std::isfinite(worst)) return;
   const double digits = worst > 0 ? -std::log10(worst) : 16.0;
