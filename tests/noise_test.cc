@@ -108,6 +108,28 @@ TEST(Corrupt, DrawOrderIsEigenvaluesThenShapesColumnMajor) {
   }
 }
 
+// Additive shape noise, one size per shape: psi_i + level * max |psi| * r.
+TEST(Corrupt, PeakScaledShapeNoiseIsAdditive) {
+  const ModalData clean = Synthetic(3, 4);
+  NoiseModel noise;
+  noise.level = 0.02;
+  noise.shape_level = 0.1;
+  noise.eigenvalues = false;
+  noise.distribution = NoiseDistribution::kUniform;
+  noise.shape_scale = NoiseModel::ShapeScale::kPeak;
+  std::mt19937_64 rng(11), reference(11);
+  const ModalData out = Corrupt(clean, noise, &rng);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  EXPECT_EQ(out.frequencies_hz, clean.frequencies_hz);
+  for (int j = 0; j < 3; ++j) {
+    const double peak = clean.shapes.col(j).cwiseAbs().maxCoeff();
+    for (int i = 0; i < 4; ++i) {
+      EXPECT_NEAR(out.shapes(i, j), clean.shapes(i, j) + 0.1 * peak * u(reference),
+                  1e-15 * peak);
+    }
+  }
+}
+
 TEST(Corrupt, GaussianStatistics) {
   const double level = 0.05;
   const ModalData clean = Synthetic(20000, 2);

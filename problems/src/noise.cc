@@ -52,8 +52,13 @@ ModalData Corrupt(const ModalData& data, const NoiseModel& noise, std::mt19937_6
   if (noise.shapes) {
     const double shape_level = noise.shape_level < 0 ? noise.level : noise.shape_level;
     for (Eigen::Index j = 0; j < out.shapes.cols(); ++j) {
+      const double peak = data.shapes.col(j).cwiseAbs().maxCoeff();
       for (Eigen::Index i = 0; i < out.shapes.rows(); ++i) {
-        out.shapes(i, j) *= 1.0 + shape_level * draw();
+        if (noise.shape_scale == NoiseModel::ShapeScale::kPeak) {
+          out.shapes(i, j) += shape_level * peak * draw();
+        } else {
+          out.shapes(i, j) *= 1.0 + shape_level * draw();
+        }
       }
     }
   }

@@ -95,6 +95,8 @@ NoiseStudyResult RunNoiseStudy(const Study& study) {
     NoiseModel noise;
     noise.level = spec.levels[l];
     noise.shape_level = spec.levels[l] * spec.shape_level_ratio;
+    noise.shape_scale = spec.shape_noise == "peak" ? NoiseModel::ShapeScale::kPeak
+                                                   : NoiseModel::ShapeScale::kEntry;
     noise.distribution = spec.distribution;
     std::vector<std::vector<double>> rm(r.added_mass_indices.size());
     std::vector<std::vector<double>> draw_average(variants.size());
@@ -202,6 +204,7 @@ void WriteNoiseOutputs(const NoiseStudyResult& r, bool plots, OutputDir* out,
          {"first_draw", json_util::Number(r.figure_first_draw[i])}});
   }
   j["noise_model"]["shape_level_ratio"] = r.spec.shape_level_ratio;
+  j["noise_model"]["shape_noise"] = r.spec.shape_noise;
   j["comparison"] = nlohmann::json::array();
   for (const SolverScores& c : r.comparison) {
     nlohmann::json cj = {{"label", c.label}, {"seconds", c.seconds}};

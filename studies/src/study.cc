@@ -682,7 +682,7 @@ Study LoadStudy(const std::string& path) {
   if (top.Has("noise_study")) {
     const Field nf = top["noise_study"];
     nf.ExpectKeys({"levels", "draws", "seed", "distribution", "figure_level",
-                   "shape_level_ratio", "compare"});
+                   "shape_level_ratio", "shape_noise", "compare"});
     NoiseStudySpec spec;
     spec.levels = nf["levels"].Numbers();
     for (std::size_t i = 0; i < spec.levels.size(); ++i) {
@@ -707,6 +707,12 @@ Study LoadStudy(const std::string& path) {
     if (nf.Has("figure_level")) spec.figure_level = nf["figure_level"].NonNegative();
     if (nf.Has("shape_level_ratio"))
       spec.shape_level_ratio = nf["shape_level_ratio"].NonNegative();
+    if (nf.Has("shape_noise")) {
+      spec.shape_noise = nf["shape_noise"].Str();
+      if (spec.shape_noise != "entry" && spec.shape_noise != "peak") {
+        nf["shape_noise"].Fail("expected entry or peak, got '" + spec.shape_noise + "'");
+      }
+    }
     if (nf.Has("compare")) {
       for (const Field& item : nf["compare"].Items())
         spec.compare.push_back(ReadSolver(item, study.model));

@@ -1,6 +1,8 @@
 // Measurement noise for simulated studies. The paper's corruption model
 // (method.md section 4): each measured eigenvalue and each mode-shape entry is
-// multiplied by (1 + level * r), r an independent draw per entry.
+// multiplied by (1 + level * r), r an independent draw per entry. Optionally the
+// shape noise is additive with one size per shape: psi_i + level * max|psi| * r
+// (sensor noise that does not shrink with the entry).
 #pragma once
 
 #include <random>
@@ -24,6 +26,10 @@ struct NoiseModel {
   bool shapes = true;       // corrupt every mode-shape entry
   // Level for the shape entries; negative = the same as `level`.
   double shape_level = -1;
+  // Shape noise relative to each entry (the paper's) or to the shape's largest
+  // entry (additive, the same size on every sensor).
+  enum class ShapeScale { kEntry, kPeak };
+  ShapeScale shape_scale = ShapeScale::kEntry;
   std::string Validate() const;  // empty when valid
 };
 

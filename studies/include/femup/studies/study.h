@@ -46,6 +46,9 @@ struct NoiseStudySpec {
   std::vector<double> levels;  // relative corruption levels (0.05 = 5 %)
   // Shape entries are corrupted at level * shape_level_ratio (eigenvalues at level).
   double shape_level_ratio = 1.0;
+  // Shape noise relative to each entry ("entry", the paper's) or to the shape's
+  // largest entry ("peak": additive, the same size on every sensor).
+  std::string shape_noise = "entry";
   // Solvers compared draw by draw on the same noisy data; empty = the study's solver.
   std::vector<SolverSpec> compare;
   int draws = 200;  // random draws per level
