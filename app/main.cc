@@ -8,6 +8,7 @@
 #include "femup/errors.h"
 #include "femup/output_dir.h"
 #include "femup/solvers/nonlinear_solver.h"
+#include "femup/studies/identify_study.h"
 #include "femup/studies/modes_study.h"
 #include "femup/studies/noise_study.h"
 #include "femup/studies/solve_study.h"
@@ -148,6 +149,33 @@ int main(int argc, char** argv) {
   solve->add_flag("--no-plots", solve_no_plots, "write JSON and CSV only");
   solve->add_flag("-q,--quiet", solve_quiet, "print nothing but errors and warnings");
 
+  CLI::App* identify = app.add_subcommand(
+      "identify",
+      "modes from measured signals: ERA with a stabilisation diagram on a UFF 58 file "
+      "(time histories or FRFs) or a CSV time series");
+  femup::IdentifyOptions id_options;
+  std::string id_out = "out/identify";
+  bool id_no_plots = false, id_quiet = false;
+  identify->add_option("file", id_options.file, "UFF (.uff, .unv) or CSV (.csv) file")
+      ->required();
+  identify->add_option("--format", id_options.format,
+                       "uff or csv (default: by extension)");
+  identify->add_option("--min-order", id_options.stabilisation.min_order,
+                       "lowest model order (default 2)");
+  identify->add_option("--max-order", id_options.stabilisation.max_order,
+                       "highest model order (default 40)");
+  identify->add_option("--order-step", id_options.stabilisation.order_step,
+                       "order step (default 2)");
+  identify->add_option("--stable-orders", id_options.min_consecutive,
+                       "consecutive stable orders a mode needs (default 5)");
+  identify->add_option("--max-frequency", id_options.max_frequency_hz,
+                       "report modes below this frequency, Hz (default Nyquist)");
+  identify->add_option("--first-sample", id_options.stabilisation.era.first_sample,
+                       "first sample used by ERA (default 1: skips the impulse instant)");
+  identify->add_option("-o,--out", id_out, "output folder (default out/identify)");
+  identify->add_flag("--no-plots", id_no_plots, "write JSON only");
+  identify->add_flag("-q,--quiet", id_quiet, "print nothing but errors and warnings");
+
   CLI11_PARSE(app, argc, argv);
 
   try {
@@ -199,6 +227,16 @@ int main(int argc, char** argv) {
       c.quiet = solve_quiet;
       Finish(&dir, warnings, c);
       return result.solution.summary.usable() ? 0 : 3;
+    }
+    if (*identify) {
+      const femup::IdentifyResult result = femup::RunIdentify(id_options);
+      femup::OutputDir dir(id_out);
+      femup::WriteIdentifyOutputs(result, !id_no_plots, &dir, &warnings);
+      if (!id_quiet) std::cout << femup::IdentifyReport(result);
+      Common c;
+      c.quiet = id_quiet;
+      Finish(&dir, warnings, c);
+      return result.modes.empty() ? 3 : 0;
     }
     if (*modes) {
       const femup::Study study = femup::LoadStudy(modes_opts.study);

@@ -1,0 +1,252 @@
+#include "femup/studies/identify_study.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "femup/csv_series.h"
+#include "femup/errors.h"
+#include "femup/frf_impulse.h"
+#include "femup/uff.h"
+#include "json_util.h"
+#include "render_staged.h"
+
+namespace femup {
+namespace {
+
+std::string Lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
+std::string FormatOf(const IdentifyOptions& o) {
+  if (!o.format.empty()) return o.format;
+  const std::string ext = Lower(std::filesystem::path(o.file).extension().string());
+  if (ext == ".uff" || ext == ".unv") return "uff";
+  if (ext == ".csv" || ext == ".txt") return "csv";
+  throw InputError(o.file, "cannot tell the format from the extension '" + ext +
+                               "': expected .uff, .unv or .csv (or give --format)");
+}
+
+std::string ChannelName(const UffFunction& f) {
+  std::ostringstream s;
+  s << f.response_node << ":" << f.response_direction;
+  return s.str();
+}
+
+// Rows of `records` from the UFF file's function datasets.
+void ReadUffRecords(const std::string& file, IdentifyResult* r,
+                    Eigen::MatrixXd* records) {
+  const UffFile uff = ReadUff(file);
+  r->notes = uff.notes;
+  const std::vector<const UffFunction*> all = uff.Functions();
+  std::vector<const UffFunction*> fs;
+  for (const UffFunction* f : all) {
+    if (f->function_type == 1 || f->function_type == 4) fs.push_back(f);
+  }
+  if (fs.empty()) {
+    throw InputError(file,
+                     "no time history (function type 1) or FRF (type 4) in dataset 58");
+  }
+  const int type = fs[0]->function_type;
+  const Eigen::Index n = fs[0]->y.size();
+  const double dx = fs[0]->abscissa_increment;
+  for (std::size_t k = 0; k < fs.size(); ++k) {
+    const UffFunction& f = *fs[k];
+    std::ostringstream where;
+    where << "dataset 58 number " << k + 1 << " (node " << ChannelName(f) << ")";
+    if (f.function_type != type) {
+      throw InputError(file, where.str() + ": mixes time histories and FRFs");
+    }
+    if (!f.even_spacing || !(f.abscissa_increment > 0)) {
+      throw InputError(file, where.str() + ": needs evenly spaced abscissae");
+    }
+    if (f.y.size() != n || std::abs(f.abscissa_increment - dx) > 1e-9 * dx) {
+      throw InputError(
+          file, where.str() + ": length or spacing differs from the first function");
+    }
+    r->channels.push_back(ChannelName(f));
+  }
+  if (type == 1) {
+    r->data_kind = "time";
+    records->resize(static_cast<Eigen::Index>(fs.size()), n);
+    for (std::size_t k = 0; k < fs.size(); ++k)
+      records->row(k) = fs[k]->y.real().transpose();
+    r->sample_rate_hz = 1.0 / dx;
+    return;
+  }
+  if (std::abs(fs[0]->abscissa_start) > 1e-9 * dx) {
+    throw InputError(file, "FRFs must start at 0 Hz for the inverse FFT");
+  }
+  r->data_kind = "frf";
+  Eigen::MatrixXcd frf(static_cast<Eigen::Index>(fs.size()), n);
+  for (std::size_t k = 0; k < fs.size(); ++k) frf.row(k) = fs[k]->y.transpose();
+  const FrfImpulseResponse irf = ImpulseResponseFromFrf(frf, dx);
+  *records = irf.data;
+  r->sample_rate_hz = irf.sample_rate_hz;
+}
+
+}  // namespace
+
+std::string IdentifyOptions::Validate() const {
+  if (file.empty()) return "file: no input file given";
+  if (!format.empty() && format != "uff" && format != "csv")
+    return "format: expected uff or csv, got '" + format + "'";
+  if (min_consecutive < 1) return "min_consecutive: must be >= 1";
+  if (!(max_frequency_hz >= 0) || !std::isfinite(max_frequency_hz))
+    return "max_frequency_hz: must be finite and >= 0";
+  const std::string s = stabilisation.Validate();
+  return s.empty() ? "" : "stabilisation." + s;
+}
+
+IdentifyResult RunIdentify(const IdentifyOptions& options) {
+  const std::string invalid = options.Validate();
+  if (!invalid.empty()) {
+    const auto colon = invalid.find(':');
+    throw InputError("identify." + invalid.substr(0, colon), invalid.substr(colon + 2));
+  }
+  IdentifyResult r;
+  r.source = options.file;
+  Eigen::MatrixXd records;
+  if (FormatOf(options) == "uff") {
+    ReadUffRecords(options.file, &r, &records);
+  } else {
+    const CsvSeries csv = ReadCsvSeries(options.file);
+    r.data_kind = "time";
+    r.channels = csv.channel_names;
+    r.sample_rate_hz = csv.sample_rate_hz;
+    records = csv.values.transpose();
+  }
+  r.num_samples = static_cast<int>(records.cols());
+  if (!records.allFinite()) throw InputError(options.file, "a sample is NaN or infinite");
+  r.diagram = BuildStabilisationDiagram(records, r.sample_rate_hz, options.stabilisation);
+  const double top =
+      options.max_frequency_hz > 0 ? options.max_frequency_hz : 0.5 * r.sample_rate_hz;
+  for (const StableMode& m :
+       PickStableModes(r.diagram, options.stabilisation, options.min_consecutive)) {
+    if (m.mode.frequency_hz < top) r.modes.push_back(m);
+  }
+  std::sort(r.modes.begin(), r.modes.end(), [](const StableMode& a, const StableMode& b) {
+    return a.mode.frequency_hz < b.mode.frequency_hz;
+  });
+  return r;
+}
+
+void WriteIdentifyOutputs(const IdentifyResult& r, bool plots, OutputDir* out,
+                          std::vector<std::string>* warnings) {
+  nlohmann::json j;
+  j["femup_version"] = "0.1.0";
+  j["command"] = "identify";
+  j["source"] = r.source;
+  j["data"] = {{"kind", r.data_kind},
+               {"channels", r.channels},
+               {"sample_rate_hz", r.sample_rate_hz},
+               {"samples", r.num_samples}};
+  j["era"] = {{"block_rows", r.diagram.block_rows},
+              {"block_columns", r.diagram.block_columns},
+              {"singular_values", json_util::Vector(r.diagram.singular_values)}};
+  j["modes"] = nlohmann::json::array();
+  for (const StableMode& m : r.modes) {
+    j["modes"].push_back({{"frequency_hz", m.mode.frequency_hz},
+                          {"damping_ratio", m.mode.damping_ratio},
+                          {"shape", json_util::Vector(m.mode.shape)},
+                          {"mpc", m.mode.mpc},
+                          {"emac", m.mode.emac},
+                          {"contribution", m.mode.contribution},
+                          {"order", m.order},
+                          {"stable_run", m.stable_run},
+                          {"frequency_std_hz", m.frequency_std_hz},
+                          {"damping_std", m.damping_std}});
+  }
+  j["notes"] = r.notes;
+  out->WriteText("modes.json", j.dump(2) + "\n");
+  if (!plots) return;
+
+  // Stabilisation diagram: every pole by frequency and order, stable ones apart.
+  Figure f;
+  f.width_px = 1000;
+  Plot p;
+  p.title =
+      "stabilisation diagram: " + std::filesystem::path(r.source).filename().string();
+  p.x_label = "frequency (Hz)";
+  p.y_label = "model order";
+  PlotSeries all{"pole", PlotSeries::Style::kPoints, {}, {}, {}, {}};
+  PlotSeries freq{"stable frequency", PlotSeries::Style::kPoints, {}, {}, {}, {}};
+  PlotSeries stable{
+      "stable frequency, damping and shape", PlotSeries::Style::kPoints, {}, {}, {}, {}};
+  for (const DiagramOrder& o : r.diagram.orders) {
+    for (const DiagramPole& q : o.poles) {
+      PlotSeries& s = q.stable() ? stable : (q.stable_frequency ? freq : all);
+      s.x.push_back(q.mode.frequency_hz);
+      s.y.push_back(o.order);
+    }
+  }
+  for (PlotSeries* s : {&all, &freq, &stable}) {
+    if (!s->x.empty()) p.series.push_back(*s);
+  }
+  for (const StableMode& m : r.modes) {
+    std::ostringstream t;
+    t << std::fixed << std::setprecision(2) << m.mode.frequency_hz << " Hz";
+    p.series.push_back({t.str(),
+                        PlotSeries::Style::kLines,
+                        {m.mode.frequency_hz, m.mode.frequency_hz},
+                        {0.0, static_cast<double>(r.diagram.orders.back().order)},
+                        {},
+                        {}});
+  }
+  p.key_outside = true;
+  f.panels.push_back(p);
+  RenderStaged(f, "stabilisation", out, warnings);
+
+  if (r.modes.empty()) return;
+  Figure g;
+  Plot s;
+  s.title = "identified mode shapes at the sensors (largest entry 1)";
+  s.x_label = "channel";
+  s.y_label = "shape";
+  s.key_outside = true;
+  s.x_tick_labels = r.channels;
+  for (std::size_t k = 0; k < r.modes.size() && k < 8; ++k) {
+    const Eigen::VectorXd& v = r.modes[k].mode.shape;
+    const double peak = v.cwiseAbs().maxCoeff();
+    Eigen::Index imax = 0;
+    v.cwiseAbs().maxCoeff(&imax);
+    const double scale = peak > 0 ? (v[imax] < 0 ? -1.0 : 1.0) / peak : 1.0;
+    std::ostringstream t;
+    t << std::fixed << std::setprecision(2) << r.modes[k].mode.frequency_hz << " Hz";
+    PlotSeries ser{t.str(), PlotSeries::Style::kLinesPoints, {}, {}, {}, {}};
+    for (Eigen::Index i = 0; i < v.size(); ++i) {
+      ser.x.push_back(static_cast<double>(i + 1));
+      ser.y.push_back(scale * v[i]);
+    }
+    s.series.push_back(ser);
+  }
+  g.panels.push_back(s);
+  RenderStaged(g, "identified_shapes", out, warnings);
+}
+
+std::string IdentifyReport(const IdentifyResult& r) {
+  std::ostringstream o;
+  o << "source: " << r.source << " (" << r.data_kind << ", " << r.channels.size()
+    << " channels, " << r.num_samples << " samples at " << r.sample_rate_hz << " Hz)\n";
+  o << "ERA: Hankel " << r.diagram.block_rows << " x " << r.diagram.block_columns
+    << " blocks, orders " << r.diagram.orders.front().order << ".."
+    << r.diagram.orders.back().order << "\n";
+  o << "  mode  frequency_Hz  damping_%    MPC   EMAC  stable_orders\n" << std::fixed;
+  for (std::size_t k = 0; k < r.modes.size(); ++k) {
+    const StableMode& m = r.modes[k];
+    o << "  " << std::setw(4) << k + 1 << std::setw(14) << std::setprecision(3)
+      << m.mode.frequency_hz << std::setw(11) << std::setprecision(3)
+      << 100 * m.mode.damping_ratio << std::setw(7) << std::setprecision(3) << m.mode.mpc
+      << std::setw(7) << m.mode.emac << std::setw(15) << m.stable_run << "\n";
+  }
+  if (r.modes.empty()) o << "  no mode stayed stable over enough orders\n";
+  for (const std::string& n : r.notes) o << "note: " << n << "\n";
+  return o.str();
+}
+
+}  // namespace femup
