@@ -60,9 +60,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
-#include <iostream>
 #include <fstream>
 #include <functional>
+#include <iostream>
 #include <random>
 #include <string>
 #include <vector>
@@ -70,12 +70,12 @@
 #include "bounded_problem.h"
 #include "femup/measurement.h"
 #include "femup/modal.h"
+#include "femup/plane_frame.h"
 #include "femup/problems/correction_system.h"
 #include "femup/problems/eigen_sensitivity.h"
-#include "femup/plane_frame.h"
 #include "femup/problems/ill_posed.h"
-#include "femup/problems/normal_correction_system.h"
 #include "femup/problems/noise.h"
+#include "femup/problems/normal_correction_system.h"
 #include "femup/problems/paper_chain.h"
 #include "femup/solvers/linear_solver.h"
 #include "femup/solvers/nonlinear_solver.h"
@@ -187,7 +187,8 @@ void RunLinear(benchmark::State& state, const std::string& solver_name,
   if (std::getenv("FEMUP_BENCH_VERBOSE") != nullptr) {
     std::cerr << solver_name << ": " << femup::ToString(solution.summary.status) << ": "
               << solution.summary.message << "\n";
-    for (const std::string& w : solution.summary.warnings) std::cerr << "  warning: " << w << "\n";
+    for (const std::string& w : solution.summary.warnings)
+      std::cerr << "  warning: " << w << "\n";
   }
 }
 

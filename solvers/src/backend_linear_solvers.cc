@@ -120,7 +120,8 @@ void CheckAgainstExactMinimiser(const LinearProblem& problem,
   for (Eigen::Index k = 0; k < step.size(); ++k) w[k] = z[inactive[k]] / scale[k];
   const double floor = std::max(kNegligible * w.cwiseAbs().maxCoeff(), 1e-300);
   for (Eigen::Index k = 0; k < step.size(); ++k) {
-    worst = std::max(worst, std::abs(step[k] / scale[k]) / std::max(std::abs(w[k]), floor));
+    worst =
+        std::max(worst, std::abs(step[k] / scale[k]) / std::max(std::abs(w[k]), floor));
   }
   if (!std::isfinite(worst)) return;
   const double digits = worst > 0 ? -std::log10(worst) : 16.0;
