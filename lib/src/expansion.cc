@@ -1,0 +1,97 @@
+#include "femup/expansion.h"
+
+#include <Eigen/Dense>
+#include <Eigen/SparseLU>
+#include <algorithm>
+#include <limits>
+#include <sstream>
+
+#include "femup/errors.h"
+
+namespace femup {
+
+std::string ExpansionOptions::Validate() const {
+  if (method != "serep" && method != "lsq" && method != "dynamic")
+    return "method: expected serep, lsq or dynamic, got '" + method + "'";
+  if (num_modes < 0) return "num_modes: must be >= 0";
+  return "";
+}
+
+ExpandedShape ExpandShape(const SparseMatrix& stiffness, const SparseMatrix& mass,
+                          const Modes& model_modes, const std::vector<int>& sensors,
+                          const Eigen::VectorXd& measured, double eigenvalue,
+                          const ExpansionOptions& options) {
+  const std::string invalid = options.Validate();
+  if (!invalid.empty()) {
+    const auto colon = invalid.find(':');
+    throw InputError("expansion." + invalid.substr(0, colon), invalid.substr(colon + 2));
+  }
+  const int n = static_cast<int>(stiffness.rows());
+  const int s = static_cast<int>(sensors.size());
+  if (measured.size() != s || s == 0) {
+    std::ostringstream msg;
+    msg << "has " << measured.size() << " entries for " << s << " sensors";
+    throw InputError("expansion.measured", msg.str());
+  }
+  if (!measured.allFinite()) throw InputError("expansion.measured", "has a NaN entry");
+  std::vector<char> is_sensor(n, 0);
+  for (int d : sensors) {
+    if (d < 0 || d >= n) {
+      throw InputError(
+          "expansion.sensors",
+          "DOF " + std::to_string(d) + " is outside 0.." + std::to_string(n - 1));
+    }
+    if (is_sensor[d]) {
+      throw InputError("expansion.sensors",
+                       "DOF " + std::to_string(d) + " is listed twice");
+    }
+    is_sensor[d] = 1;
+  }
+  ExpandedShape out;
+  if (options.method == "dynamic") {
+    std::vector<int> others;
+    for (int i = 0; i < n; ++i) {
+      if (!is_sensor[i]) others.push_back(i);
+    }
+    const SparseMatrix d = stiffness - eigenvalue * mass;
+    const Eigen::MatrixXd dense = Eigen::MatrixXd(d);  // small and medium models
+    const Eigen::MatrixXd doo = dense(others, others), doa = dense(others, sensors);
+    const Eigen::FullPivLU<Eigen::MatrixXd> lu(doo);
+    if (others.size() > 0 && !lu.isInvertible()) {
+      throw InputError("expansion.dynamic",
+                       "K_oo - lambda M_oo is singular at this eigenvalue (a model "
+                       "eigenvalue of the unmeasured part): use serep or lsq");
+    }
+    out.shape = Eigen::VectorXd::Zero(n);
+    out.shape(sensors) = measured;
+    if (!others.empty()) out.shape(others) = -lu.solve(doa * measured);
+    out.sensor_mac = 1.0;  // measured entries kept; nothing fitted at the sensors
+    out.condition_number = 0;
+    return out;
+  }
+  const int k = options.num_modes > 0 ? options.num_modes : s;
+  if (k > s) {
+    throw InputError("expansion.num_modes",
+                     std::to_string(k) + " modes from " + std::to_string(s) +
+                         " sensors: at most as many modes as sensors");
+  }
+  if (k > model_modes.size() || model_modes.shapes.rows() != n) {
+    throw InputError(
+        "expansion.model_modes",
+        "needs " + std::to_string(k) + " modes on " + std::to_string(n) + " DOFs");
+  }
+  const Eigen::MatrixXd phi = model_modes.shapes.leftCols(k);
+  const Eigen::MatrixXd phi_a = phi(sensors, Eigen::all);
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(phi_a,
+                                              Eigen::ComputeThinU | Eigen::ComputeThinV);
+  const Eigen::VectorXd& sv = svd.singularValues();
+  out.condition_number = sv[sv.size() - 1] > 0 ? sv[0] / sv[sv.size() - 1]
+                                               : std::numeric_limits<double>::infinity();
+  const Eigen::VectorXd q = svd.solve(measured);
+  out.shape = phi * q;
+  out.sensor_mac = Mac(out.shape(sensors), measured);
+  if (options.method == "lsq") out.shape(sensors) = measured;
+  return out;
+}
+
+}  // namespace femup
