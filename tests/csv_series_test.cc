@@ -14,6 +14,7 @@
 
 #include "femup/errors.h"
 #include "femup/uff.h"
+#include "scratch_dir.h"
 
 namespace femup {
 namespace {
@@ -22,32 +23,7 @@ namespace fs = std::filesystem;
 
 const std::string kRealData = std::string(FEMUP_TEST_DATA_DIR) + "/realdata";
 
-// A fresh directory private to the running test, removed at the end.
-class ScratchDir {
- public:
-  ScratchDir() {
-    const ::testing::TestInfo* test =
-        ::testing::UnitTest::GetInstance()->current_test_info();
-    std::string name = std::string("femup_csv_") + test->test_suite_name() + "_" +
-                       test->name() + "_" + std::to_string(::getpid());
-    for (char& c : name) {
-      if (c == '/') c = '_';
-    }
-    path_ = (fs::path(::testing::TempDir()) / name).string();
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ScratchDir(const ScratchDir&) = delete;
-  ScratchDir& operator=(const ScratchDir&) = delete;
-  ~ScratchDir() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  std::string File(const std::string& name) const { return path_ + "/" + name; }
-
- private:
-  std::string path_;
-};
+using testing::ScratchDir;
 
 // Parses `text` as a file called `name`, expecting an InputError whose message
 // holds each of `parts`.

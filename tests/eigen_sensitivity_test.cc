@@ -51,6 +51,17 @@ Eigen::VectorXd Residuals(const NonlinearProblem& p, const Eigen::VectorXd& x) {
   return r;
 }
 
+// 2 air + 2 water modes with 2 % noise (seed 42); water seen at x1, x2, x4.
+std::vector<ModalData> NoisyWaterAtThreeSensors(const PaperChainScenario& s) {
+  std::mt19937_64 rng(42);
+  NoiseModel noise;
+  noise.level = 0.02;
+  std::vector<ModalData> data = TrueData(s, 2, 2);
+  for (ModalData& d : data) d = Corrupt(d, noise, &rng);
+  data[1] = AtSensors(data[1], {0, 1, 3});
+  return data;
+}
+
 int Row(const NonlinearProblem& p, const std::string& label) {
   const auto it = std::find(p.residual_labels.begin(), p.residual_labels.end(), label);
   EXPECT_NE(it, p.residual_labels.end()) << label;
@@ -153,12 +164,7 @@ TEST(EigenSensitivity, MassScaledShapesCarryTheScale) {
 // mode, here found by a one-dimensional least-squares fit written out.
 TEST(EigenSensitivity, FittedScaleResidualsFollowTheirDefinition) {
   const PaperChainScenario s = PaperChain(3);
-  std::mt19937_64 rng(42);
-  NoiseModel noise;
-  noise.level = 0.02;
-  std::vector<ModalData> data = TrueData(s, 2, 2);
-  for (ModalData& d : data) d = Corrupt(d, noise, &rng);
-  data[1] = AtSensors(data[1], {0, 1, 3});
+  const std::vector<ModalData> data = NoisyWaterAtThreeSensors(s);
   EigenSensitivityOptions options;
   options.shape_sigma = 0.05;
   options.shape_noise = "entry";
@@ -185,12 +191,7 @@ TEST(EigenSensitivity, FittedScaleResidualsFollowTheirDefinition) {
 // norm and sign.
 TEST(EigenSensitivity, UnitScaledResidualsFollowTheirDefinition) {
   const PaperChainScenario s = PaperChain(3);
-  std::mt19937_64 rng(42);
-  NoiseModel noise;
-  noise.level = 0.02;
-  std::vector<ModalData> data = TrueData(s, 2, 2);
-  for (ModalData& d : data) d = Corrupt(d, noise, &rng);
-  data[1] = AtSensors(data[1], {0, 1, 3});
+  const std::vector<ModalData> data = NoisyWaterAtThreeSensors(s);
   EigenSensitivityOptions options;
   options.frequency_sigma = 0.01;
   options.shape_sigma = 0.05;

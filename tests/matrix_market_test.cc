@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "femup/errors.h"
+#include "scratch_dir.h"
 
 namespace femup {
 namespace {
@@ -30,33 +31,7 @@ const std::string kModelDir = kDataDir + "/model";
 
 std::string DataFile(const std::string& name) { return kDataDir + "/" + name; }
 
-// A fresh, empty directory under the test temporary directory, private to the
-// running test (tests may run in parallel processes), removed at the end.
-class ScratchDir {
- public:
-  ScratchDir() {
-    const ::testing::TestInfo* test =
-        ::testing::UnitTest::GetInstance()->current_test_info();
-    std::string name = std::string("femup_mm_") + test->test_suite_name() + "_" +
-                       test->name() + "_" + std::to_string(::getpid());
-    for (char& c : name) {
-      if (c == '/') c = '_';
-    }
-    path_ = (fs::path(::testing::TempDir()) / name).string();
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ScratchDir(const ScratchDir&) = delete;
-  ScratchDir& operator=(const ScratchDir&) = delete;
-  ~ScratchDir() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  const std::string& path() const { return path_; }
-
- private:
-  std::string path_;
-};
+using testing::ScratchDir;
 
 std::string WriteText(const std::string& dir, const std::string& name,
                       const std::string& text) {

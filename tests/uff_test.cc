@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "femup/errors.h"
+#include "scratch_dir.h"
 
 namespace femup {
 namespace {
@@ -28,32 +29,7 @@ namespace fs = std::filesystem;
 
 const std::string kRealData = std::string(FEMUP_TEST_DATA_DIR) + "/realdata";
 
-// A fresh directory private to the running test, removed at the end.
-class ScratchDir {
- public:
-  ScratchDir() {
-    const ::testing::TestInfo* test =
-        ::testing::UnitTest::GetInstance()->current_test_info();
-    std::string name = std::string("femup_uff_") + test->test_suite_name() + "_" +
-                       test->name() + "_" + std::to_string(::getpid());
-    for (char& c : name) {
-      if (c == '/') c = '_';
-    }
-    path_ = (fs::path(::testing::TempDir()) / name).string();
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ScratchDir(const ScratchDir&) = delete;
-  ScratchDir& operator=(const ScratchDir&) = delete;
-  ~ScratchDir() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  std::string File(const std::string& name) const { return path_ + "/" + name; }
-
- private:
-  std::string path_;
-};
+using testing::ScratchDir;
 
 std::string ReadText(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

@@ -4,32 +4,14 @@
 #include <cmath>
 #include <sstream>
 
+#include "assembly.h"
 #include "femup/errors.h"
 
 namespace femup {
-namespace {
 
-using Triplets = std::vector<Eigen::Triplet<double>>;
-
-SparseMatrix FromTriplets(int n, const Triplets& t) {
-  SparseMatrix m(n, n);
-  m.setFromTriplets(t.begin(), t.end());
-  m.makeCompressed();
-  return m;
-}
-
-// Scatters a 6x6 element matrix into global free DOFs; dof[i] < 0 is a fixed DOF.
-void Scatter(const Matrix6& ke, const std::array<int, 6>& dof, Triplets* out) {
-  for (int i = 0; i < 6; ++i) {
-    if (dof[i] < 0) continue;
-    for (int j = 0; j < 6; ++j) {
-      if (dof[j] < 0 || ke(i, j) == 0.0) continue;
-      out->emplace_back(dof[i], dof[j], ke(i, j));
-    }
-  }
-}
-
-}  // namespace
+using internal::FromTriplets;
+using internal::Scatter;
+using internal::Triplets;
 
 Structure BuildSpringMassChain(const ChainSpec& spec) {
   const int n = static_cast<int>(spec.masses.size());

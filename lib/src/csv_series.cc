@@ -6,13 +6,11 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <system_error>
 #include <utility>
 
 #include "femup/errors.h"
+#include "file_io.h"
 
 namespace femup {
 namespace {
@@ -381,17 +379,7 @@ CsvSeries ParseCsvSeries(std::string_view text, const std::string& name,
 }
 
 CsvSeries ReadCsvSeries(const std::string& path, const CsvReadOptions& options) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    std::error_code ec;
-    const bool exists = std::filesystem::exists(path, ec);
-    throw InputError(
-        path, exists ? "cannot open the CSV file for reading" : "CSV file not found");
-  }
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) throw InputError(path, "error while reading the CSV file");
-  const std::string text = buffer.str();
+  const std::string text = internal::ReadFileText(path, "CSV file");
   return ParseCsvSeries(text, path, options);
 }
 
@@ -438,24 +426,7 @@ std::string FormatCsvSeries(const CsvSeries& series, const std::string& name) {
 }
 
 void WriteCsvSeries(const std::string& path, const CsvSeries& series) {
-  const std::string text = FormatCsvSeries(series, path);
-  const std::string temp = path + ".tmp";
-  {
-    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-    if (!out) throw InputError(path, "cannot create a temporary file next to it");
-    out.write(text.data(), static_cast<std::streamsize>(text.size()));
-    out.close();
-    if (!out) {
-      std::remove(temp.c_str());
-      throw InputError(path, "error while writing the CSV file");
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(temp, path, ec);
-  if (ec) {
-    std::remove(temp.c_str());
-    throw InputError(path, "cannot replace the file: " + ec.message());
-  }
+  internal::WriteFileAtomically(path, FormatCsvSeries(series, path));
 }
 
 }  // namespace femup

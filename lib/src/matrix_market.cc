@@ -25,12 +25,7 @@
 //    file keeps what it lists (summed duplicates included).
 #include "femup/matrix_market.h"
 
-#include <fcntl.h>
-#include <unistd.h>
-
 #include <array>
-#include <atomic>
-#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -47,34 +42,21 @@
 #include <utility>
 
 #include "femup/errors.h"
+#include "file_io.h"
+#include "text_util.h"
 
 namespace femup {
 namespace {
 
 using Triplet = Eigen::Triplet<double>;
+using internal::AtomicFile;
+using internal::Tokens;
 
 constexpr const char* kBannerHelp =
     "'%%MatrixMarket matrix coordinate|array real|integer general|symmetric'";
 
 // ---------------------------------------------------------------------------
 // Text helpers.
-
-bool IsBlank(char c) {
-  return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v';
-}
-
-std::vector<std::string_view> Tokens(std::string_view line) {
-  std::vector<std::string_view> out;
-  size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && IsBlank(line[i])) ++i;
-    size_t j = i;
-    while (j < line.size() && !IsBlank(line[j])) ++j;
-    if (j > i) out.push_back(line.substr(i, j - i));
-    i = j;
-  }
-  return out;
-}
 
 std::string Lower(std::string_view text) {
   std::string out(text);
@@ -504,71 +486,6 @@ void AppendIndex(std::string* out, long long value) {
   const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
   out->append(buffer, result.ptr);
 }
-
-std::string ErrnoText(int error) {
-  return std::error_code(error, std::generic_category()).message();
-}
-
-// Writes a file through a temporary in the same directory and a rename, so that
-// a failure leaves neither a partial file nor a stray temporary.
-class AtomicFile {
- public:
-  explicit AtomicFile(std::string path) : path_(std::move(path)) {
-    static std::atomic<unsigned> counter{0};
-    int error = 0;
-    for (int attempt = 0; attempt < 100 && fd_ < 0; ++attempt) {
-      temp_ = path_ + ".tmp." + std::to_string(::getpid()) + "." +
-              std::to_string(counter.fetch_add(1));
-      fd_ = ::open(temp_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-      error = fd_ < 0 ? errno : 0;
-      if (error != 0 && error != EEXIST) break;
-    }
-    if (fd_ < 0) {
-      throw InputError(path_,
-                       "cannot create a temporary file next to it: " + ErrnoText(error));
-    }
-  }
-  AtomicFile(const AtomicFile&) = delete;
-  AtomicFile& operator=(const AtomicFile&) = delete;
-  ~AtomicFile() {
-    if (fd_ >= 0) ::close(fd_);
-    if (!committed_) ::unlink(temp_.c_str());
-  }
-
-  // Writes `text` and empties it.
-  void Write(std::string* text) {
-    const char* data = text->data();
-    size_t left = text->size();
-    while (left > 0) {
-      const ssize_t n = ::write(fd_, data, left);
-      if (n < 0 && errno == EINTR) continue;
-      if (n <= 0) {
-        throw InputError(path_, "error while writing: " + ErrnoText(n < 0 ? errno : EIO));
-      }
-      data += n;
-      left -= static_cast<size_t>(n);
-    }
-    text->clear();
-  }
-
-  void Commit() {
-    const int fd = fd_;
-    fd_ = -1;
-    if (::close(fd) != 0) {
-      throw InputError(path_, "error while writing: " + ErrnoText(errno));
-    }
-    if (std::rename(temp_.c_str(), path_.c_str()) != 0) {
-      throw InputError(path_, "cannot replace the file: " + ErrnoText(errno));
-    }
-    committed_ = true;
-  }
-
- private:
-  std::string path_;
-  std::string temp_;
-  int fd_ = -1;
-  bool committed_ = false;
-};
 
 constexpr size_t kFlushSize = 1 << 20;
 

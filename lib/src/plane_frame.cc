@@ -7,28 +7,15 @@
 #include <string>
 #include <vector>
 
+#include "assembly.h"
 #include "femup/errors.h"
 
 namespace femup {
 namespace {
 
-using Triplets = std::vector<Eigen::Triplet<double>>;
-
-void Scatter(const Matrix6& ke, const std::array<int, 6>& dof, Triplets* out) {
-  for (int i = 0; i < 6; ++i) {
-    if (dof[i] < 0) continue;
-    for (int j = 0; j < 6; ++j) {
-      if (dof[j] >= 0 && ke(i, j) != 0.0) out->emplace_back(dof[i], dof[j], ke(i, j));
-    }
-  }
-}
-
-SparseMatrix Assemble(int n, const Triplets& t) {
-  SparseMatrix m(n, n);
-  m.setFromTriplets(t.begin(), t.end());
-  m.makeCompressed();
-  return m;
-}
+using internal::FromTriplets;
+using internal::Scatter;
+using internal::Triplets;
 
 std::string CheckSection(const BeamSection& s, const std::string& field) {
   const double v[4] = {s.E, s.A, s.I, s.rho};
@@ -170,13 +157,13 @@ ParametrisedModel BuildPlaneFrame(const PlaneFrameSpec& spec) {
     }
   }
 
-  ParametrisedModel model(Assemble(n, kt), Assemble(n, mt), std::move(labels));
+  ParametrisedModel model(FromTriplets(n, kt), FromTriplets(n, mt), std::move(labels));
   auto add = [&](const std::string& name, ParameterKind kind, const Triplets& t,
                  const std::string& tag) {
     Parameter p;
     p.name = name;
     p.kind = kind;
-    p.basis = Assemble(n, t);
+    p.basis = FromTriplets(n, t);
     p.tags = {tag};
     model.AddParameter(std::move(p));
   };

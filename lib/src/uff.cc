@@ -17,24 +17,22 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <limits>
-#include <sstream>
 #include <system_error>
 #include <utility>
 
 #include "femup/errors.h"
+#include "file_io.h"
+#include "text_util.h"
 
 namespace femup {
 namespace {
 
+using internal::IsBlank;
+using internal::Tokens;
+
 // ---------------------------------------------------------------------------
 // Text helpers.
-
-bool IsBlank(char c) {
-  return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v';
-}
 
 std::string_view Trim(std::string_view s) {
   while (!s.empty() && IsBlank(s.front())) s.remove_prefix(1);
@@ -45,19 +43,6 @@ std::string_view Trim(std::string_view s) {
 std::string_view TrimRight(std::string_view s) {
   while (!s.empty() && IsBlank(s.back())) s.remove_suffix(1);
   return s;
-}
-
-std::vector<std::string_view> Tokens(std::string_view line) {
-  std::vector<std::string_view> out;
-  size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && IsBlank(line[i])) ++i;
-    size_t j = i;
-    while (j < line.size() && !IsBlank(line[j])) ++j;
-    if (j > i) out.push_back(line.substr(i, j - i));
-    i = j;
-  }
-  return out;
 }
 
 // Quoted for messages, shortened when long.
@@ -1270,17 +1255,7 @@ UffFile ParseUff(std::string_view contents, const std::string& name) {
 }
 
 UffFile ReadUff(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    std::error_code ec;
-    const bool exists = std::filesystem::exists(path, ec);
-    throw InputError(
-        path, exists ? "cannot open the UFF file for reading" : "UFF file not found");
-  }
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) throw InputError(path, "error while reading the UFF file");
-  const std::string text = buffer.str();
+  const std::string text = internal::ReadFileText(path, "UFF file");
   return ParseUff(text, path);
 }
 
@@ -1289,24 +1264,7 @@ std::string FormatUff(const std::vector<UffDataset>& datasets, const std::string
 }
 
 void WriteUff(const std::string& path, const std::vector<UffDataset>& datasets) {
-  const std::string text = FormatUff(datasets, path);
-  const std::string temp = path + ".tmp";
-  {
-    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-    if (!out) throw InputError(path, "cannot create a temporary file next to it");
-    out.write(text.data(), static_cast<std::streamsize>(text.size()));
-    out.close();
-    if (!out) {
-      std::remove(temp.c_str());
-      throw InputError(path, "error while writing the UFF file");
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(temp, path, ec);
-  if (ec) {
-    std::remove(temp.c_str());
-    throw InputError(path, "cannot replace the file: " + ec.message());
-  }
+  internal::WriteFileAtomically(path, FormatUff(datasets, path));
 }
 
 }  // namespace femup

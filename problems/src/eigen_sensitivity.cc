@@ -119,9 +119,10 @@ bool EvaluateState(const Context& c, const StateTerms& st, const SparseMatrix& k
     (*r)[row] = (lambda / st.lambdas[j] - 1.0) / c.frequency_sigma;
 
     // The model shape at the sensors enters as c s: c = sign / ||s|| ("unit"),
-    // sign ("mass") or the fitted N / D ("fit").
-    Eigen::VectorXd s;
-    double c_scale = 1, fit_d = 0;
+    // sign ("mass") or the fitted N / D ("fit"). c's derivative is linear in
+    // the shape's: dc = dc_ds' ds.
+    Eigen::VectorXd s, dc_ds;
+    double c_scale = 1;
     const Eigen::Index num_sensors = static_cast<Eigen::Index>(st.sensors.size());
     if (st.shape_residuals) {
       s = phi(st.sensors);
@@ -134,14 +135,18 @@ bool EvaluateState(const Context& c, const StateTerms& st, const SparseMatrix& k
       }
       const double sign = s.dot(target) >= 0 ? 1.0 : -1.0;
       if (st.scaling == "fit") {
-        // c minimises sum_i W_i^2 (c s_i - psi_i)^2.
+        // c minimises sum_i W_i^2 (c s_i - psi_i)^2: c = N / D, and
+        // dc = (dN - c dD) / D with dN = (W^2 psi)' ds, dD = 2 (W^2 s)' ds.
         const Eigen::ArrayXd w2 = st.shape_weights.col(j).array().square();
-        fit_d = (w2 * s.array().square()).sum();
-        c_scale = (w2 * target.array() * s.array()).sum() / fit_d;
+        const double d = (w2 * s.array().square()).sum();
+        c_scale = (w2 * target.array() * s.array()).sum() / d;
+        dc_ds = ((w2 * target.array() - 2.0 * c_scale * w2 * s.array()) / d).matrix();
       } else if (st.scaling == "unit") {
         c_scale = sign / s.norm();
+        dc_ds = -c_scale / s.squaredNorm() * s;  // d(1 / ||s||) = -s' ds / ||s||^3
       } else {
         c_scale = sign;
+        dc_ds = Eigen::VectorXd::Zero(num_sensors);
       }
       r->segment(row + 1, num_sensors) =
           st.shape_weights.col(j).cwiseProduct(c_scale * s - target);
@@ -169,17 +174,8 @@ bool EvaluateState(const Context& c, const StateTerms& st, const SparseMatrix& k
       (*jac)(row, p) = lambda_weight * d.eigenvalue;
       const Eigen::VectorXd ds = d.eigenvector(st.sensors);
       // d(c s) = dc s + c ds.
-      double dc = 0;
-      if (st.scaling == "fit") {  // dc = (dN - c dD) / D
-        const Eigen::ArrayXd w2 = st.shape_weights.col(j).array().square();
-        const double dn = (w2 * st.targets.col(j).array() * ds.array()).sum();
-        const double dd = 2.0 * (w2 * s.array() * ds.array()).sum();
-        dc = (dn - c_scale * dd) / fit_d;
-      } else if (st.scaling == "unit") {  // d(1 / ||s||) = -s' ds / ||s||^3
-        dc = -c_scale * s.dot(ds) / s.squaredNorm();
-      }
       jac->block(row + 1, p, num_sensors, 1) =
-          st.shape_weights.col(j).cwiseProduct(dc * s + c_scale * ds);
+          st.shape_weights.col(j).cwiseProduct(dc_ds.dot(ds) * s + c_scale * ds);
     }
   }
   return true;

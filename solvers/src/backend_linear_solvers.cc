@@ -63,27 +63,45 @@ void CheckAgainstExactMinimiser(const LinearProblem& problem,
   const Eigen::VectorXd z =
       reduced.basis.transpose() * (solution->x - reduced.particular);
   // Without equalities z are the free unknowns: leave out those on a bound.
-  std::vector<int> inactive;
+  // With equalities z mixes them, so active bounds make the check inapplicable.
   const std::vector<std::string> on_bounds = OnBounds(problem, solution->x);
+  if (reduced.has_equalities && !on_bounds.empty()) return;
+  std::vector<int> inactive;
   for (Eigen::Index k = 0; k < z.size(); ++k) {
     if (!reduced.has_equalities && !reduced.names.empty() &&
         std::find(on_bounds.begin(), on_bounds.end(), reduced.names[k]) !=
             on_bounds.end()) {
       continue;
     }
-    if (reduced.has_equalities && !on_bounds.empty()) return;  // not separable
     inactive.push_back(static_cast<int>(k));
   }
   if (inactive.empty() || reduced.A.rows() == 0) return;
-  Eigen::MatrixXd a = reduced.A(Eigen::all, inactive);
-  std::vector<std::string> names, groups;
-  for (int k : inactive) {
-    if (k < static_cast<int>(reduced.names.size())) names.push_back(reduced.names[k]);
-    if (k < static_cast<int>(reduced.groups.size())) groups.push_back(reduced.groups[k]);
+  const Eigen::MatrixXd a = reduced.A(Eigen::all, inactive);
+  // Column scaling and rank rule as AnalyseIdentifiability's, on one SVD that
+  // also gives the correction.
+  Eigen::VectorXd scale = Eigen::VectorXd::Ones(a.cols());
+  if (options.scale_columns) {
+    for (Eigen::Index j = 0; j < a.cols(); ++j) {
+      const double norm = a.col(j).norm();
+      if (norm > 0) scale[j] = 1.0 / norm;
+    }
   }
-  const Identifiability id = AnalyseIdentifiability(
-      a, names, groups, options.relative_rank_tolerance, options.scale_columns);
-  if (id.rank < static_cast<int>(inactive.size())) {
+  const Eigen::BDCSVD<Eigen::MatrixXd> svd(a * scale.asDiagonal(),
+                                           Eigen::ComputeThinU | Eigen::ComputeThinV);
+  const Eigen::VectorXd& sv = svd.singularValues();
+  int rank = 0;
+  for (Eigen::Index i = 0; i < sv.size(); ++i) {
+    if (sv[i] > options.relative_rank_tolerance * sv[0]) ++rank;
+  }
+  if (rank < static_cast<int>(inactive.size())) {
+    std::vector<std::string> names, groups;
+    for (int k : inactive) {
+      if (k < static_cast<int>(reduced.names.size())) names.push_back(reduced.names[k]);
+      if (k < static_cast<int>(reduced.groups.size()))
+        groups.push_back(reduced.groups[k]);
+    }
+    const Identifiability id = AnalyseIdentifiability(
+        a, names, groups, options.relative_rank_tolerance, options.scale_columns);
     std::ostringstream msg;
     msg << "rank deficient (rank " << id.rank << " of " << inactive.size()
         << " unknowns): the data do not determine";
@@ -99,16 +117,7 @@ void CheckAgainstExactMinimiser(const LinearProblem& problem,
     return;
   }
   // One exact least-squares correction on the inactive unknowns.
-  Eigen::VectorXd scale = Eigen::VectorXd::Ones(a.cols());
-  if (options.scale_columns) {
-    for (Eigen::Index j = 0; j < a.cols(); ++j) {
-      const double norm = a.col(j).norm();
-      if (norm > 0) scale[j] = 1.0 / norm;
-    }
-  }
   const Eigen::VectorXd r = reduced.b - reduced.A * z;
-  const Eigen::BDCSVD<Eigen::MatrixXd> svd(a * scale.asDiagonal(),
-                                           Eigen::ComputeThinU | Eigen::ComputeThinV);
   const Eigen::VectorXd step = scale.asDiagonal() * svd.solve(r);
   // Largest relative change of an unknown, in column-scaled units (z_k ||a_k||,
   // what each unknown contributes to the fit); unknowns contributing less than
@@ -132,7 +141,7 @@ void CheckAgainstExactMinimiser(const LinearProblem& problem,
       << std::max(digits, 0.0) << " correct digits (largest relative change "
       << std::scientific << std::setprecision(1) << worst
       << " of an unknown under one exact correction; column-scaled condition number "
-      << id.condition_number << "). Use lstsq for ill-conditioned unconstrained "
+      << sv[0] / sv[sv.size() - 1] << "). Use lstsq for ill-conditioned unconstrained "
       << "problems, or bvls with bounds";
   if (digits < kMinimumDigits && solution->summary.usable()) {
     solution->summary.status = SolverStatus::kNoConvergence;

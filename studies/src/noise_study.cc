@@ -299,13 +299,16 @@ std::string NoiseReport(const NoiseStudyResult& r) {
   if (r.comparison.size() > 1) {
     o << "\nmean Rm (%) by solver, same draws (shape level = " << r.spec.shape_level_ratio
       << " x eigenvalue level)\n  level_%";
-    for (const SolverScores& c : r.comparison) o << "  " << c.label;
+    // Each column as wide as its label or a 12-character number, whichever is wider.
+    auto width = [](const SolverScores& c) {
+      return static_cast<int>(std::max<std::size_t>(c.label.size(), 12)) + 2;
+    };
+    for (const SolverScores& c : r.comparison) o << std::setw(width(c)) << c.label;
     o << "\n";
     for (std::size_t l = 0; l < r.spec.levels.size(); ++l) {
       o << std::setw(9) << std::setprecision(2) << r.spec.levels[l] * 100;
       for (const SolverScores& c : r.comparison) {
-        o << std::setw(static_cast<int>(c.label.size()) + 2) << std::setprecision(2)
-          << c.rm_average[l];
+        o << std::setw(width(c)) << std::setprecision(2) << c.rm_average[l];
       }
       o << "\n";
     }
