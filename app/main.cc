@@ -11,6 +11,7 @@
 #include "femup/studies/identify_study.h"
 #include "femup/studies/modes_study.h"
 #include "femup/studies/noise_study.h"
+#include "femup/studies/simulate_study.h"
 #include "femup/studies/solve_study.h"
 #include "femup/studies/study.h"
 #include "femup/studies/update_study.h"
@@ -66,6 +67,14 @@ void ApplyOverride(const Common& c, femup::Study* study) {
   }
 }
 
+void RequireMeasurements(const femup::Study& study) {
+  if (study.measurements.empty()) {
+    throw femup::InputError(study.path,
+                            "measurements: missing (this study only describes records "
+                            "to simulate; run femup simulate on it)");
+  }
+}
+
 std::string OutputFolder(const Common& c, const femup::Study& study) {
   if (!c.out.empty()) return c.out;
   std::filesystem::create_directories("out");
@@ -96,7 +105,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", "femup 0.1.0");
 
-  Common run_opts, noise_opts, modes_opts, check_opts;
+  Common run_opts, noise_opts, modes_opts, check_opts, sim_opts;
   int num_modes = 0;
   CLI::App* run = app.add_subcommand(
       "run", "identify correction factors (Z d = F), build the updated model, compare");
@@ -111,6 +120,11 @@ int main(int argc, char** argv) {
   AddCommon(modes, &modes_opts);
   modes->add_option("-n,--modes", num_modes,
                     "number of lowest modes (default: all, or 10)");
+  CLI::App* simulate = app.add_subcommand(
+      "simulate",
+      "test records of the study's structure (its truth factors, strip-theory water): "
+      "impulse responses at the sensors as UFF 58 or CSV, with truth.json");
+  AddCommon(simulate, &sim_opts);
   CLI::App* check =
       app.add_subcommand("check", "read and check a study file, do no work");
   check->add_option("study", check_opts.study, "study file (YAML or JSON)")->required();
@@ -187,8 +201,19 @@ int main(int argc, char** argv) {
                 << " parameters, " << study.measurements.size() << " measured state(s)\n";
       return 0;
     }
+    if (*simulate) {
+      const femup::Study study = femup::LoadStudy(sim_opts.study);
+      const femup::SimulateResult result = femup::RunSimulate(study);
+      femup::OutputDir dir(OutputFolder(sim_opts, study));
+      femup::WriteSimulateOutputs(result, study.plots && !sim_opts.no_plots, &dir,
+                                  &warnings);
+      if (!sim_opts.quiet) std::cout << femup::SimulateReport(result);
+      Finish(&dir, warnings, sim_opts);
+      return 0;
+    }
     if (*run) {
       femup::Study study = femup::LoadStudy(run_opts.study);
+      RequireMeasurements(study);
       ApplyOverride(run_opts, &study);
       const femup::UpdateResult result = femup::RunUpdate(study);
       femup::OutputDir dir(OutputFolder(run_opts, study));
@@ -203,6 +228,7 @@ int main(int argc, char** argv) {
     }
     if (*noise) {
       femup::Study study = femup::LoadStudy(noise_opts.study);
+      RequireMeasurements(study);
       ApplyOverride(noise_opts, &study);
       if (!study.noise_study) {
         throw femup::InputError(noise_opts.study,

@@ -137,7 +137,7 @@ IdentifyResult RunIdentify(const IdentifyOptions& options) {
 }
 
 void WriteIdentifyOutputs(const IdentifyResult& r, bool plots, OutputDir* out,
-                          std::vector<std::string>* warnings) {
+                          std::vector<std::string>* warnings, const std::string& prefix) {
   nlohmann::json j;
   j["femup_version"] = "0.1.0";
   j["command"] = "identify";
@@ -163,7 +163,7 @@ void WriteIdentifyOutputs(const IdentifyResult& r, bool plots, OutputDir* out,
                           {"damping_std", m.damping_std}});
   }
   j["notes"] = r.notes;
-  out->WriteText("modes.json", j.dump(2) + "\n");
+  out->WriteText(prefix + "modes.json", j.dump(2) + "\n");
   if (!plots) return;
 
   // Stabilisation diagram: every pole by frequency and order, stable ones apart.
@@ -200,7 +200,7 @@ void WriteIdentifyOutputs(const IdentifyResult& r, bool plots, OutputDir* out,
   }
   p.key_outside = true;
   f.panels.push_back(p);
-  RenderStaged(f, "stabilisation", out, warnings);
+  RenderStaged(f, prefix + "stabilisation", out, warnings);
 
   if (r.modes.empty()) return;
   Figure g;
@@ -226,7 +226,7 @@ void WriteIdentifyOutputs(const IdentifyResult& r, bool plots, OutputDir* out,
     s.series.push_back(ser);
   }
   g.panels.push_back(s);
-  RenderStaged(g, "identified_shapes", out, warnings);
+  RenderStaged(g, prefix + "identified_shapes", out, warnings);
 }
 
 std::string IdentifyReport(const IdentifyResult& r) {

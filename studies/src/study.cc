@@ -313,11 +313,176 @@ std::vector<int> ReadSensors(const Field& f, const ParametrisedModel& model) {
   return dofs;
 }
 
+// A path in the study file, taken relative to the study file's folder.
+std::string RelativeToStudy(const Field& f) {
+  const fs::path p(f.Str());
+  if (p.is_absolute()) return p.string();
+  const fs::path base = fs::path(f.file()).parent_path();
+  return (base / p).lexically_normal().string();
+}
+
+ExpansionOptions ReadExpansion(const Field& f) {
+  ExpansionOptions o;
+  if (f.IsScalar()) {
+    o.method = f.Str();
+  } else {
+    f.ExpectKeys({"method", "modes"});
+    if (f.Has("method")) o.method = f["method"].Str();
+    if (f.Has("modes")) o.num_modes = f["modes"].Int();
+  }
+  const std::string invalid = o.Validate();
+  if (!invalid.empty()) {
+    const auto colon = invalid.find(':');
+    const std::string key = invalid.substr(0, colon) == "num_modes" ? "modes" : "method";
+    (f.IsMap() && f.Has(key) ? f[key] : f).Fail(invalid.substr(colon + 2));
+  }
+  return o;
+}
+
+IdentifyOptions ReadIdentify(const Field& f) {
+  f.ExpectKeys({"file", "format", "max_frequency_hz", "stable_orders", "orders",
+                "first_sample", "min_emac", "max_damping_ratio", "tolerances"});
+  IdentifyOptions o;
+  o.file = RelativeToStudy(f["file"]);
+  if (f.Has("format")) o.format = f["format"].Str();
+  if (f.Has("max_frequency_hz")) o.max_frequency_hz = f["max_frequency_hz"].NonNegative();
+  if (f.Has("stable_orders")) o.min_consecutive = f["stable_orders"].Int();
+  if (f.Has("orders")) {
+    const Field of = f["orders"];
+    of.ExpectKeys({"min", "max", "step"});
+    if (of.Has("min")) o.stabilisation.min_order = of["min"].Int();
+    if (of.Has("max")) o.stabilisation.max_order = of["max"].Int();
+    if (of.Has("step")) o.stabilisation.order_step = of["step"].Int();
+  }
+  if (f.Has("first_sample")) o.stabilisation.era.first_sample = f["first_sample"].Int();
+  if (f.Has("tolerances")) {
+    const Field tf = f["tolerances"];
+    tf.ExpectKeys({"frequency", "damping", "mac"});
+    if (tf.Has("frequency")) o.stabilisation.frequency_tolerance = tf["frequency"].Positive();
+    if (tf.Has("damping")) o.stabilisation.damping_tolerance = tf["damping"].Positive();
+    if (tf.Has("mac")) o.stabilisation.mac_tolerance = tf["mac"].Positive();
+  }
+  if (f.Has("min_emac")) o.stabilisation.era.min_emac = f["min_emac"].NonNegative();
+  if (f.Has("max_damping_ratio"))
+    o.stabilisation.era.max_damping_ratio = f["max_damping_ratio"].Positive();
+  const std::string invalid = o.Validate();
+  if (!invalid.empty()) f.Fail(invalid);
+  return o;
+}
+
+// Sensors of record channels: a DOF label per channel, "-label" for a sensor
+// pointing against the DOF, "skip" for a channel not used.
+void ReadChannelSensors(const Field& f, const ParametrisedModel& model,
+                        MeasurementSpec* m) {
+  std::set<int> seen;
+  for (const Field& item : f.Items()) {
+    std::string label = item.Str();
+    if (label == "skip") {
+      m->channel_dofs.push_back(-1);
+      m->channel_signs.push_back(0.0);
+      continue;
+    }
+    double sign = 1.0;
+    if (!label.empty() && (label[0] == '-' || label[0] == '+')) {
+      sign = label[0] == '-' ? -1.0 : 1.0;
+      label = label.substr(1);
+    }
+    const int dof = model.FindDof(label);
+    if (dof < 0) {
+      item.Fail("no model DOF is labelled '" + label +
+                "' (give a DOF label per channel, '-label' for a reversed sensor, "
+                "or skip)");
+    }
+    if (!seen.insert(dof).second) item.Fail("DOF '" + label + "' is listed twice");
+    m->channel_dofs.push_back(dof);
+    m->channel_signs.push_back(sign);
+  }
+  if (seen.empty()) f.Fail("no channel is mapped to a model DOF");
+}
+
+RecordsSpec ReadRecords(const Field& f, const ParametrisedModel& model) {
+  f.ExpectKeys({"sample_rate_hz", "duration_s", "sensors", "impulse", "noise", "seed",
+                "states", "cutoff_hz"});
+  RecordsSpec r;
+  r.sample_rate_hz = f["sample_rate_hz"].Positive();
+  r.duration_s = f["duration_s"].Positive();
+  if (r.sample_rate_hz * r.duration_s < 16)
+    f["duration_s"].Fail("gives fewer than 16 samples at this sample rate");
+  if (r.sample_rate_hz * r.duration_s > 1e7)
+    f["duration_s"].Fail("gives more than 10^7 samples per channel");
+  r.sensor_dofs = ReadSensors(f["sensors"], model);
+  {
+    const Field i = f["impulse"];
+    i.ExpectKeys({"dof", "amplitude"});
+    const int dof = model.FindDof(i["dof"].Str());
+    if (dof < 0) i["dof"].Fail("no model DOF is labelled '" + i["dof"].Str() + "'");
+    r.impulse_dof = dof;
+    if (i.Has("amplitude")) {
+      r.impulse = i["amplitude"].Num();
+      if (r.impulse == 0) i["amplitude"].Fail("expected a non-zero impulse (N s)");
+    }
+  }
+  if (f.Has("noise")) r.noise = f["noise"].NonNegative();
+  if (f.Has("cutoff_hz")) {
+    r.cutoff_hz = f["cutoff_hz"].Positive();
+    if (r.cutoff_hz > r.sample_rate_hz / 2)
+      f["cutoff_hz"].Fail("is above the Nyquist frequency (half the sample rate)");
+  }
+  if (f.Has("seed")) r.seed = static_cast<unsigned long long>(f["seed"].NonNegative());
+  std::set<std::string> names, files;
+  for (const Field& sf : f["states"].Items()) {
+    sf.ExpectKeys({"state", "immersion", "damping", "water", "file"});
+    RecordStateSpec st;
+    st.state = sf["state"].Str();
+    if (!names.insert(st.state).second) sf["state"].Fail("state '" + st.state + "' is listed twice");
+    st.immersion = st.state == "water" ? Immersion::kWet : Immersion::kDry;
+    if (sf.Has("immersion")) {
+      const std::string v = sf["immersion"].Str();
+      if (v != "wet" && v != "dry") sf["immersion"].Fail("expected wet or dry, found '" + v + "'");
+      st.immersion = v == "wet" ? Immersion::kWet : Immersion::kDry;
+    }
+    if (sf.Has("damping")) {
+      const Field d = sf["damping"];
+      st.damping_ratios = d.IsScalar() ? std::vector<double>{d.Num()} : d.Numbers();
+      if (st.damping_ratios.empty()) d.Fail("expected at least one damping ratio");
+      for (double z : st.damping_ratios) {
+        if (!(z >= 0 && z < 1)) d.Fail("damping ratios must be in [0, 1)");
+      }
+    }
+    if (sf.Has("water")) {
+      const Field w = sf["water"];
+      w.ExpectKeys({"depth", "fluid_density", "width", "thickness", "coefficient", "fade"});
+      StripTheoryWater water;
+      water.depth = w["depth"].Positive();
+      if (w.Has("fluid_density")) water.fluid_density = w["fluid_density"].Positive();
+      water.width = w["width"].Positive();
+      if (w.Has("thickness")) water.thickness = w["thickness"].Positive();
+      if (w.Has("coefficient")) water.coefficient = w["coefficient"].Positive();
+      if (water.coefficient == 0 && water.thickness == 0)
+        w.Fail("give the section's thickness (along the motion) or the coefficient C_A");
+      if (w.Has("fade")) water.fade = w["fade"].NonNegative();
+      if (st.immersion != Immersion::kWet) w.Fail("water needs immersion: wet");
+      st.water = water;
+    }
+    st.file = sf["file"].Str();
+    const std::string ext = fs::path(st.file).extension().string();
+    if (ext != ".uff" && ext != ".unv" && ext != ".csv")
+      sf["file"].Fail("expected a .uff, .unv or .csv file name, got '" + st.file + "'");
+    if (fs::path(st.file).has_parent_path() || st.file.empty())
+      sf["file"].Fail("expected a plain file name (it is written in the output folder)");
+    if (!files.insert(st.file).second) sf["file"].Fail("file '" + st.file + "' is listed twice");
+    r.states.push_back(st);
+  }
+  if (r.states.empty()) f["states"].Fail("expected at least one state");
+  return r;
+}
+
 MeasurementSpec ReadMeasurement(const Field& f, const ParametrisedModel& model,
                                 bool have_truth) {
-  f.ExpectKeys(
-      {"state", "immersion", "simulate_modes", "frequencies_hz", "shapes", "sensors"});
+  f.ExpectKeys({"state", "immersion", "simulate_modes", "frequencies_hz", "shapes",
+                "sensors", "identify", "modes_file", "modes", "expansion"});
   MeasurementSpec m;
+  m.field = f.path();
   m.state = f["state"].Str();
   m.immersion = m.state == "water" ? Immersion::kWet : Immersion::kDry;
   if (f.Has("immersion")) {
@@ -329,6 +494,49 @@ MeasurementSpec ReadMeasurement(const Field& f, const ParametrisedModel& model,
     } else {
       f["immersion"].Fail("expected wet or dry, found '" + v + "'");
     }
+  }
+  if (f.Has("expansion")) m.expansion = ReadExpansion(f["expansion"]);
+  if (f.Has("identify") || f.Has("modes_file")) {
+    for (const char* other : {"simulate_modes", "frequencies_hz", "shapes"}) {
+      if (f.Has(other)) {
+        f[other].Fail(std::string("give modes either from a file (identify / modes_file) "
+                                  "or as ") +
+                      other + ", not both");
+      }
+    }
+    if (f.Has("identify") && f.Has("modes_file"))
+      f.Fail("give either identify (a record file) or modes_file, not both");
+    if (f.Has("identify")) {
+      m.identify = ReadIdentify(f["identify"]);
+    } else {
+      m.modes_file = RelativeToStudy(f["modes_file"]);
+    }
+    ReadChannelSensors(f["sensors"], model, &m);
+    if (f.Has("modes")) {
+      const Field mf = f["modes"];
+      if (mf.IsScalar()) {
+        const int n = mf.Int();
+        if (n < 1) mf.Fail("expected the number of lowest modes to use (>= 1)");
+        for (int i = 1; i <= n; ++i) m.use_modes.push_back(i);
+      } else {
+        std::set<int> seen;
+        for (const Field& item : mf.Items()) {
+          const int k = item.Int();
+          if (k < 1) item.Fail("identified modes are numbered from 1 (lowest frequency)");
+          if (!seen.insert(k).second) item.Fail("mode " + std::to_string(k) + " is listed twice");
+          m.use_modes.push_back(k);
+        }
+      }
+    }
+    m.data.state = m.state;
+    m.data.immersion = m.immersion;
+    return m;
+  }
+  if (f.Has("modes")) {
+    f["modes"].Fail("modes selects identified modes; it needs identify or modes_file");
+  }
+  if (m.expansion && f.Has("simulate_modes")) {
+    f["expansion"].Fail("simulated modes are known at every DOF; nothing to expand");
   }
   if (f.Has("simulate_modes")) {
     if (f.Has("frequencies_hz") || f.Has("shapes")) {
@@ -379,6 +587,11 @@ MeasurementSpec ReadMeasurement(const Field& f, const ParametrisedModel& model,
     m.data.Validate(model.num_dofs(), f.path());
   } catch (const InputError& e) {
     f.Fail(e.what());
+  }
+  if (m.expansion && (!m.data.HasShapes() || m.data.sensor_dofs.empty())) {
+    f["expansion"].Fail(
+        "expansion needs shapes measured at listed sensors (these shapes are " +
+        std::string(m.data.HasShapes() ? "complete already)" : "missing)"));
   }
   return m;
 }
@@ -537,7 +750,7 @@ Study LoadStudy(const std::string& path) {
   }
   const Field top(root, path, "");
   top.ExpectKeys({"name", "description", "model", "parameters", "truth", "measurements",
-                  "system", "solver", "noise_study", "output"});
+                  "system", "solver", "noise_study", "output", "records"});
   Study study;
   study.path = path;
   study.name = top.Has("name") ? top["name"].Str() : fs::path(path).stem().string();
@@ -635,13 +848,12 @@ Study LoadStudy(const std::string& path) {
     const Field tf = top["truth"];
     if (!tf.IsMap()) tf.Fail("expected a mapping of parameter names to factor values");
     Eigen::VectorXd truth = Eigen::VectorXd::Zero(study.model.num_parameters());
-    for (const auto& kv : tf.node()) {
-      const std::string name = kv.first.as<std::string>();
-      const Field value(kv.second, tf.file(), tf.path() + "." + name);
-      truth[parameter_index(value, name)] = value.Num();
-    }
+    ForEachParameterKey(tf, study.model,
+                        [&](const Field& value, int i) { truth[i] = value.Num(); });
     study.truth = truth;
   }
+  if (top.Has("records")) study.records = ReadRecords(top["records"], study.model);
+  if (study.records && !top.Has("measurements")) return study;
 
   for (const Field& f : top["measurements"].Items()) {
     study.measurements.push_back(
@@ -727,19 +939,6 @@ Study LoadStudy(const std::string& path) {
     if (of.Has("plots")) study.plots = of["plots"].Bool();
   }
   return study;
-}
-
-std::vector<ModalData> MeasuredStates(const Study& study) {
-  std::vector<ModalData> out;
-  for (const MeasurementSpec& m : study.measurements) {
-    if (m.simulate_modes > 0) {
-      out.push_back(PredictModes(study.model, *study.truth, m.immersion, m.simulate_modes,
-                                 m.state));
-    } else {
-      out.push_back(m.data);
-    }
-  }
-  return out;
 }
 
 }  // namespace femup

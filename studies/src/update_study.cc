@@ -57,6 +57,49 @@ void Compare(const ModalData& measured, const ModalData& predicted, int num_dofs
   }
 }
 
+AddedMassSummary SummariseAddedMass(const Study& study, const Eigen::VectorXd& d,
+                                    const SparseMatrix& added_mass,
+                                    const std::vector<PreparedState>& sources) {
+  AddedMassSummary a;
+  const ParametrisedModel& model = study.model;
+  const std::vector<int> idx = model.ParametersOfKind(ParameterKind::kAddedMass);
+  a.present = !idx.empty();
+  double sum = 0;
+  for (int i : idx) {
+    for (int e : model.parameter(i).elements) {
+      sum += d[i];
+      ++a.wet_elements;
+      const int k = study.structure.FindElement(e);
+      if (k >= 0) {
+        const ElementMatrices& em = study.structure.elements[k];
+        a.wet_length_m += em.x1 - em.x0;
+      }
+    }
+  }
+  if (a.wet_elements > 0) a.sa = sum / a.wet_elements;
+  Eigen::VectorXd r = Eigen::VectorXd::Zero(model.num_dofs());
+  for (int i = 0; i < model.num_dofs(); ++i) {
+    const std::string& l = model.dof_labels()[i];
+    if (l.size() > 3 && l.compare(l.size() - 3, 3, ":ux") == 0) r[i] = 1.0;
+  }
+  if (r.isZero()) r.setOnes();
+  if (added_mass.rows() == r.size()) a.total_kg = r.dot(added_mass * r);
+  if (a.wet_length_m > 0) a.per_length = a.total_kg / a.wet_length_m;
+  const ModalData* dry = nullptr;
+  const ModalData* wet = nullptr;
+  for (const PreparedState& p : sources) {
+    if (p.at_sensors.immersion == Immersion::kDry && !dry) dry = &p.at_sensors;
+    if (p.at_sensors.immersion == Immersion::kWet && !wet) wet = &p.at_sensors;
+  }
+  if (dry && wet) {
+    for (int k = 0; k < std::min(dry->num_modes(), wet->num_modes()); ++k) {
+      const double q = dry->frequencies_hz[k] / wet->frequencies_hz[k];
+      a.eq2_coefficients.push_back(q * q - 1.0);
+    }
+  }
+  return a;
+}
+
 }  // namespace
 
 UpdateResult RunUpdate(const Study& study) {
@@ -80,7 +123,9 @@ UpdateResult RunUpdate(const Study& study) {
       study.system.num_fem_modes < 0 ? fem.size() : study.system.num_fem_modes;
 
   // Step 2: the factors, by the linear method (Z d = F) or eigen-sensitivity.
-  const std::vector<ModalData> measured = MeasuredStates(study);
+  r.sources = PrepareMeasurements(study);
+  std::vector<ModalData> measured;
+  for (const PreparedState& p : r.sources) measured.push_back(p.data);
   FactorSolve fs = SolveFactors(study, study.solver, fem, measured);
   r.problem = std::move(fs.problem);
   r.solution = std::move(fs.solution);
@@ -99,8 +144,11 @@ UpdateResult RunUpdate(const Study& study) {
   r.added_mass = study.model.AddedMass(d);
   r.updated_stiffness = study.model.UpdatedStiffness(d);
   r.updated_dry_mass = study.model.UpdatedDryMass(d);
+  if (d.allFinite()) r.added_mass_summary = SummariseAddedMass(study, d, r.added_mass, r.sources);
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(study.model.num_parameters());
-  for (const ModalData& m : measured) {
+  for (const PreparedState& source : r.sources) {
+    // Compared where it was measured (at the sensors, before any expansion).
+    const ModalData& m = source.at_sensors;
     StateComparison c;
     c.state = m.state;
     c.immersion = m.immersion;
@@ -108,9 +156,8 @@ UpdateResult RunUpdate(const Study& study) {
     const int count = std::min(study.model.num_dofs(), m.num_modes() + 4);
     const ModalData nominal =
         PredictModes(study.model, zero, m.immersion, count, "model");
-    Eigen::MatrixXd unused;
     std::vector<int> dofs;
-    Compare(m, nominal, r.num_dofs, &c.model_hz, &c.model_mac, &unused, &dofs);
+    Compare(m, nominal, r.num_dofs, &c.model_hz, &c.model_mac, &c.model_shapes, &dofs);
     if (r.solution.summary.usable() && d.allFinite()) {
       try {
         const ModalData updated =
@@ -132,7 +179,6 @@ UpdateResult RunUpdate(const Study& study) {
   return r;
 }
 
-namespace {}  // namespace
 
 void RenderStaged(const Figure& figure, const std::string& name, OutputDir* out,
                   std::vector<std::string>* warnings) {
@@ -273,8 +319,52 @@ void WriteUpdateOutputs(const UpdateResult& r, bool plots, OutputDir* out,
     sj["updated_mac"] = json_util::Vector(c.updated_mac);
     j["states"].push_back(sj);
   }
+  if (r.added_mass_summary.present) {
+    const AddedMassSummary& a = r.added_mass_summary;
+    j["added_mass_summary"] = {{"sa", a.sa},
+                               {"wet_elements", a.wet_elements},
+                               {"total_kg", a.total_kg},
+                               {"wet_length_m", a.wet_length_m},
+                               {"per_length_kg_per_m", a.per_length},
+                               {"eq2_coefficients", a.eq2_coefficients}};
+  }
+  j["measurements"] = nlohmann::json::array();
+  for (std::size_t s = 0; s < r.sources.size(); ++s) {
+    const PreparedState& p = r.sources[s];
+    nlohmann::json mj = {{"state", p.data.state},
+                         {"modes", p.data.num_modes()},
+                         {"sensors", p.at_sensors.sensor_dofs.empty()
+                                         ? r.num_dofs
+                                         : static_cast<int>(p.at_sensors.sensor_dofs.size())}};
+    if (!p.source.empty()) {
+      mj["source"] = p.source;
+      mj["identified_modes_used"] = p.identified_modes;
+    }
+    if (p.identified) {
+      mj["identification"] = p.data.state + "_modes.json";
+      nlohmann::json used = nlohmann::json::array();
+      for (int k : p.identified_modes) {
+        const StableMode& m = p.identified->modes[k - 1];
+        used.push_back({{"frequency_hz", m.mode.frequency_hz},
+                        {"damping_ratio", m.mode.damping_ratio},
+                        {"mpc", m.mode.mpc},
+                        {"emac", m.mode.emac}});
+      }
+      mj["identified"] = used;
+    }
+    if (!p.expansion_method.empty()) {
+      mj["expansion"] = {{"method", p.expansion_method},
+                         {"model_modes", p.expansion_modes},
+                         {"sensor_mac", json_util::Vector(p.expansion_sensor_mac)},
+                         {"condition_number", json_util::Vector(p.expansion_condition)}};
+    }
+    j["measurements"].push_back(mj);
+  }
   j["files"] = {"added_mass.mtx", "updated_stiffness.mtx", "updated_dry_mass.mtx",
                 "system_Z.mtx", "system_F.mtx"};
+  for (const PreparedState& p : r.sources) {
+    if (p.identified) WriteIdentifyOutputs(*p.identified, plots, out, warnings, p.data.state + "_");
+  }
   out->WriteText("result.json", j.dump(2) + "\n");
   WriteMatrixMarket(out->Stage("added_mass.mtx"), r.added_mass, true);
   WriteMatrixMarket(out->Stage("updated_stiffness.mtx"), r.updated_stiffness, true);
@@ -363,12 +453,14 @@ void WriteUpdateOutputs(const UpdateResult& r, bool plots, OutputDir* out,
       p.x_label = "position along the structure";
       p.y_label = "shape (measured scale)";
       PlotSeries meas{"measured", PlotSeries::Style::kPoints, x, {}, {}, {}};
+      PlotSeries nom{"nominal model", PlotSeries::Style::kLines, x, {}, {}, {}};
       PlotSeries upd{"updated model", PlotSeries::Style::kLines, x, {}, {}, {}};
       for (int i : rows) {
         meas.y.push_back(c.measured_shapes(i, k));
+        nom.y.push_back(c.model_shapes.rows() > i ? c.model_shapes(i, k) : kNaN);
         upd.y.push_back(c.updated_shapes.rows() > i ? c.updated_shapes(i, k) : kNaN);
       }
-      p.series = {meas, upd};
+      p.series = {meas, nom, upd};
       shapes.panels.push_back(p);
     }
     figures.emplace_back("shapes_" + c.state, shapes);
@@ -432,16 +524,63 @@ std::string UpdateReport(const UpdateResult& r) {
     if (r.fixed[i]) o << "  (fixed)";
     o << "\n";
   }
-  for (const StateComparison& c : r.states) {
+  if (r.added_mass_summary.present) {
+    const AddedMassSummary& a = r.added_mass_summary;
+    o << "\nadded mass: Sa (mean factor over " << a.wet_elements << " wet elements) = "
+      << std::setprecision(4) << a.sa << "; " << std::setprecision(3) << a.total_kg
+      << " kg in transverse translation";
+    if (a.wet_length_m > 0)
+      o << " = " << std::setprecision(4) << a.per_length << " kg/m over "
+        << std::setprecision(3) << a.wet_length_m << " m";
+    o << "\n";
+    if (!a.eq2_coefficients.empty()) {
+      o << "  Eq. 2 from the measured frequencies, (f_air/f_water)^2 - 1:";
+      for (double c : a.eq2_coefficients) o << " " << std::setprecision(4) << c;
+      o << "\n";
+    }
+  }
+  for (std::size_t si = 0; si < r.states.size(); ++si) {
+    const StateComparison& c = r.states[si];
     o << "\nstate " << c.state << " (" << ToString(c.immersion) << ")\n";
-    o << "  mode  measured_Hz   model_Hz  err_%   updated_Hz  err_%   MAC_upd\n";
+    if (si < r.sources.size()) {
+      const PreparedState& p = r.sources[si];
+      if (p.identified) {
+        o << "  identified by ERA in " << p.source << ": " << p.identified->modes.size()
+          << " stable mode(s); used";
+        for (int k : p.identified_modes) {
+          const StableMode& m = p.identified->modes[k - 1];
+          o << " " << std::setprecision(3) << m.mode.frequency_hz << " Hz (damping "
+            << std::setprecision(2) << 100 * m.mode.damping_ratio << " %, MPC "
+            << std::setprecision(3) << m.mode.mpc << ")";
+        }
+        o << "\n";
+      } else if (!p.source.empty()) {
+        o << "  modes read from " << p.source << "\n";
+      }
+      if (!p.expansion_method.empty()) {
+        o << "  expanded from " << p.at_sensors.sensor_dofs.size() << " sensors to "
+          << r.num_dofs << " DOFs by " << p.expansion_method;
+        if (p.expansion_modes > 0) o << " (" << p.expansion_modes << " model modes)";
+        o << "; sensor MAC";
+        for (Eigen::Index k = 0; k < p.expansion_sensor_mac.size(); ++k)
+          o << " " << std::setprecision(4) << p.expansion_sensor_mac[k];
+        if (p.expansion_modes > 0) {
+          o << "; condition";
+          for (Eigen::Index k = 0; k < p.expansion_condition.size(); ++k)
+            o << " " << std::setprecision(1) << p.expansion_condition[k];
+        }
+        o << "\n";
+      }
+    }
+    o << "  mode  measured_Hz   model_Hz  err_%   updated_Hz  err_%   MAC_mod   MAC_upd\n";
     for (Eigen::Index k = 0; k < c.measured_hz.size(); ++k) {
       o << "  " << std::setw(4) << k + 1 << std::setw(12) << std::setprecision(4)
         << c.measured_hz[k] << std::setw(11) << c.model_hz[k] << std::setw(7)
         << std::setprecision(2) << ErrorPercent(c.model_hz[k], c.measured_hz[k])
         << std::setw(13) << std::setprecision(4) << c.updated_hz[k] << std::setw(7)
         << std::setprecision(2) << ErrorPercent(c.updated_hz[k], c.measured_hz[k])
-        << std::setw(10) << std::setprecision(6) << c.updated_mac[k] << "\n";
+        << std::setw(10) << std::setprecision(4) << c.model_mac[k] << std::setw(10)
+        << c.updated_mac[k] << "\n";
     }
   }
   return o.str();

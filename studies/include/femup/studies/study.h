@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "femup/expansion.h"
 #include "femup/measurement.h"
 #include "femup/model.h"
 #include "femup/problems/correction_system.h"
@@ -18,15 +19,45 @@
 #include "femup/solvers/linear_solver.h"
 #include "femup/solvers/nonlinear_solver.h"
 #include "femup/structure.h"
+#include "femup/studies/identify_study.h"
 
 namespace femup {
 
-// Where a measured state's modes come from.
+// Where a measured state's modes come from: simulated from the truth, given in
+// the study file, identified from a record file (UFF 58 / CSV) by ERA, or read
+// from the modes.json that `femup identify` wrote. Shapes known at sensors only
+// can be expanded to every model DOF before the factors are found.
 struct MeasurementSpec {
   std::string state;  // "air", "water"
   Immersion immersion = Immersion::kDry;
   int simulate_modes = 0;  // > 0: simulate this many modes from `truth`
-  ModalData data;          // given modes (when simulate_modes == 0)
+  ModalData data;          // given modes (no simulate_modes, identify or modes_file)
+
+  std::optional<IdentifyOptions> identify;  // ERA on this record file
+  std::string modes_file;                   // or modes.json of `femup identify`
+  // Identified modes used, 1-based in ascending frequency; empty = all.
+  std::vector<int> use_modes;
+  // Per record channel: the model DOF it measures (-1: channel not used) and a
+  // sign (-1 when the sensor points against the DOF). Set with identify and
+  // modes_file; the shapes' rows follow the used channels.
+  std::vector<int> channel_dofs;
+  std::vector<double> channel_signs;
+
+  std::optional<ExpansionOptions> expansion;  // expand sensor shapes to all DOFs
+  std::string field;  // "measurements[2]", for messages at run time
+};
+
+// A measured state ready for the solvers, with where it came from.
+struct PreparedState {
+  ModalData data;        // what the factors are fitted to (expanded if asked)
+  ModalData at_sensors;  // as measured, before expansion (== data without it)
+  std::optional<IdentifyResult> identified;  // when identified from a record file
+  std::vector<int> identified_modes;         // 1-based indices of the modes used
+  std::string source;                        // file the modes came from, if any
+  // Expansion quality per mode (empty without expansion).
+  std::string expansion_method;
+  int expansion_modes = 0;
+  Eigen::VectorXd expansion_sensor_mac, expansion_condition;
 };
 
 // How the factors are found: the paper's linear method (Z d = F) on a linear
@@ -57,6 +88,42 @@ struct NoiseStudySpec {
   double figure_level = 0.05;  // level shown in the estimated-vs-preset figure
 };
 
+// Water on a vertical cantilever by strip theory (femup/strip_theory.h): a
+// transverse added mass per length from the section, over the wet length.
+struct StripTheoryWater {
+  double depth = 0;             // m above the base
+  double fluid_density = 1000;  // kg/m^3
+  double width = 0;             // section side normal to the motion (m)
+  double thickness = 0;         // section side along the motion (m)
+  double coefficient = 0;       // C_A; 0 = from the rectangle table
+  double fade = 0;              // m below the surface over which it fades to 0
+};
+
+// Simulated test records of the structure described by the study (its model
+// with the `truth` factors: the "real" structure), one file per state.
+struct RecordStateSpec {
+  std::string state;
+  Immersion immersion = Immersion::kDry;
+  // Modal damping ratios of the lowest modes; the last one holds for the rest.
+  std::vector<double> damping_ratios{0.01};
+  std::optional<StripTheoryWater> water;  // extra added mass in this state
+  std::string file;                       // .uff or .csv, in the output folder
+};
+
+struct RecordsSpec {
+  double sample_rate_hz = 0;
+  double duration_s = 0;
+  std::vector<int> sensor_dofs;  // one channel each
+  int impulse_dof = -1;
+  double impulse = 1.0;      // N s
+  double noise = 0;          // relative to each channel's RMS
+  // Modes above this frequency are left out, as an ideal anti-aliasing filter
+  // would remove them; 0 = 0.4 x the sample rate (80 % of Nyquist).
+  double cutoff_hz = 0;
+  unsigned long long seed = 1;
+  std::vector<RecordStateSpec> states;
+};
+
 struct Study {
   std::string path;  // the study file
   std::string name;
@@ -74,6 +141,7 @@ struct Study {
   CorrectionSystemOptions system;
   SolverSpec solver;
   std::optional<NoiseStudySpec> noise_study;
+  std::optional<RecordsSpec> records;  // for `femup simulate`
   bool plots = true;
 };
 
@@ -83,7 +151,12 @@ struct Study {
 // a name that matches no parameter.
 Study LoadStudy(const std::string& path);
 
-// The measured states: given ones as they are, simulated ones from the truth.
+// The measured states: given ones as they are, simulated ones from the truth,
+// identified ones from their files; expanded where the study asks. Throws
+// InputError naming the file and field for unreadable records, too few
+// identified modes, channel/sensor count mismatches or a failed expansion.
+std::vector<PreparedState> PrepareMeasurements(const Study& study);
+// The `data` of each prepared state.
 std::vector<ModalData> MeasuredStates(const Study& study);
 
 }  // namespace femup

@@ -23,8 +23,25 @@ struct StateComparison {
   Eigen::VectorXd model_mac;   // MAC at the sensors (NaN without measured shapes)
   Eigen::VectorXd updated_mac;
   // Shapes for plots, at the measurement DOFs (rows) per measured mode.
-  Eigen::MatrixXd measured_shapes, updated_shapes;
+  Eigen::MatrixXd measured_shapes, model_shapes, updated_shapes;
   std::vector<int> shape_dofs;  // model DOF of each shape row
+};
+
+// The identified added mass in the paper's terms and in physical units.
+struct AddedMassSummary {
+  bool present = false;  // the model has added-mass factors
+  // Sensitivity indicator Sa (Eq. 36): the mean added-mass factor over the wet
+  // elements (a group's factor counts once for each element it covers).
+  double sa = 0;
+  int wet_elements = 0;
+  // Added mass of a rigid unit translation along the transverse DOFs ("...:ux";
+  // every DOF for models without such labels): r' dMa r, kg.
+  double total_kg = 0;
+  double wet_length_m = 0;   // length of the wet elements (0 when unknown)
+  double per_length = 0;     // total_kg / wet_length_m, kg/m
+  // Eq. 2 from measured frequencies, (f_air / f_water)^2 - 1 per mode, when the
+  // study has a dry and a wet state (their first modes paired by order).
+  std::vector<double> eq2_coefficients;
 };
 
 struct UpdateResult {
@@ -42,6 +59,8 @@ struct UpdateResult {
   Identifiability identifiability_unconstrained;  // of the full Z, before fixing
   LinearSolution solution;
   std::vector<StateComparison> states;
+  std::vector<PreparedState> sources;  // per state: identification and expansion
+  AddedMassSummary added_mass_summary;
   SparseMatrix added_mass, updated_stiffness, updated_dry_mass;
   std::vector<double> dof_positions;
   std::vector<std::string> dof_labels;

@@ -1,0 +1,280 @@
+#include "femup/studies/simulate_study.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "femup/csv_series.h"
+#include "femup/errors.h"
+#include "femup/modal.h"
+#include "femup/plot.h"
+#include "femup/strip_theory.h"
+#include "femup/uff.h"
+#include "json_util.h"
+#include "render_staged.h"
+
+namespace femup {
+namespace {
+
+// UFF node and direction of a DOF label: "n12:ux" -> node 12, +X; other labels
+// -> node (DOF + 1), +X.
+void NodeAndDirection(const std::string& label, int dof, int* node, int* direction) {
+  *node = dof + 1;
+  *direction = 1;
+  const auto colon = label.find(':');
+  if (label.size() > 1 && label[0] == 'n' && colon != std::string::npos) {
+    try {
+      *node = std::stoi(label.substr(1, colon - 1));
+    } catch (...) {
+      *node = dof + 1;
+    }
+    const std::string d = label.substr(colon + 1);
+    *direction = d == "uy" ? 2 : (d == "rz" ? 6 : 1);
+  }
+}
+
+// Structural mass per length of the top element, whose nodes are both free
+// (for reporting the added mass as a ratio).
+double BaseMassPerLength(const Structure& s) {
+  for (auto it = s.elements.rbegin(); it != s.elements.rend(); ++it) {
+    const ElementMatrices& e = *it;
+    if (e.x1 > e.x0) {
+      Eigen::VectorXd ones = Eigen::VectorXd::Zero(s.stiffness.rows());
+      for (std::size_t i = 0; i < s.dof_labels.size(); ++i) {
+        const std::string& l = s.dof_labels[i];
+        if (l.size() > 3 && l.compare(l.size() - 3, 3, ":ux") == 0) ones[i] = 1.0;
+      }
+      return ones.dot(e.mass * ones) / (e.x1 - e.x0);
+    }
+  }
+  return 0;
+}
+
+}  // namespace
+
+SimulateResult RunSimulate(const Study& study) {
+  if (!study.records) {
+    throw InputError(study.path, "records: the study has no records section "
+                                 "(sample_rate_hz, duration_s, sensors, impulse, states)");
+  }
+  const RecordsSpec& rs = *study.records;
+  const ParametrisedModel& model = study.model;
+  SimulateResult r;
+  r.study_name = study.name;
+  r.description = study.structure.description;
+  r.sample_rate_hz = rs.sample_rate_hz;
+  r.impulse_dof = rs.impulse_dof;
+  r.impulse_label = model.dof_labels()[rs.impulse_dof];
+  const Eigen::VectorXd d =
+      study.truth ? *study.truth : Eigen::VectorXd::Zero(model.num_parameters());
+  for (std::size_t k = 0; k < rs.states.size(); ++k) {
+    const RecordStateSpec& spec = rs.states[k];
+    SimulatedState st;
+    st.spec = spec;
+    const SparseMatrix stiffness = model.UpdatedStiffness(d);
+    SparseMatrix mass = spec.immersion == Immersion::kWet ? model.UpdatedWetMass(d)
+                                                          : model.UpdatedDryMass(d);
+    if (spec.water) {
+      const StripTheoryWater& w = *spec.water;
+      const std::string where = "records.states[" + std::to_string(k + 1) + "].water";
+      try {
+        st.added_mass_coefficient = w.coefficient > 0
+                                        ? w.coefficient
+                                        : RectangleAddedMassCoefficient(w.width, w.thickness);
+        st.added_mass_per_length =
+            StripAddedMassPerLength(w.fluid_density, w.width, st.added_mass_coefficient);
+        mass += WetTransverseAddedMass(study.structure, st.added_mass_per_length, w.depth,
+                                       w.fade);
+      } catch (const InputError& e) {
+        throw InputError(study.path, where + ": " + e.what());
+      }
+    }
+    st.structural_mass_per_length = BaseMassPerLength(study.structure);
+    const Modes all = SolveModes(stiffness, mass);
+    // An ideal anti-aliasing filter: modes above the cut-off are left out.
+    const double cutoff = rs.cutoff_hz > 0 ? rs.cutoff_hz : 0.4 * rs.sample_rate_hz;
+    const Eigen::VectorXd all_hz = all.FrequenciesHz();
+    int kept = 0;
+    while (kept < all.size() && all_hz[kept] <= cutoff) ++kept;
+    if (kept == 0) {
+      throw InputError(study.path, "records: no mode lies below the cut-off of " +
+                                       std::to_string(cutoff) + " Hz");
+    }
+    Modes modes;
+    modes.eigenvalues = all.eigenvalues.head(kept);
+    modes.shapes = all.shapes.leftCols(kept);
+    st.cutoff_hz = cutoff;
+    TimeResponseOptions o;
+    o.sample_rate_hz = rs.sample_rate_hz;
+    o.duration_s = rs.duration_s;
+    o.sensor_dofs = rs.sensor_dofs;
+    o.quantity = ResponseQuantity::kAcceleration;
+    o.damping = DampingModel::kModal;
+    for (int j = 0; j < modes.size(); ++j) {
+      o.damping_ratios.push_back(
+          spec.damping_ratios[std::min<std::size_t>(j, spec.damping_ratios.size() - 1)]);
+    }
+    o.noise_level = rs.noise;
+    o.noise_seed = rs.seed + 1000003ULL * k;  // a different stream per state
+    Eigen::VectorXd impulse = Eigen::VectorXd::Zero(model.num_dofs());
+    impulse[rs.impulse_dof] = rs.impulse;
+    st.response = SimulateImpulseResponse(modes, impulse, o);
+    for (int dof : rs.sensor_dofs) st.sensors.push_back(model.dof_labels()[dof]);
+    // The modes recorded, with their shapes at the sensors.
+    const Eigen::VectorXd hz = modes.FrequenciesHz();
+    std::vector<int> keep;
+    for (int j = 0; j < modes.size(); ++j) {
+      if (hz[j] > 0) keep.push_back(j);
+    }
+    st.frequencies_hz.resize(static_cast<Eigen::Index>(keep.size()));
+    st.damping_ratios.resize(static_cast<Eigen::Index>(keep.size()));
+    st.shapes.resize(static_cast<Eigen::Index>(rs.sensor_dofs.size()),
+                     static_cast<Eigen::Index>(keep.size()));
+    for (std::size_t j = 0; j < keep.size(); ++j) {
+      const auto c = static_cast<Eigen::Index>(j);
+      st.frequencies_hz[c] = hz[keep[j]];
+      st.damping_ratios[c] = o.damping_ratios[keep[j]];
+      for (std::size_t i = 0; i < rs.sensor_dofs.size(); ++i)
+        st.shapes(static_cast<Eigen::Index>(i), c) = modes.shapes(rs.sensor_dofs[i], keep[j]);
+      Eigen::Index imax = 0;
+      const double peak = st.shapes.col(c).cwiseAbs().maxCoeff(&imax);
+      if (peak > 0) st.shapes.col(c) /= st.shapes(imax, c);
+    }
+    r.states.push_back(std::move(st));
+  }
+  return r;
+}
+
+void WriteSimulateOutputs(const SimulateResult& r, bool plots, OutputDir* out,
+                          std::vector<std::string>* warnings) {
+  nlohmann::json j;
+  j["femup_version"] = "0.1.0";
+  j["command"] = "simulate";
+  j["study"] = r.study_name;
+  j["model"] = r.description;
+  j["impulse_dof"] = r.impulse_label;
+  j["states"] = nlohmann::json::array();
+  for (const SimulatedState& st : r.states) {
+    const TimeResponse& t = st.response;
+    const std::string path = out->Stage(st.spec.file);
+    const std::string ext = std::filesystem::path(st.spec.file).extension().string();
+    if (ext == ".csv") {
+      CsvSeries csv;
+      csv.time_name = "time_s";
+      csv.channel_names = st.sensors;
+      csv.time = t.Times();
+      csv.values = t.data.transpose();
+      WriteCsvSeries(path, csv);
+    } else {
+      std::vector<UffDataset> sets;
+      int ref_node = 0, ref_dir = 0;
+      NodeAndDirection(r.impulse_label, r.impulse_dof, &ref_node, &ref_dir);
+      for (int c = 0; c < t.num_channels(); ++c) {
+        UffFunction f;
+        f.id_lines[0] = r.study_name + " " + st.spec.state;
+        f.id_lines[1] = "simulated by femup: impulse at " + r.impulse_label;
+        f.id_lines[2] = "channel " + std::to_string(c + 1) + " " + st.sensors[c];
+        f.function_type = 1;
+        f.function_id = c + 1;
+        NodeAndDirection(st.sensors[c], t.sensor_dofs[c], &f.response_node,
+                         &f.response_direction);
+        f.reference_node = ref_node;
+        f.reference_direction = ref_dir;
+        f.ordinate_type = UffOrdinateType::kRealDouble;
+        f.even_spacing = true;
+        f.abscissa_start = 0.0;
+        f.abscissa_increment = 1.0 / t.sample_rate_hz;
+        f.abscissa_axis = {17, 0, 0, 0, "Time", "s"};
+        f.ordinate_axis = {12, 1, 0, 0, "Acceleration", "m/s^2"};
+        f.x = t.Times();
+        f.y = t.data.row(c).transpose().cast<std::complex<double>>();
+        sets.emplace_back(std::move(f));
+      }
+      WriteUff(path, sets);
+    }
+    nlohmann::json sj = {{"state", st.spec.state},
+                         {"immersion", ToString(st.spec.immersion)},
+                         {"file", st.spec.file},
+                         {"sensors", st.sensors},
+                         {"sample_rate_hz", t.sample_rate_hz},
+                         {"cutoff_hz", st.cutoff_hz},
+                         {"samples", t.num_samples()},
+                         {"noise_std", json_util::Vector(t.noise_std)},
+                         {"frequencies_hz", json_util::Vector(st.frequencies_hz)},
+                         {"damping_ratios", json_util::Vector(st.damping_ratios)}};
+    nlohmann::json shapes = nlohmann::json::array();
+    for (Eigen::Index c = 0; c < st.shapes.cols(); ++c)
+      shapes.push_back(json_util::Vector(st.shapes.col(c)));
+    sj["shapes_at_sensors"] = shapes;
+    if (st.spec.water) {
+      const StripTheoryWater& w = *st.spec.water;
+      sj["water"] = {{"depth", w.depth},
+                     {"fluid_density", w.fluid_density},
+                     {"width", w.width},
+                     {"thickness", w.thickness},
+                     {"coefficient", st.added_mass_coefficient},
+                     {"fade", w.fade},
+                     {"added_mass_per_length", st.added_mass_per_length},
+                     {"structural_mass_per_length", st.structural_mass_per_length},
+                     {"ratio", st.structural_mass_per_length > 0
+                                   ? st.added_mass_per_length / st.structural_mass_per_length
+                                   : 0.0}};
+    }
+    j["states"].push_back(sj);
+  }
+  out->WriteText("truth.json", j.dump(2) + "\n");
+  if (!plots) return;
+  Figure fig;
+  fig.columns = 1;
+  fig.width_px = 1000;
+  fig.height_px = 320 * static_cast<int>(r.states.size()) + 80;
+  for (const SimulatedState& st : r.states) {
+    Plot p;
+    p.title = st.spec.state + ": acceleration at " + st.sensors.front() + " and " +
+              st.sensors.back();
+    p.x_label = "time (s)";
+    p.y_label = "acceleration (m/s^2)";
+    const Eigen::VectorXd time = st.response.Times();
+    for (int c : {0, st.response.num_channels() - 1}) {
+      PlotSeries s{st.sensors[c], PlotSeries::Style::kLines, {}, {}, {}, {}};
+      s.x.assign(time.data(), time.data() + time.size());
+      for (int k = 0; k < st.response.num_samples(); ++k) s.y.push_back(st.response.data(c, k));
+      p.series.push_back(s);
+      if (st.response.num_channels() == 1) break;
+    }
+    fig.panels.push_back(p);
+  }
+  RenderStaged(fig, "records", out, warnings);
+}
+
+std::string SimulateReport(const SimulateResult& r) {
+  std::ostringstream o;
+  o << std::fixed;
+  o << "simulated records of " << r.study_name << ": " << r.description << "\n"
+    << "impulse at " << r.impulse_label << ", " << r.sample_rate_hz << " Hz sampling\n";
+  for (const SimulatedState& st : r.states) {
+    o << "\nstate " << st.spec.state << " (" << ToString(st.spec.immersion) << ") -> "
+      << st.spec.file << ": " << st.response.num_channels() << " channels x "
+      << st.response.num_samples() << " samples\n";
+    if (st.spec.water) {
+      o << "  strip-theory water to " << std::setprecision(3) << st.spec.water->depth
+        << " m: C_A " << std::setprecision(3) << st.added_mass_coefficient << ", "
+        << std::setprecision(4) << st.added_mass_per_length << " kg/m";
+      if (st.structural_mass_per_length > 0)
+        o << " (" << std::setprecision(4)
+          << st.added_mass_per_length / st.structural_mass_per_length
+          << " of the beam's mass per length)";
+      o << "\n";
+    }
+    o << "  modes below the " << std::setprecision(0) << st.cutoff_hz << " Hz cut-off:";
+    for (Eigen::Index j = 0; j < st.frequencies_hz.size(); ++j)
+      o << " " << std::setprecision(3) << st.frequencies_hz[j] << " Hz";
+    o << "\n";
+  }
+  return o.str();
+}
+
+}  // namespace femup
