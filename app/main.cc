@@ -8,6 +8,7 @@
 #include "femup/errors.h"
 #include "femup/output_dir.h"
 #include "femup/solvers/nonlinear_solver.h"
+#include "femup/studies/compare_study.h"
 #include "femup/studies/identify_study.h"
 #include "femup/studies/modes_study.h"
 #include "femup/studies/noise_study.h"
@@ -125,6 +126,16 @@ int main(int argc, char** argv) {
       "test records of the study's structure (its truth factors, strip-theory water): "
       "impulse responses at the sensors as UFF 58 or CSV, with truth.json");
   AddCommon(simulate, &sim_opts);
+  CLI::App* compare = app.add_subcommand(
+      "compare", "run several studies of one structure and compare their added mass "
+                 "(factors along the structure, Sa) and updated frequencies");
+  std::vector<std::string> compare_studies;
+  std::string compare_out = "out/compare";
+  bool compare_no_plots = false, compare_quiet = false;
+  compare->add_option("studies", compare_studies, "study files (two or more)")->required();
+  compare->add_option("-o,--out", compare_out, "output folder (default out/compare)");
+  compare->add_flag("--no-plots", compare_no_plots, "write JSON only");
+  compare->add_flag("-q,--quiet", compare_quiet, "print nothing but errors and warnings");
   CLI::App* check =
       app.add_subcommand("check", "read and check a study file, do no work");
   check->add_option("study", check_opts.study, "study file (YAML or JSON)")->required();
@@ -209,6 +220,16 @@ int main(int argc, char** argv) {
                                   &warnings);
       if (!sim_opts.quiet) std::cout << femup::SimulateReport(result);
       Finish(&dir, warnings, sim_opts);
+      return 0;
+    }
+    if (*compare) {
+      const femup::CompareResult result = femup::RunCompare(compare_studies);
+      femup::OutputDir dir(compare_out);
+      femup::WriteCompareOutputs(result, !compare_no_plots, &dir, &warnings);
+      if (!compare_quiet) std::cout << femup::CompareReport(result);
+      Common c;
+      c.quiet = compare_quiet;
+      Finish(&dir, warnings, c);
       return 0;
     }
     if (*run) {
