@@ -127,12 +127,14 @@ int main(int argc, char** argv) {
       "impulse responses at the sensors as UFF 58 or CSV, with truth.json");
   AddCommon(simulate, &sim_opts);
   CLI::App* compare = app.add_subcommand(
-      "compare", "run several studies of one structure and compare their added mass "
-                 "(factors along the structure, Sa) and updated frequencies");
+      "compare",
+      "run several studies of one structure and compare their added mass "
+      "(factors along the structure, Sa) and updated frequencies");
   std::vector<std::string> compare_studies;
   std::string compare_out = "out/compare";
   bool compare_no_plots = false, compare_quiet = false;
-  compare->add_option("studies", compare_studies, "study files (two or more)")->required();
+  compare->add_option("studies", compare_studies, "study files (two or more)")
+      ->required();
   compare->add_option("-o,--out", compare_out, "output folder (default out/compare)");
   compare->add_flag("--no-plots", compare_no_plots, "write JSON only");
   compare->add_flag("-q,--quiet", compare_quiet, "print nothing but errors and warnings");

@@ -113,7 +113,8 @@ std::string CompareReport(const CompareResult& r) {
   std::ostringstream o;
   o << std::fixed;
   o << std::left << std::setw(28) << "study" << std::right << std::setw(8) << "factors"
-    << std::setw(9) << "Sa" << std::setw(10) << "kg/m" << "  updated Hz (error %) per state\n";
+    << std::setw(9) << "Sa" << std::setw(10) << "kg/m"
+    << "  updated Hz (error %) per state\n";
   for (std::size_t s = 0; s < r.updates.size(); ++s) {
     const UpdateResult& u = r.updates[s];
     const AddedMassSummary& a = u.added_mass_summary;
@@ -124,11 +125,13 @@ std::string CompareReport(const CompareResult& r) {
       o << " " << c.state << ":";
       for (Eigen::Index k = 0; k < c.measured_hz.size(); ++k) {
         o << " " << std::setprecision(3) << c.updated_hz[k] << " (" << std::showpos
-          << std::setprecision(2) << (c.updated_hz[k] - c.measured_hz[k]) / c.measured_hz[k] * 100
+          << std::setprecision(2)
+          << (c.updated_hz[k] - c.measured_hz[k]) / c.measured_hz[k] * 100
           << std::noshowpos << ")";
       }
     }
-    if (!u.solution.summary.usable()) o << "  [" << ToString(u.solution.summary.status) << "]";
+    if (!u.solution.summary.usable())
+      o << "  [" << ToString(u.solution.summary.status) << "]";
     o << "\n";
   }
   if (!r.updates.empty()) {

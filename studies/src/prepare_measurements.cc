@@ -55,9 +55,11 @@ FileModes ReadModesJson(const std::string& path) {
   FileModes out;
   try {
     if (!j.contains("modes") || !j["modes"].is_array())
-      throw InputError(path, "modes: missing (expected the modes.json of femup identify)");
+      throw InputError(path,
+                       "modes: missing (expected the modes.json of femup identify)");
     if (j.contains("data") && j["data"].contains("channels")) {
-      for (const auto& c : j["data"]["channels"]) out.channels.push_back(c.get<std::string>());
+      for (const auto& c : j["data"]["channels"])
+        out.channels.push_back(c.get<std::string>());
     }
     for (std::size_t k = 0; k < j["modes"].size(); ++k) {
       const auto& m = j["modes"][k];
@@ -93,8 +95,8 @@ std::string ListHz(const std::vector<double>& hz) {
 }
 
 // Picks the used modes and maps the channels to model DOFs.
-void FromFileModes(const MeasurementSpec& m, const FileModes& fm, const std::string& source,
-                   int num_dofs, PreparedState* out) {
+void FromFileModes(const MeasurementSpec& m, const FileModes& fm,
+                   const std::string& source, int num_dofs, PreparedState* out) {
   const std::string where = m.field + (m.identify ? ".identify" : ".modes_file");
   std::vector<int> use = m.use_modes;
   if (use.empty()) {
@@ -102,8 +104,9 @@ void FromFileModes(const MeasurementSpec& m, const FileModes& fm, const std::str
       use.push_back(static_cast<int>(k) + 1);
   }
   if (use.empty()) {
-    throw InputError(source, where + ": no mode was identified (see the stabilisation "
-                                     "diagram; widen the orders or lower stable_orders)");
+    throw InputError(source, where +
+                                 ": no mode was identified (see the stabilisation "
+                                 "diagram; widen the orders or lower stable_orders)");
   }
   for (int k : use) {
     if (k > static_cast<int>(fm.frequencies_hz.size())) {
@@ -163,7 +166,8 @@ void Expand(const Study& study, const MeasurementSpec& m, PreparedState* out) {
   const int sensors = static_cast<int>(s.sensor_dofs.size());
   const int wanted = o.num_modes > 0 ? o.num_modes : sensors;
   EigenOptions eo;
-  if (model.num_dofs() > eo.dense_limit) eo.num_modes = std::min(wanted, model.num_dofs() - 1);
+  if (model.num_dofs() > eo.dense_limit)
+    eo.num_modes = std::min(wanted, model.num_dofs() - 1);
   Modes modes;
   try {
     modes = SolveModes(k, mass, eo);
@@ -199,13 +203,15 @@ std::vector<PreparedState> PrepareMeasurements(const Study& study) {
   for (const MeasurementSpec& m : study.measurements) {
     PreparedState p;
     if (m.simulate_modes > 0) {
-      p.data = PredictModes(study.model, *study.truth, m.immersion, m.simulate_modes, m.state);
+      p.data =
+          PredictModes(study.model, *study.truth, m.immersion, m.simulate_modes, m.state);
     } else if (m.identify) {
       p.identified = RunIdentify(*m.identify);
       FromFileModes(m, ModesOfIdentify(*p.identified), m.identify->file,
                     study.model.num_dofs(), &p);
     } else if (!m.modes_file.empty()) {
-      FromFileModes(m, ReadModesJson(m.modes_file), m.modes_file, study.model.num_dofs(), &p);
+      FromFileModes(m, ReadModesJson(m.modes_file), m.modes_file, study.model.num_dofs(),
+                    &p);
     } else {
       p.data = m.data;
     }

@@ -57,8 +57,9 @@ double BaseMassPerLength(const Structure& s) {
 
 SimulateResult RunSimulate(const Study& study) {
   if (!study.records) {
-    throw InputError(study.path, "records: the study has no records section "
-                                 "(sample_rate_hz, duration_s, sensors, impulse, states)");
+    throw InputError(study.path,
+                     "records: the study has no records section "
+                     "(sample_rate_hz, duration_s, sensors, impulse, states)");
   }
   const RecordsSpec& rs = *study.records;
   const ParametrisedModel& model = study.model;
@@ -81,9 +82,9 @@ SimulateResult RunSimulate(const Study& study) {
       const StripTheoryWater& w = *spec.water;
       const std::string where = "records.states[" + std::to_string(k + 1) + "].water";
       try {
-        st.added_mass_coefficient = w.coefficient > 0
-                                        ? w.coefficient
-                                        : RectangleAddedMassCoefficient(w.width, w.thickness);
+        st.added_mass_coefficient =
+            w.coefficient > 0 ? w.coefficient
+                              : RectangleAddedMassCoefficient(w.width, w.thickness);
         st.added_mass_per_length =
             StripAddedMassPerLength(w.fluid_density, w.width, st.added_mass_coefficient);
         mass += WetTransverseAddedMass(study.structure, st.added_mass_per_length, w.depth,
@@ -138,7 +139,8 @@ SimulateResult RunSimulate(const Study& study) {
       st.frequencies_hz[c] = hz[keep[j]];
       st.damping_ratios[c] = o.damping_ratios[keep[j]];
       for (std::size_t i = 0; i < rs.sensor_dofs.size(); ++i)
-        st.shapes(static_cast<Eigen::Index>(i), c) = modes.shapes(rs.sensor_dofs[i], keep[j]);
+        st.shapes(static_cast<Eigen::Index>(i), c) =
+            modes.shapes(rs.sensor_dofs[i], keep[j]);
       Eigen::Index imax = 0;
       const double peak = st.shapes.col(c).cwiseAbs().maxCoeff(&imax);
       if (peak > 0) st.shapes.col(c) /= st.shapes(imax, c);
@@ -211,17 +213,18 @@ void WriteSimulateOutputs(const SimulateResult& r, bool plots, OutputDir* out,
     sj["shapes_at_sensors"] = shapes;
     if (st.spec.water) {
       const StripTheoryWater& w = *st.spec.water;
-      sj["water"] = {{"depth", w.depth},
-                     {"fluid_density", w.fluid_density},
-                     {"width", w.width},
-                     {"thickness", w.thickness},
-                     {"coefficient", st.added_mass_coefficient},
-                     {"fade", w.fade},
-                     {"added_mass_per_length", st.added_mass_per_length},
-                     {"structural_mass_per_length", st.structural_mass_per_length},
-                     {"ratio", st.structural_mass_per_length > 0
-                                   ? st.added_mass_per_length / st.structural_mass_per_length
-                                   : 0.0}};
+      sj["water"] = {
+          {"depth", w.depth},
+          {"fluid_density", w.fluid_density},
+          {"width", w.width},
+          {"thickness", w.thickness},
+          {"coefficient", st.added_mass_coefficient},
+          {"fade", w.fade},
+          {"added_mass_per_length", st.added_mass_per_length},
+          {"structural_mass_per_length", st.structural_mass_per_length},
+          {"ratio", st.structural_mass_per_length > 0
+                        ? st.added_mass_per_length / st.structural_mass_per_length
+                        : 0.0}};
     }
     j["states"].push_back(sj);
   }
@@ -241,7 +244,8 @@ void WriteSimulateOutputs(const SimulateResult& r, bool plots, OutputDir* out,
     for (int c : {0, st.response.num_channels() - 1}) {
       PlotSeries s{st.sensors[c], PlotSeries::Style::kLines, {}, {}, {}, {}};
       s.x.assign(time.data(), time.data() + time.size());
-      for (int k = 0; k < st.response.num_samples(); ++k) s.y.push_back(st.response.data(c, k));
+      for (int k = 0; k < st.response.num_samples(); ++k)
+        s.y.push_back(st.response.data(c, k));
       p.series.push_back(s);
       if (st.response.num_channels() == 1) break;
     }

@@ -358,7 +358,8 @@ IdentifyOptions ReadIdentify(const Field& f) {
   if (f.Has("tolerances")) {
     const Field tf = f["tolerances"];
     tf.ExpectKeys({"frequency", "damping", "mac"});
-    if (tf.Has("frequency")) o.stabilisation.frequency_tolerance = tf["frequency"].Positive();
+    if (tf.Has("frequency"))
+      o.stabilisation.frequency_tolerance = tf["frequency"].Positive();
     if (tf.Has("damping")) o.stabilisation.damping_tolerance = tf["damping"].Positive();
     if (tf.Has("mac")) o.stabilisation.mac_tolerance = tf["mac"].Positive();
   }
@@ -434,11 +435,13 @@ RecordsSpec ReadRecords(const Field& f, const ParametrisedModel& model) {
     sf.ExpectKeys({"state", "immersion", "damping", "water", "file"});
     RecordStateSpec st;
     st.state = sf["state"].Str();
-    if (!names.insert(st.state).second) sf["state"].Fail("state '" + st.state + "' is listed twice");
+    if (!names.insert(st.state).second)
+      sf["state"].Fail("state '" + st.state + "' is listed twice");
     st.immersion = st.state == "water" ? Immersion::kWet : Immersion::kDry;
     if (sf.Has("immersion")) {
       const std::string v = sf["immersion"].Str();
-      if (v != "wet" && v != "dry") sf["immersion"].Fail("expected wet or dry, found '" + v + "'");
+      if (v != "wet" && v != "dry")
+        sf["immersion"].Fail("expected wet or dry, found '" + v + "'");
       st.immersion = v == "wet" ? Immersion::kWet : Immersion::kDry;
     }
     if (sf.Has("damping")) {
@@ -451,7 +454,8 @@ RecordsSpec ReadRecords(const Field& f, const ParametrisedModel& model) {
     }
     if (sf.Has("water")) {
       const Field w = sf["water"];
-      w.ExpectKeys({"depth", "fluid_density", "width", "thickness", "coefficient", "fade"});
+      w.ExpectKeys(
+          {"depth", "fluid_density", "width", "thickness", "coefficient", "fade"});
       StripTheoryWater water;
       water.depth = w["depth"].Positive();
       if (w.Has("fluid_density")) water.fluid_density = w["fluid_density"].Positive();
@@ -470,7 +474,8 @@ RecordsSpec ReadRecords(const Field& f, const ParametrisedModel& model) {
       sf["file"].Fail("expected a .uff, .unv or .csv file name, got '" + st.file + "'");
     if (fs::path(st.file).has_parent_path() || st.file.empty())
       sf["file"].Fail("expected a plain file name (it is written in the output folder)");
-    if (!files.insert(st.file).second) sf["file"].Fail("file '" + st.file + "' is listed twice");
+    if (!files.insert(st.file).second)
+      sf["file"].Fail("file '" + st.file + "' is listed twice");
     r.states.push_back(st);
   }
   if (r.states.empty()) f["states"].Fail("expected at least one state");
@@ -523,7 +528,8 @@ MeasurementSpec ReadMeasurement(const Field& f, const ParametrisedModel& model,
         for (const Field& item : mf.Items()) {
           const int k = item.Int();
           if (k < 1) item.Fail("identified modes are numbered from 1 (lowest frequency)");
-          if (!seen.insert(k).second) item.Fail("mode " + std::to_string(k) + " is listed twice");
+          if (!seen.insert(k).second)
+            item.Fail("mode " + std::to_string(k) + " is listed twice");
           m.use_modes.push_back(k);
         }
       }

@@ -144,7 +144,8 @@ UpdateResult RunUpdate(const Study& study) {
   r.added_mass = study.model.AddedMass(d);
   r.updated_stiffness = study.model.UpdatedStiffness(d);
   r.updated_dry_mass = study.model.UpdatedDryMass(d);
-  if (d.allFinite()) r.added_mass_summary = SummariseAddedMass(study, d, r.added_mass, r.sources);
+  if (d.allFinite())
+    r.added_mass_summary = SummariseAddedMass(study, d, r.added_mass, r.sources);
   const Eigen::VectorXd zero = Eigen::VectorXd::Zero(study.model.num_parameters());
   for (const PreparedState& source : r.sources) {
     // Compared where it was measured (at the sensors, before any expansion).
@@ -178,7 +179,6 @@ UpdateResult RunUpdate(const Study& study) {
   }
   return r;
 }
-
 
 void RenderStaged(const Figure& figure, const std::string& name, OutputDir* out,
                   std::vector<std::string>* warnings) {
@@ -331,11 +331,12 @@ void WriteUpdateOutputs(const UpdateResult& r, bool plots, OutputDir* out,
   j["measurements"] = nlohmann::json::array();
   for (std::size_t s = 0; s < r.sources.size(); ++s) {
     const PreparedState& p = r.sources[s];
-    nlohmann::json mj = {{"state", p.data.state},
-                         {"modes", p.data.num_modes()},
-                         {"sensors", p.at_sensors.sensor_dofs.empty()
-                                         ? r.num_dofs
-                                         : static_cast<int>(p.at_sensors.sensor_dofs.size())}};
+    nlohmann::json mj = {
+        {"state", p.data.state},
+        {"modes", p.data.num_modes()},
+        {"sensors", p.at_sensors.sensor_dofs.empty()
+                        ? r.num_dofs
+                        : static_cast<int>(p.at_sensors.sensor_dofs.size())}};
     if (!p.source.empty()) {
       mj["source"] = p.source;
       mj["identified_modes_used"] = p.identified_modes;
@@ -363,7 +364,8 @@ void WriteUpdateOutputs(const UpdateResult& r, bool plots, OutputDir* out,
   j["files"] = {"added_mass.mtx", "updated_stiffness.mtx", "updated_dry_mass.mtx",
                 "system_Z.mtx", "system_F.mtx"};
   for (const PreparedState& p : r.sources) {
-    if (p.identified) WriteIdentifyOutputs(*p.identified, plots, out, warnings, p.data.state + "_");
+    if (p.identified)
+      WriteIdentifyOutputs(*p.identified, plots, out, warnings, p.data.state + "_");
   }
   out->WriteText("result.json", j.dump(2) + "\n");
   WriteMatrixMarket(out->Stage("added_mass.mtx"), r.added_mass, true);
@@ -526,9 +528,9 @@ std::string UpdateReport(const UpdateResult& r) {
   }
   if (r.added_mass_summary.present) {
     const AddedMassSummary& a = r.added_mass_summary;
-    o << "\nadded mass: Sa (mean factor over " << a.wet_elements << " wet elements) = "
-      << std::setprecision(4) << a.sa << "; " << std::setprecision(3) << a.total_kg
-      << " kg in transverse translation";
+    o << "\nadded mass: Sa (mean factor over " << a.wet_elements
+      << " wet elements) = " << std::setprecision(4) << a.sa << "; "
+      << std::setprecision(3) << a.total_kg << " kg in transverse translation";
     if (a.wet_length_m > 0)
       o << " = " << std::setprecision(4) << a.per_length << " kg/m over "
         << std::setprecision(3) << a.wet_length_m << " m";
@@ -572,7 +574,8 @@ std::string UpdateReport(const UpdateResult& r) {
         o << "\n";
       }
     }
-    o << "  mode  measured_Hz   model_Hz  err_%   updated_Hz  err_%   MAC_mod   MAC_upd\n";
+    o << "  mode  measured_Hz   model_Hz  err_%   updated_Hz  err_%   MAC_mod   "
+         "MAC_upd\n";
     for (Eigen::Index k = 0; k < c.measured_hz.size(); ++k) {
       o << "  " << std::setw(4) << k + 1 << std::setw(12) << std::setprecision(4)
         << c.measured_hz[k] << std::setw(11) << c.model_hz[k] << std::setw(7)

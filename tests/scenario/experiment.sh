@@ -6,7 +6,8 @@
 #  2. femup run on Model A identifies the modes by ERA (frequencies within
 #     0.1 %, damping within 10 % of the simulated truth), expands the shapes and
 #     finds the added mass: its total matches strip theory (the independent
-#     reference written into truth.json) within 3 %, and the updated model's
+#     reference written into truth.json) within 5 % (measured: 0.1 %, partly
+#     by a cancellation of errors: docs/experiment.md), and the updated model's
 #     frequencies are within 1 % of the measured ones.
 #  3. femup compare on Models A-E writes the Sa comparison and its plots.
 #  4. The same chain from identify's modes.json (modes_file), and from a CSV
@@ -39,7 +40,7 @@ for m in res["measurements"]:
 water = by_state["water"]["water"]
 strip_kg = water["added_mass_per_length"] * water["depth"]
 got = res["added_mass_summary"]["total_kg"]
-assert abs(got - strip_kg) / strip_kg < 0.03, (got, strip_kg)
+assert abs(got - strip_kg) / strip_kg < 0.05, (got, strip_kg)
 for s in res["states"]:
     for e in s["updated_error_percent"]:
         assert abs(e) < 1.0, s

@@ -115,8 +115,8 @@ struct RecordsSpec {
   double duration_s = 0;
   std::vector<int> sensor_dofs;  // one channel each
   int impulse_dof = -1;
-  double impulse = 1.0;      // N s
-  double noise = 0;          // relative to each channel's RMS
+  double impulse = 1.0;  // N s
+  double noise = 0;      // relative to each channel's RMS
   // Modes above this frequency are left out, as an ideal anti-aliasing filter
   // would remove them; 0 = 0.4 x the sample rate (80 % of Nyquist).
   double cutoff_hz = 0;

@@ -37,8 +37,8 @@ struct AddedMassSummary {
   // Added mass of a rigid unit translation along the transverse DOFs ("...:ux";
   // every DOF for models without such labels): r' dMa r, kg.
   double total_kg = 0;
-  double wet_length_m = 0;   // length of the wet elements (0 when unknown)
-  double per_length = 0;     // total_kg / wet_length_m, kg/m
+  double wet_length_m = 0;  // length of the wet elements (0 when unknown)
+  double per_length = 0;    // total_kg / wet_length_m, kg/m
   // Eq. 2 from measured frequencies, (f_air / f_water)^2 - 1 per mode, when the
   // study has a dry and a wet state (their first modes paired by order).
   std::vector<double> eq2_coefficients;
