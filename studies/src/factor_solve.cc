@@ -5,6 +5,7 @@
 #include "femup/errors.h"
 #include "femup/problems/correction_system.h"
 #include "femup/problems/eigen_sensitivity.h"
+#include "femup/solvers/identifiability.h"
 #include "femup/solvers/nonlinear_solver.h"
 #include "femup/solvers/uncertainty.h"
 
@@ -68,6 +69,26 @@ FactorSolve SolveFactors(const Study& study, const SolverSpec& spec,
   s.confidence_level = spec.linear.confidence_level;
   if (p.A.size() > 0 && ns.x.size() == n) s.residual = p.A * ns.x - p.b;
   s.covariance = ns.covariance;
+  // What the data fix: the sensitivity Jacobian at the answer, over the free
+  // parameters (with frequencies only there are few rows: the report says
+  // which combinations stay unseen).
+  if (ns.jacobian.rows() > 0 && ns.jacobian.cols() == n) {
+    std::vector<bool> is_fixed(n, false);
+    for (const auto& f : p.fixed) is_fixed[f.first] = true;
+    std::vector<int> free;
+    for (int i = 0; i < n; ++i) {
+      if (!is_fixed[i]) free.push_back(i);
+    }
+    Eigen::MatrixXd j(ns.jacobian.rows(), static_cast<Eigen::Index>(free.size()));
+    std::vector<std::string> names, groups;
+    for (std::size_t c = 0; c < free.size(); ++c) {
+      j.col(static_cast<Eigen::Index>(c)) = ns.jacobian.col(free[c]);
+      names.push_back(p.names[free[c]]);
+      groups.push_back(p.groups[free[c]]);
+    }
+    s.identifiability =
+        AnalyseIdentifiability(j, names, groups, spec.linear.relative_rank_tolerance);
+  }
   SetIntervals(0.0, &s);  // known noise: normal quantile
   return out;
 }

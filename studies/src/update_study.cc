@@ -488,9 +488,14 @@ std::string UpdateReport(const UpdateResult& r) {
   o << "study: " << r.study_name << "\nmodel: " << r.model_description << " ("
     << r.num_dofs << " DOFs)\n";
   const Identifiability& u = r.identifiability_unconstrained;
-  o << "system: " << ToString(r.form) << " form, " << r.problem.num_rows() << " x "
-    << r.problem.num_unknowns() << ", " << r.num_fem_modes << " FEM modes, rank "
-    << u.rank << " of " << r.problem.num_unknowns() << "\n";
+  if (r.problem.num_rows() > 0) {
+    o << "system: " << ToString(r.form) << " form, " << r.problem.num_rows() << " x "
+      << r.problem.num_unknowns() << ", " << r.num_fem_modes << " FEM modes, rank "
+      << u.rank << " of " << r.problem.num_unknowns() << "\n";
+  } else {
+    o << "system: no Z d = F (incomplete shapes or frequencies only); the sensitivity "
+         "Jacobian is analysed below\n";
+  }
   for (const auto& nd : u.null_directions)
     o << "  null direction: " << nd.description << "\n";
   for (const auto& w : u.warnings) o << "  note: " << w << "\n";
@@ -507,6 +512,14 @@ std::string UpdateReport(const UpdateResult& r) {
     << "): " << r.method << " method, " << r.solver_name << ": "
     << r.solution.summary.message << "\n";
   for (const auto& w : r.solution.summary.warnings) o << "  warning: " << w << "\n";
+  if (r.method == "sensitivity" &&
+      r.solution.identifiability.singular_values.size() > 0) {
+    const Identifiability& id = r.solution.identifiability;
+    o << "sensitivity Jacobian at the answer: rank " << id.rank << " of "
+      << id.singular_values.size() << " free parameters\n";
+    for (const auto& nd : id.null_directions)
+      o << "  not determined by the data: " << nd.description << "\n";
+  }
   const bool has_se =
       r.solution.standard_error.size() == static_cast<Eigen::Index>(r.parameters.size());
   o << "\n";
