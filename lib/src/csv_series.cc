@@ -11,6 +11,7 @@
 
 #include "femup/errors.h"
 #include "file_io.h"
+#include "text_util.h"
 
 namespace femup {
 namespace {
@@ -155,7 +156,7 @@ class Parser {
       : text_(text), name_(std::move(name)), options_(options) {}
 
   CsvSeries Parse() {
-    if (text_.substr(0, 3) == "\xEF\xBB\xBF") position_ = 3;
+    position_ = internal::AfterByteOrderMark(text_);
     std::string_view header;
     if (!NextContentLine(&header)) {
       throw InputError(name_, "no header line: the file is empty or holds only comments");
@@ -256,13 +257,7 @@ class Parser {
   }
 
   bool NextLine(std::string_view* line) {
-    if (position_ >= text_.size()) return false;
-    size_t end = text_.find('\n', position_);
-    if (end == std::string_view::npos) end = text_.size();
-    std::string_view out = text_.substr(position_, end - position_);
-    if (!out.empty() && out.back() == '\r') out.remove_suffix(1);
-    *line = out;
-    position_ = end + 1;
+    if (!internal::NextTextLine(text_, &position_, line)) return false;
     ++line_;
     return true;
   }

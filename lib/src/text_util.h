@@ -11,6 +11,26 @@ inline bool IsBlank(char c) {
   return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v';
 }
 
+// Splits the next line off `text` at `*position` (LF or CRLF ends a line; the
+// terminator is not part of `*line`) and moves `*position` past it; false at
+// the end of the text.
+inline bool NextTextLine(std::string_view text, size_t* position,
+                         std::string_view* line) {
+  if (*position >= text.size()) return false;
+  size_t end = text.find('\n', *position);
+  if (end == std::string_view::npos) end = text.size();
+  std::string_view out = text.substr(*position, end - *position);
+  if (!out.empty() && out.back() == '\r') out.remove_suffix(1);
+  *line = out;
+  *position = end + 1;
+  return true;
+}
+
+// Where text starts after a UTF-8 byte order mark, if any.
+inline size_t AfterByteOrderMark(std::string_view text) {
+  return text.substr(0, 3) == "\xEF\xBB\xBF" ? 3 : 0;
+}
+
 // The blank-separated fields of `line` (views into it).
 inline std::vector<std::string_view> Tokens(std::string_view line) {
   std::vector<std::string_view> out;

@@ -241,7 +241,7 @@ class Reader {
   Reader(std::string_view text, std::string name) : text_(text), name_(std::move(name)) {}
 
   UffFile Read() {
-    if (text_.substr(0, 3) == "\xEF\xBB\xBF") position_ = 3;  // UTF-8 byte order mark
+    position_ = internal::AfterByteOrderMark(text_);
     std::string_view line;
     while (NextLine(&line)) {
       if (Trim(line).empty()) continue;
@@ -284,13 +284,7 @@ class Reader {
 
   // Next line without its terminator (LF or CRLF); false at the end of the text.
   bool NextLine(std::string_view* line) {
-    if (position_ >= text_.size()) return false;
-    size_t end = text_.find('\n', position_);
-    if (end == std::string_view::npos) end = text_.size();
-    std::string_view out = text_.substr(position_, end - position_);
-    if (!out.empty() && out.back() == '\r') out.remove_suffix(1);
-    *line = out;
-    position_ = end + 1;
+    if (!internal::NextTextLine(text_, &position_, line)) return false;
     ++line_;
     return true;
   }
@@ -306,6 +300,16 @@ class Reader {
              "found the end marker '-1' instead; the dataset is truncated");
     }
     return line;
+  }
+
+  // Next non-blank line of a dataset of records, false at its closing "-1"; a
+  // file that ends first is a truncated dataset.
+  bool NextLineBeforeEnd(std::string_view* line) {
+    while (NextLine(line)) {
+      if (Trim(*line) == "-1") return false;
+      if (!Trim(*line).empty()) return true;
+    }
+    FailIn(line_ + 1, "end", "the file ends before the '    -1' closing the dataset");
   }
 
   // Skips blank lines and expects the closing "-1".
@@ -581,12 +585,7 @@ class Reader {
   UffNodes Read15() {
     UffNodes out;
     std::string_view line;
-    for (;;) {
-      if (!NextLine(&line)) {
-        FailIn(line_ + 1, "end", "the file ends before the '    -1' closing the dataset");
-      }
-      if (Trim(line) == "-1") break;
-      if (Trim(line).empty()) continue;
+    while (NextLineBeforeEnd(&line)) {
       const auto v = NumericRecord(line, kNodeFields, "node record");
       UffNode node;
       node.label = v[0].integer;
@@ -678,12 +677,7 @@ class Reader {
     const size_t count = static_cast<size_t>(per_node) * (shape->complex_data ? 2 : 1);
     std::vector<std::vector<double>> rows;
     std::string_view line;
-    for (;;) {
-      if (!NextLine(&line)) {
-        FailIn(line_ + 1, "end", "the file ends before the '    -1' closing the dataset");
-      }
-      if (Trim(line) == "-1") break;
-      if (Trim(line).empty()) continue;
+    while (NextLineBeforeEnd(&line)) {
       const std::string r9 = "record 9 (node " + std::to_string(rows.size() + 1) + ")";
       const auto v9 = NumericRecord(line, {{"node number", 10, true}}, r9);
       shape->nodes.push_back(v9[0].integer);

@@ -35,20 +35,13 @@ FileModes ModesOfIdentify(const IdentifyResult& r) {
   return out;
 }
 
-std::string ReadWholeFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, std::string("cannot open: ") + std::strerror(errno));
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 // modes.json as `femup identify` writes it.
 FileModes ReadModesJson(const std::string& path) {
-  const std::string text = ReadWholeFile(path);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, std::string("cannot open: ") + std::strerror(errno));
   nlohmann::json j;
   try {
-    j = nlohmann::json::parse(text);
+    j = nlohmann::json::parse(in);
   } catch (const nlohmann::json::parse_error& e) {
     throw InputError(path, std::string("not valid JSON: ") + e.what());
   }

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "dof_labels.h"
 #include "femup/csv_series.h"
 #include "femup/errors.h"
 #include "femup/modal.h"
@@ -38,17 +39,10 @@ void NodeAndDirection(const std::string& label, int dof, int* node, int* directi
 
 // Structural mass per length of the top element, whose nodes are both free
 // (for reporting the added mass as a ratio).
-double BaseMassPerLength(const Structure& s) {
+double TopElementMassPerLength(const Structure& s) {
+  const Eigen::VectorXd r = internal::TransverseUnitTranslation(s.dof_labels);
   for (auto it = s.elements.rbegin(); it != s.elements.rend(); ++it) {
-    const ElementMatrices& e = *it;
-    if (e.x1 > e.x0) {
-      Eigen::VectorXd ones = Eigen::VectorXd::Zero(s.stiffness.rows());
-      for (std::size_t i = 0; i < s.dof_labels.size(); ++i) {
-        const std::string& l = s.dof_labels[i];
-        if (l.size() > 3 && l.compare(l.size() - 3, 3, ":ux") == 0) ones[i] = 1.0;
-      }
-      return ones.dot(e.mass * ones) / (e.x1 - e.x0);
-    }
+    if (it->x1 > it->x0) return r.dot(it->mass * r) / (it->x1 - it->x0);
   }
   return 0;
 }
@@ -71,11 +65,12 @@ SimulateResult RunSimulate(const Study& study) {
   r.impulse_label = model.dof_labels()[rs.impulse_dof];
   const Eigen::VectorXd d =
       study.truth ? *study.truth : Eigen::VectorXd::Zero(model.num_parameters());
+  const SparseMatrix stiffness = model.UpdatedStiffness(d);
+  const double structural_mass_per_length = TopElementMassPerLength(study.structure);
   for (std::size_t k = 0; k < rs.states.size(); ++k) {
     const RecordStateSpec& spec = rs.states[k];
     SimulatedState st;
     st.spec = spec;
-    const SparseMatrix stiffness = model.UpdatedStiffness(d);
     SparseMatrix mass = spec.immersion == Immersion::kWet ? model.UpdatedWetMass(d)
                                                           : model.UpdatedDryMass(d);
     if (spec.water) {
@@ -93,7 +88,7 @@ SimulateResult RunSimulate(const Study& study) {
         throw InputError(study.path, where + ": " + e.what());
       }
     }
-    st.structural_mass_per_length = BaseMassPerLength(study.structure);
+    st.structural_mass_per_length = structural_mass_per_length;
     const Modes all = SolveModes(stiffness, mass);
     // An ideal anti-aliasing filter: modes above the cut-off are left out.
     const double cutoff = rs.cutoff_hz > 0 ? rs.cutoff_hz : 0.4 * rs.sample_rate_hz;

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "dof_labels.h"
 #include "femup/errors.h"
 #include "femup/matrix_market.h"
 #include "femup/modal.h"
@@ -77,12 +78,7 @@ AddedMassSummary SummariseAddedMass(const Study& study, const Eigen::VectorXd& d
     }
   }
   if (a.wet_elements > 0) a.sa = sum / a.wet_elements;
-  Eigen::VectorXd r = Eigen::VectorXd::Zero(model.num_dofs());
-  for (int i = 0; i < model.num_dofs(); ++i) {
-    const std::string& l = model.dof_labels()[i];
-    if (l.size() > 3 && l.compare(l.size() - 3, 3, ":ux") == 0) r[i] = 1.0;
-  }
-  if (r.isZero()) r.setOnes();
+  const Eigen::VectorXd r = internal::TransverseUnitTranslation(model.dof_labels());
   if (added_mass.rows() == r.size()) a.total_kg = r.dot(added_mass * r);
   if (a.wet_length_m > 0) a.per_length = a.total_kg / a.wet_length_m;
   const ModalData* dry = nullptr;
@@ -193,10 +189,8 @@ std::vector<int> TransverseRows(const std::vector<std::string>& dof_labels,
                                 const std::vector<int>& dofs) {
   std::vector<int> rows;
   for (std::size_t i = 0; i < dofs.size(); ++i) {
-    const std::string& label = dof_labels[dofs[i]];
-    if (label.size() > 3 && label.compare(label.size() - 3, 3, ":ux") == 0) {
+    if (internal::IsTransverseDof(dof_labels[dofs[i]]))
       rows.push_back(static_cast<int>(i));
-    }
   }
   if (rows.empty()) {
     for (std::size_t i = 0; i < dofs.size(); ++i) rows.push_back(static_cast<int>(i));
