@@ -8,7 +8,9 @@
 #include "femup/errors.h"
 #include "femup/output_dir.h"
 #include "femup/solvers/nonlinear_solver.h"
+#include "femup/studies/blind_benchmark.h"
 #include "femup/studies/compare_study.h"
+#include "femup/studies/diagnose_study.h"
 #include "femup/studies/identify_study.h"
 #include "femup/studies/modes_study.h"
 #include "femup/studies/noise_study.h"
@@ -106,7 +108,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", "femup 0.1.0");
 
-  Common run_opts, noise_opts, modes_opts, check_opts, sim_opts;
+  Common run_opts, noise_opts, modes_opts, check_opts, sim_opts, diag_opts;
   int num_modes = 0;
   CLI::App* run = app.add_subcommand(
       "run", "identify correction factors (Z d = F), build the updated model, compare");
@@ -126,6 +128,25 @@ int main(int argc, char** argv) {
       "test records of the study's structure (its truth factors, strip-theory water): "
       "impulse responses at the sensors as UFF 58 or CSV, with truth.json");
   AddCommon(simulate, &sim_opts);
+  CLI::App* diagnose = app.add_subcommand(
+      "diagnose",
+      "the sim-to-real gap: where it lies, which unmodelled effect causes it (ranked, "
+      "with probabilities), how far it shrinks on fitted and held-out modes");
+  AddCommon(diagnose, &diag_opts);
+  CLI::App* bench = app.add_subcommand(
+      "benchmark",
+      "the blind benchmark of diagnose: generate cases (study files; truth kept apart), "
+      "diagnose each, score");
+  femup::BenchmarkOptions bench_options;
+  std::string bench_out = "out/benchmark";
+  bool bench_no_plots = false, bench_quiet = false;
+  bench->add_option("--suite", bench_options.suite, "single or mixed (default mixed)");
+  bench->add_option("--cases", bench_options.cases, "number of cases (default 100)");
+  bench->add_option("--seed", bench_options.seed, "random seed (default 20261121)");
+  bench->add_option("--threads", bench_options.threads, "cases in parallel (default 2)");
+  bench->add_option("-o,--out", bench_out, "output folder (default out/benchmark)");
+  bench->add_flag("--no-plots", bench_no_plots, "write JSON and tables only");
+  bench->add_flag("-q,--quiet", bench_quiet, "print nothing but errors and warnings");
   CLI::App* compare = app.add_subcommand(
       "compare",
       "run several studies of one structure and compare their added mass "
@@ -222,6 +243,32 @@ int main(int argc, char** argv) {
                                   &warnings);
       if (!sim_opts.quiet) std::cout << femup::SimulateReport(result);
       Finish(&dir, warnings, sim_opts);
+      return 0;
+    }
+    if (*diagnose) {
+      const femup::Study study = femup::LoadStudy(diag_opts.study);
+      RequireMeasurements(study);
+      const femup::DiagnosisResult result = femup::RunDiagnosis(study);
+      femup::OutputDir dir(OutputFolder(diag_opts, study));
+      femup::WriteDiagnosisOutputs(result, study.plots && !diag_opts.no_plots, &dir,
+                                   &warnings);
+      if (!diag_opts.quiet) std::cout << femup::DiagnosisReport(result);
+      Finish(&dir, warnings, diag_opts);
+      return 0;
+    }
+    if (*bench) {
+      const std::string invalid = bench_options.Validate();
+      if (!invalid.empty())
+        throw femup::InputError("--" + invalid.substr(0, invalid.find(':')),
+                                invalid.substr(invalid.find(':') + 2));
+      std::filesystem::create_directories(bench_out);
+      const femup::BenchmarkResult result = femup::RunBenchmark(bench_options, bench_out);
+      femup::OutputDir dir(bench_out);
+      femup::WriteBenchmarkOutputs(result, !bench_no_plots, &dir, &warnings);
+      if (!bench_quiet) std::cout << femup::BenchmarkReport(result);
+      Common c;
+      c.quiet = bench_quiet;
+      Finish(&dir, warnings, c);
       return 0;
     }
     if (*compare) {

@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <Eigen/SparseCholesky>
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -12,6 +13,7 @@
 #include "femup/builders.h"
 #include "femup/errors.h"
 #include "femup/matrix_market.h"
+#include "femup/problems/effects.h"
 
 namespace femup {
 namespace {
@@ -166,9 +168,10 @@ Structure ReadChain(const Field& m) {
   return BuildSpringMassChain(spec);
 }
 
-Structure ReadCantilever(const Field& m) {
+Structure ReadCantilever(const Field& m, CantileverSpec* out) {
   m.ExpectKeys({"type", "length", "elements", "node_heights", "section", "water_depth",
-                "added_mass_basis", "support", "lumped_masses"});
+                "added_mass_basis", "support", "lumped_masses", "distributed_masses",
+                "stiffness_changes", "point_masses"});
   CantileverSpec spec;
   if (m.Has("node_heights")) {
     if (m.Has("length") || m.Has("elements")) {
@@ -212,11 +215,117 @@ Structure ReadCantilever(const Field& m) {
       spec.lumped_masses.push_back(lm);
     }
   }
+  if (m.Has("distributed_masses")) {
+    for (const Field& f : m["distributed_masses"].Items()) {
+      f.ExpectKeys({"from", "to", "mass_per_length", "fade"});
+      CantileverSpec::DistributedMass d;
+      d.z0 = f["from"].NonNegative();
+      d.z1 = f["to"].NonNegative();
+      if (!(d.z1 > d.z0)) f["to"].Fail("expected a height above from (m)");
+      d.mass_per_length = f["mass_per_length"].NonNegative();
+      if (f.Has("fade")) d.fade = f["fade"].NonNegative();
+      spec.distributed_masses.push_back(d);
+    }
+  }
+  if (m.Has("stiffness_changes")) {
+    for (const Field& f : m["stiffness_changes"].Items()) {
+      f.ExpectKeys({"from", "to", "factor"});
+      CantileverSpec::StiffnessChange c;
+      c.z0 = f["from"].NonNegative();
+      c.z1 = f["to"].NonNegative();
+      if (!(c.z1 > c.z0)) f["to"].Fail("expected a height above from (m)");
+      c.factor = f["factor"].Num();
+      if (!(c.factor > -1)) {
+        f["factor"].Fail("expected a number > -1 (E I becomes E I (1 + factor)), found " +
+                         f["factor"].Str());
+      }
+      spec.stiffness_changes.push_back(c);
+    }
+  }
+  if (m.Has("point_masses")) {
+    for (const Field& f : m["point_masses"].Items()) {
+      f.ExpectKeys({"height", "mass", "rotary_inertia"});
+      CantileverSpec::PointMass p;
+      p.height = f["height"].NonNegative();
+      p.mass = f["mass"].NonNegative();
+      if (f.Has("rotary_inertia")) p.rotary_inertia = f["rotary_inertia"].NonNegative();
+      spec.point_masses.push_back(p);
+    }
+  }
+  *out = spec;
   try {
     return BuildCantilever(spec);
   } catch (const InputError& e) {
     m.Fail(e.what());
   }
+}
+
+DiagnosisSpec ReadDiagnosis(const Field& f) {
+  f.ExpectKeys({"noise", "candidates", "max_effects", "held_out", "use_shapes",
+                "mesh_error", "localise", "solver", "confidence"});
+  DiagnosisSpec d;
+  if (f.Has("noise")) {
+    const Field n = f["noise"];
+    n.ExpectKeys({"frequency", "shape"});
+    if (n.Has("frequency")) {
+      d.frequency_noise = n["frequency"].Positive();
+      if (d.frequency_noise >= 0.5)
+        n["frequency"].Fail("a relative standard deviation: expected 0 < value < 0.5");
+    }
+    if (n.Has("shape")) {
+      d.shape_noise = n["shape"].Positive();
+      if (d.shape_noise >= 1)
+        n["shape"].Fail("relative to the largest entry: expected 0 < value < 1");
+    }
+  }
+  if (f.Has("candidates")) {
+    const std::vector<std::string> known = AvailableEffects();
+    std::set<std::string> seen;
+    for (const Field& item : f["candidates"].Items()) {
+      const std::string k = item.Str();
+      if (std::find(known.begin(), known.end(), k) == known.end()) {
+        std::string list;
+        for (const auto& x : known) list += (list.empty() ? "" : ", ") + x;
+        item.Fail("unknown effect '" + k + "' (expected " + list + ")");
+      }
+      if (!seen.insert(k).second) item.Fail("effect '" + k + "' is listed twice");
+      d.candidates.push_back(k);
+    }
+    if (d.candidates.empty()) f["candidates"].Fail("expected at least one effect");
+  }
+  if (f.Has("max_effects")) {
+    d.max_effects = f["max_effects"].Int();
+    if (d.max_effects < 1 || d.max_effects > 2)
+      f["max_effects"].Fail("expected 1 (single effects) or 2 (also pairs)");
+  }
+  if (f.Has("held_out")) {
+    const Field h = f["held_out"];
+    if (h.IsScalar()) {
+      d.held_out = h.Str();
+      if (d.held_out != "auto" && d.held_out != "none")
+        h.Fail("expected auto, none or a list of {state, mode}");
+    } else {
+      d.held_out = "list";
+      for (const Field& item : h.Items()) {
+        item.ExpectKeys({"state", "mode"});
+        d.held_out_modes.emplace_back(item["state"].Str(), item["mode"].Int());
+      }
+    }
+  }
+  if (f.Has("use_shapes")) d.use_shapes = f["use_shapes"].Bool();
+  if (f.Has("mesh_error")) d.mesh_error = f["mesh_error"].Bool();
+  if (f.Has("localise")) d.localise = f["localise"].Bool();
+  if (f.Has("solver")) {
+    d.solver = f["solver"].Str();
+    if (d.solver != "ceres" && d.solver != "ipopt")
+      f["solver"].Fail("expected ceres or ipopt, found '" + d.solver + "'");
+  }
+  if (f.Has("confidence")) {
+    d.confidence = f["confidence"].Num();
+    if (!(d.confidence > 0.5 && d.confidence < 1))
+      f["confidence"].Fail("expected a probability between 0.5 and 1");
+  }
+  return d;
 }
 
 Structure ReadMatrixMarketModel(const Field& m) {
@@ -756,7 +865,7 @@ Study LoadStudy(const std::string& path) {
   }
   const Field top(root, path, "");
   top.ExpectKeys({"name", "description", "model", "parameters", "truth", "measurements",
-                  "system", "solver", "noise_study", "output", "records"});
+                  "system", "solver", "noise_study", "output", "records", "diagnosis"});
   Study study;
   study.path = path;
   study.name = top.Has("name") ? top["name"].Str() : fs::path(path).stem().string();
@@ -767,7 +876,9 @@ Study LoadStudy(const std::string& path) {
   if (type == "chain") {
     study.structure = ReadChain(mf);
   } else if (type == "cantilever") {
-    study.structure = ReadCantilever(mf);
+    CantileverSpec spec;
+    study.structure = ReadCantilever(mf, &spec);
+    study.cantilever = spec;
   } else if (type == "matrix_market") {
     study.structure = ReadMatrixMarketModel(mf);
   } else {
@@ -776,6 +887,12 @@ Study LoadStudy(const std::string& path) {
   }
 
   ParameterPlan plan = PaperParameterPlan();
+  if (!top.Has("parameters") &&
+      std::none_of(study.structure.elements.begin(), study.structure.elements.end(),
+                   [](const ElementMatrices& e) { return e.wet; })) {
+    // The paper's plan without water: no added-mass factors to attach.
+    plan.added_mass.scope = ParameterFamily::Scope::kNone;
+  }
   if (top.Has("parameters")) {
     const Field pf = top["parameters"];
     pf.ExpectKeys({"mass", "stiffness", "added_mass", "fix", "bounds", "equalities"});
@@ -897,6 +1014,7 @@ Study LoadStudy(const std::string& path) {
     }
   }
   if (top.Has("solver")) study.solver = ReadSolver(top["solver"], study.model);
+  if (top.Has("diagnosis")) study.diagnosis = ReadDiagnosis(top["diagnosis"]);
   if (top.Has("noise_study")) {
     const Field nf = top["noise_study"];
     nf.ExpectKeys({"levels", "draws", "seed", "distribution", "figure_level",

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "femup/builders.h"
 #include "femup/expansion.h"
 #include "femup/measurement.h"
 #include "femup/model.h"
@@ -124,11 +125,29 @@ struct RecordsSpec {
   std::vector<RecordStateSpec> states;
 };
 
+// How `femup diagnose` looks for the sim-to-real gap (diagnose_study.h).
+struct DiagnosisSpec {
+  double frequency_noise = 0.002;       // relative standard deviation of a frequency
+  double shape_noise = 0.02;            // of a shape entry, relative to its largest
+  std::vector<std::string> candidates;  // effect kinds tried; empty = all
+  int max_effects = 2;                  // 1: single effects only; 2: also pairs
+  // Held-out modes: "auto" (the highest mode of each state with 3 or more),
+  // "none", or the listed (state, 1-based measured mode) pairs.
+  std::string held_out = "auto";
+  std::vector<std::pair<std::string, int>> held_out_modes;
+  bool use_shapes = true;
+  bool mesh_error = true;  // add the discretisation error to the noise
+  bool localise = true;    // the per-element scan
+  std::string solver = "ceres";
+  double confidence = 0.9;  // a verdict below this lists what it cannot separate
+};
+
 struct Study {
   std::string path;  // the study file
   std::string name;
   std::string description;
   Structure structure;
+  std::optional<CantileverSpec> cantilever;  // when the model is a cantilever
   ParametrisedModel model;
   std::optional<Eigen::VectorXd> truth;  // preset factors (model order), if given
   std::map<std::string, double> fixed;   // known factor values by name
@@ -141,7 +160,8 @@ struct Study {
   CorrectionSystemOptions system;
   SolverSpec solver;
   std::optional<NoiseStudySpec> noise_study;
-  std::optional<RecordsSpec> records;  // for `femup simulate`
+  std::optional<RecordsSpec> records;      // for `femup simulate`
+  std::optional<DiagnosisSpec> diagnosis;  // for `femup diagnose`
   bool plots = true;
 };
 

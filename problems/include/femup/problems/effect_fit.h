@@ -1,0 +1,101 @@
+// Fitting unmodelled effects (effects.h) to measured modes: the output-error
+// problem over the effects' parameters, for any NonlinearSolver.
+//
+// The model: a vertical cantilever (BuildCantilever) whose bending DOFs (ux, rz)
+// do not couple with the axial ones, so the bending eigenproblem is solved on
+// its own (the coupling is checked; axial modes never enter the pairing).
+// Sensors are DOF labels ("n7:ux"), so effects that add DOFs (support springs
+// free the base) keep the sensors where they are.
+//
+// Residuals, per state and observed mode (measured mode number k, 1-based among
+// the structure's bending modes), paired with model bending mode (f, phi):
+//   frequency:  (f / f_meas - 1) / sigma_k, sigma_k the mode's relative
+//               frequency uncertainty (noise and model error together);
+//   shape (when the mode has one and use_shapes), one per sensor:
+//               (c s_i - t_i) / shape_sigma, t = psi / max |psi|, s = phi at the
+//               sensors, c = s't / s's (the modal scale factor).
+// Pairing: with shapes, by MAC at the sensors among the lowest
+// (highest observed number + extra_modes) bending modes; without, mode k is the
+// k-th bending mode.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "femup/builders.h"
+#include "femup/measurement.h"
+#include "femup/problems/effects.h"
+#include "femup/problems/nonlinear_problem.h"
+
+namespace femup {
+
+struct ObservedMode {
+  int number = 1;              // 1-based bending mode number (ascending frequency)
+  double frequency_hz = 0;     // > 0
+  double frequency_sigma = 0;  // relative standard deviation, > 0
+  Eigen::VectorXd shape;       // at the state's sensors, or empty
+};
+
+struct ObservedState {
+  std::string state;
+  Immersion immersion = Immersion::kDry;
+  std::vector<std::string> sensors;  // DOF labels of the shape rows
+  std::vector<ObservedMode> modes;
+};
+
+struct EffectFitData {
+  CantileverSpec nominal;
+  std::vector<ObservedState> states;
+  double shape_sigma = 0.02;  // of an entry, relative to the shape's largest entry
+  bool use_shapes = true;
+  int extra_modes = 4;
+  // Added mass acts in wet states only (true when any state is wet).
+  bool wet_only_added_mass = false;
+  // Empty when valid, else "<field>: what is wrong".
+  std::string Validate() const;
+};
+
+// The model's answer for one state: per observed mode, the paired bending mode.
+struct PredictedMode {
+  int model_mode = -1;  // 1-based bending mode number paired
+  double frequency_hz = 0;
+  double mac = 0;         // at the sensors (0 without a measured shape)
+  Eigen::VectorXd shape;  // at the sensors, scaled to the measured one (or max 1)
+};
+struct PredictedState {
+  std::vector<PredictedMode> modes;
+};
+
+// The bending modes of the nominal model changed by `effects` with parameters
+// `theta` (their parameter vectors concatenated), paired with the observed
+// ones. Returns false with *why when the model cannot be evaluated (mass not
+// positive definite, a sensor label the model lacks, bending coupled to axial).
+bool PredictEffectModes(const EffectFitData& data,
+                        const std::vector<const Effect*>& effects,
+                        const Eigen::VectorXd& theta, std::vector<PredictedState>* out,
+                        std::string* why);
+
+// Whitened residuals of the observed modes for predictions `predicted`.
+Eigen::VectorXd EffectResiduals(const EffectFitData& data,
+                                const std::vector<PredictedState>& predicted);
+int NumEffectResiduals(const EffectFitData& data);
+// Residuals that carry information: one per frequency and (sensors - 1) per
+// shape (the modal scale factor takes one).
+int EffectDegreesOfFreedom(const EffectFitData& data);
+
+// The parameters of several effects, concatenated, with their prior ranges.
+std::vector<EffectParameter> EffectSetParameters(
+    const EffectFitData& data, const std::vector<const Effect*>& effects);
+
+// The fit over the effects' parameters (bounds = the prior ranges), starting at
+// `start`; names "<kind>.<parameter>". Jacobian by forward differences of
+// 1e-6 of each range (backward at the upper bound; the pairing is held by MAC,
+// so a step never swaps modes unless two are nearly equal). The effects must
+// outlive the problem. Throws InputError when the data are invalid or `start` has the
+// wrong size or lies outside the ranges.
+NonlinearProblem BuildEffectFitProblem(const EffectFitData& data,
+                                       const std::vector<const Effect*>& effects,
+                                       const Eigen::VectorXd& start);
+
+}  // namespace femup

@@ -1,0 +1,95 @@
+// Unmodelled effects: parametrised families of changes to a nominal cantilever
+// model, each with few parameters, used to explain the gap between a model and
+// measured modes (`femup diagnose`). An effect changes the model's
+// CantileverSpec (supports, material, the exact distributed and point changes of
+// beam_modifications.h), so its matrices live in the same model interface as the
+// correction factors and every effect works with every structure BuildCantilever
+// makes.
+//
+// Each parameter has a range, which is also its prior: uniform in the
+// parameter's own coordinate (log coordinates for magnitudes that span decades).
+// Locations are in metres from the support.
+//
+// The library (CreateEffect):
+//   added_mass          extra transverse mass per length from the base up to a
+//                       depth (water, soil, marine growth): ln(m_a / rho A), depth.
+//   support_flexibility rotational and translational springs at the base, as
+//                       compliances relative to the beam's own: ln(EI / (k_r L)),
+//                       ln(3 EI / (k_t L^3)).
+//   attached_mass       a point mass at a height: ln(m / (rho A L)), x.
+//   stiffness_loss      EI reduced by a fraction over a short region (a tenth of
+//                       the length) centred at x: loss fraction, x.
+//   material_scaling    uniform error of the E/rho ratio: ln(E factor).
+// Several effects at once are a list of effects whose parameter vectors are
+// concatenated (effect_fit.h). To add a kind, derive from Effect and register it
+// in CreateEffect (effects.cc).
+#pragma once
+
+#include <Eigen/Core>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "femup/builders.h"
+#include "femup/measurement.h"
+
+namespace femup {
+
+struct EffectParameter {
+  std::string name;         // "ln_mass_ratio", "depth"
+  std::string description;  // "ln(m_a / rho A)"
+  double lower = 0;         // the prior range, uniform in this coordinate
+  double upper = 1;
+  bool location = false;  // a position along the structure (m)
+};
+
+// Where an effect acts, in metres from the support (NaN where not applicable).
+struct EffectLocation {
+  double depth = std::numeric_limits<double>::quiet_NaN();  // added_mass: 0..depth
+  double x = std::numeric_limits<double>::quiet_NaN();      // attached_mass, centre
+  double x0 = std::numeric_limits<double>::quiet_NaN();     // region start
+  double x1 = std::numeric_limits<double>::quiet_NaN();     // region end
+};
+
+// The physical size of an effect: named quantities with units.
+struct EffectMagnitude {
+  std::string name;  // "added_mass_per_length", "rotational_stiffness"
+  std::string unit;  // "kg/m", "N m/rad"
+  double value = 0;
+};
+
+class Effect {
+ public:
+  virtual ~Effect() = default;
+  // "added_mass", "support_flexibility", ...
+  virtual std::string kind() const = 0;
+  // Parameters and their ranges for this nominal model.
+  virtual std::vector<EffectParameter> Parameters(
+      const CantileverSpec& nominal) const = 0;
+  // Starting points for a multi-start fit (each of size Parameters().size()).
+  virtual std::vector<Eigen::VectorXd> Starts(const CantileverSpec& nominal) const = 0;
+  // Applies the effect with parameters `theta` to `spec` (the nominal, possibly
+  // changed by other effects already) for a state of the given immersion; sizes
+  // refer to `nominal`. `wet_only_added_mass`: the study has wet states, so added
+  // mass acts in those only.
+  virtual void Apply(const Eigen::VectorXd& theta, Immersion immersion,
+                     bool wet_only_added_mass, const CantileverSpec& nominal,
+                     CantileverSpec* spec) const = 0;
+  virtual EffectLocation Location(const CantileverSpec& nominal,
+                                  const Eigen::VectorXd& theta) const = 0;
+  virtual std::vector<EffectMagnitude> Magnitudes(const CantileverSpec& nominal,
+                                                  const Eigen::VectorXd& theta) const = 0;
+};
+
+// The single kinds, in a fixed order (without "none").
+std::vector<std::string> AvailableEffects();
+// Throws InputError("effect", ...) for an unknown kind, listing the known ones.
+std::unique_ptr<Effect> CreateEffect(const std::string& kind);
+
+// The nominal beam's properties the ranges refer to (first element's section).
+double BeamMassPerLength(const CantileverSpec& spec);     // rho A, kg/m
+double BeamBendingStiffness(const CantileverSpec& spec);  // E I, N m^2
+double BeamLength(const CantileverSpec& spec);            // m
+
+}  // namespace femup

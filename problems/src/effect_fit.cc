@@ -1,0 +1,350 @@
+#include "femup/problems/effect_fit.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+
+#include "femup/errors.h"
+#include "femup/modal.h"
+
+namespace femup {
+
+namespace {
+
+const double kTwoPi = 2 * std::acos(-1.0);
+
+bool IsAxial(const std::string& label) {
+  return label.size() > 3 && label.compare(label.size() - 3, 3, ":uy") == 0;
+}
+
+// Offsets of each effect's parameters in the concatenated vector.
+std::vector<int> Offsets(const EffectFitData& data,
+                         const std::vector<const Effect*>& effects) {
+  std::vector<int> offsets{0};
+  for (const Effect* e : effects) {
+    offsets.push_back(offsets.back() +
+                      static_cast<int>(e->Parameters(data.nominal).size()));
+  }
+  return offsets;
+}
+
+struct BendingModes {
+  Eigen::VectorXd frequencies_hz;  // ascending
+  Eigen::MatrixXd shapes;          // bending DOFs x modes
+  std::map<std::string, int> row;  // label -> bending row
+};
+
+bool SolveBending(const CantileverSpec& spec, BendingModes* out, std::string* why) {
+  Structure s;
+  try {
+    CantileverSpec global_only = spec;
+    global_only.element_matrices = false;
+    s = BuildCantilever(global_only);
+  } catch (const InputError& e) {
+    if (why) *why = e.what();
+    return false;
+  }
+  // Bending rows (ux, rz) in order; axial DOFs map to -1.
+  const int n = static_cast<int>(s.dof_labels.size());
+  std::vector<int> index(n, -1);
+  std::vector<int> bending;
+  for (int i = 0; i < n; ++i) {
+    if (!IsAxial(s.dof_labels[i])) {
+      index[i] = static_cast<int>(bending.size());
+      bending.push_back(i);
+    }
+  }
+  const int nb = static_cast<int>(bending.size());
+  Eigen::MatrixXd kb = Eigen::MatrixXd::Zero(nb, nb), mb = Eigen::MatrixXd::Zero(nb, nb);
+  bool coupled = false;
+  for (auto [matrix, dense] : {std::pair{&s.stiffness, &kb}, std::pair{&s.mass, &mb}}) {
+    double largest = 0, coupling = 0;
+    for (int col = 0; col < matrix->outerSize(); ++col) {
+      for (SparseMatrix::InnerIterator it(*matrix, col); it; ++it) {
+        const int i = index[it.row()], j = index[it.col()];
+        largest = std::max(largest, std::abs(it.value()));
+        if (i >= 0 && j >= 0) {
+          (*dense)(i, j) += it.value();
+        } else if (i >= 0 || j >= 0) {
+          coupling = std::max(coupling, std::abs(it.value()));
+        }
+      }
+    }
+    coupled = coupled || coupling > 1e-10 * largest;
+  }
+  if (coupled) {
+    if (why)
+      *why =
+          "bending and axial DOFs are coupled; the effect fit needs a "
+          "straight cantilever";
+    return false;
+  }
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(kb, mb);
+  if (eig.info() != Eigen::Success) {
+    if (why) *why = "the mass matrix is not positive definite";
+    return false;
+  }
+  const Eigen::VectorXd lambda = eig.eigenvalues();
+  out->frequencies_hz.resize(nb);
+  for (int i = 0; i < nb; ++i) {
+    out->frequencies_hz[i] = std::sqrt(std::max(lambda[i], 0.0)) / kTwoPi;
+  }
+  if (!out->frequencies_hz.allFinite()) {
+    if (why) *why = "the eigen-solution is not finite";
+    return false;
+  }
+  out->shapes = eig.eigenvectors();
+  out->row.clear();
+  for (int i = 0; i < nb; ++i) out->row[s.dof_labels[bending[i]]] = i;
+  return true;
+}
+
+bool StateUsesShapes(const EffectFitData& data, const ObservedState& st) {
+  if (!data.use_shapes || st.sensors.empty()) return false;
+  for (const ObservedMode& m : st.modes) {
+    if (m.shape.size() == 0) return false;
+  }
+  return !st.modes.empty();
+}
+
+Eigen::VectorXd UnitPeak(const Eigen::VectorXd& v) {
+  const double peak = v.cwiseAbs().maxCoeff();
+  return peak > 0 ? Eigen::VectorXd(v / peak) : v;
+}
+
+}  // namespace
+
+std::string EffectFitData::Validate() const {
+  if (states.empty()) return "states: no measured state";
+  if (!(shape_sigma > 0) || !std::isfinite(shape_sigma))
+    return "shape_sigma: must be positive and finite";
+  if (extra_modes < 0) return "extra_modes: must be >= 0";
+  for (std::size_t s = 0; s < states.size(); ++s) {
+    const ObservedState& st = states[s];
+    const std::string where = "states[" + std::to_string(s + 1) + "] (" + st.state + ")";
+    if (st.modes.empty()) return where + ": no modes";
+    for (const std::string& label : st.sensors) {
+      if (IsAxial(label))
+        return where + ": sensor " + label + " is axial; use ux sensors";
+    }
+    for (std::size_t j = 0; j < st.modes.size(); ++j) {
+      const ObservedMode& m = st.modes[j];
+      const std::string mw = where + ".modes[" + std::to_string(j + 1) + "]";
+      if (m.number < 1) return mw + ": mode numbers start at 1";
+      if (!(m.frequency_hz > 0) || !std::isfinite(m.frequency_hz))
+        return mw + ": frequency must be positive and finite";
+      if (!(m.frequency_sigma > 0) || !std::isfinite(m.frequency_sigma))
+        return mw + ": frequency sigma must be positive and finite";
+      if (m.shape.size() > 0) {
+        if (m.shape.size() != static_cast<Eigen::Index>(st.sensors.size()))
+          return mw + ": shape has " + std::to_string(m.shape.size()) + " entries for " +
+                 std::to_string(st.sensors.size()) + " sensors";
+        if (!m.shape.allFinite() || m.shape.cwiseAbs().maxCoeff() == 0)
+          return mw + ": shape must be finite and not all zero";
+      }
+    }
+  }
+  return "";
+}
+
+bool PredictEffectModes(const EffectFitData& data,
+                        const std::vector<const Effect*>& effects,
+                        const Eigen::VectorXd& theta, std::vector<PredictedState>* out,
+                        std::string* why) {
+  const std::vector<int> offsets = Offsets(data, effects);
+  if (theta.size() != offsets.back() || !theta.allFinite()) {
+    if (why) *why = "parameters of the wrong size or not finite";
+    return false;
+  }
+  // One model per immersion.
+  std::map<Immersion, BendingModes> models;
+  out->assign(data.states.size(), PredictedState());
+  for (std::size_t s = 0; s < data.states.size(); ++s) {
+    const ObservedState& st = data.states[s];
+    auto it = models.find(st.immersion);
+    if (it == models.end()) {
+      CantileverSpec spec = data.nominal;
+      for (std::size_t e = 0; e < effects.size(); ++e) {
+        effects[e]->Apply(theta.segment(offsets[e], offsets[e + 1] - offsets[e]),
+                          st.immersion, data.wet_only_added_mass, data.nominal, &spec);
+      }
+      BendingModes bm;
+      if (!SolveBending(spec, &bm, why)) return false;
+      it = models.emplace(st.immersion, std::move(bm)).first;
+    }
+    const BendingModes& bm = it->second;
+    int highest = 0;
+    for (const ObservedMode& m : st.modes) highest = std::max(highest, m.number);
+    const int available = static_cast<int>(bm.frequencies_hz.size());
+    if (highest > available) {
+      if (why)
+        *why = "mode " + std::to_string(highest) + " asked of a model with " +
+               std::to_string(available) + " bending modes";
+      return false;
+    }
+    const int candidates = std::min(available, highest + data.extra_modes);
+    std::vector<int> rows;
+    for (const std::string& label : st.sensors) {
+      const auto r = bm.row.find(label);
+      if (r == bm.row.end()) {
+        if (why) *why = "the model has no DOF '" + label + "'";
+        return false;
+      }
+      rows.push_back(r->second);
+    }
+    Eigen::MatrixXd at_sensors(static_cast<Eigen::Index>(rows.size()), candidates);
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      at_sensors.row(static_cast<Eigen::Index>(i)) =
+          bm.shapes.row(rows[i]).head(candidates);
+    }
+    const bool by_mac = StateUsesShapes(data, st);
+    std::vector<int> pair(st.modes.size());
+    if (by_mac) {
+      Eigen::MatrixXd measured(at_sensors.rows(),
+                               static_cast<Eigen::Index>(st.modes.size()));
+      for (std::size_t j = 0; j < st.modes.size(); ++j)
+        measured.col(static_cast<Eigen::Index>(j)) = st.modes[j].shape;
+      const std::vector<ModePair> pairs = PairModesByMac(measured, at_sensors, 0.0);
+      for (std::size_t j = 0; j < pairs.size(); ++j) pair[j] = pairs[j].candidate;
+    } else {
+      for (std::size_t j = 0; j < st.modes.size(); ++j) pair[j] = st.modes[j].number - 1;
+    }
+    PredictedState& ps = (*out)[s];
+    for (std::size_t j = 0; j < st.modes.size(); ++j) {
+      PredictedMode pm;
+      if (pair[j] < 0) {
+        if (why) *why = "no model mode pairs with measured mode " + std::to_string(j + 1);
+        return false;
+      }
+      pm.model_mode = pair[j] + 1;
+      pm.frequency_hz = bm.frequencies_hz[pair[j]];
+      const Eigen::VectorXd s_vec = at_sensors.col(pair[j]);
+      const ObservedMode& om = st.modes[j];
+      if (om.shape.size() > 0 && s_vec.size() > 0) {
+        const Eigen::VectorXd t = UnitPeak(om.shape);
+        const double ss = s_vec.squaredNorm();
+        const double c = ss > 0 ? s_vec.dot(t) / ss : 0.0;
+        pm.shape = c * s_vec;
+        pm.mac = Mac(s_vec, t);
+      } else if (s_vec.size() > 0) {
+        pm.shape = UnitPeak(s_vec);
+      }
+      ps.modes.push_back(std::move(pm));
+    }
+  }
+  return true;
+}
+
+int NumEffectResiduals(const EffectFitData& data) {
+  int n = 0;
+  for (const ObservedState& st : data.states) {
+    const bool shapes = StateUsesShapes(data, st);
+    for (std::size_t j = 0; j < st.modes.size(); ++j) {
+      n += 1 + (shapes ? static_cast<int>(st.sensors.size()) : 0);
+    }
+  }
+  return n;
+}
+
+int EffectDegreesOfFreedom(const EffectFitData& data) {
+  int n = 0;
+  for (const ObservedState& st : data.states) {
+    const bool shapes = StateUsesShapes(data, st);
+    for (std::size_t j = 0; j < st.modes.size(); ++j) {
+      n += 1 + (shapes ? static_cast<int>(st.sensors.size()) - 1 : 0);
+    }
+  }
+  return n;
+}
+
+Eigen::VectorXd EffectResiduals(const EffectFitData& data,
+                                const std::vector<PredictedState>& predicted) {
+  Eigen::VectorXd r(NumEffectResiduals(data));
+  int k = 0;
+  for (std::size_t s = 0; s < data.states.size(); ++s) {
+    const ObservedState& st = data.states[s];
+    const bool shapes = StateUsesShapes(data, st);
+    for (std::size_t j = 0; j < st.modes.size(); ++j) {
+      const ObservedMode& om = st.modes[j];
+      const PredictedMode& pm = predicted[s].modes[j];
+      r[k++] = (pm.frequency_hz / om.frequency_hz - 1) / om.frequency_sigma;
+      if (shapes) {
+        const Eigen::VectorXd t = UnitPeak(om.shape);
+        for (Eigen::Index i = 0; i < t.size(); ++i) {
+          r[k++] = (pm.shape[i] - t[i]) / data.shape_sigma;
+        }
+      }
+    }
+  }
+  return r;
+}
+
+std::vector<EffectParameter> EffectSetParameters(
+    const EffectFitData& data, const std::vector<const Effect*>& effects) {
+  std::vector<EffectParameter> all;
+  for (const Effect* e : effects) {
+    for (EffectParameter p : e->Parameters(data.nominal)) {
+      p.name = e->kind() + "." + p.name;
+      all.push_back(p);
+    }
+  }
+  return all;
+}
+
+NonlinearProblem BuildEffectFitProblem(const EffectFitData& data,
+                                       const std::vector<const Effect*>& effects,
+                                       const Eigen::VectorXd& start) {
+  const std::string invalid = data.Validate();
+  if (!invalid.empty()) {
+    const std::size_t colon = invalid.find(':');
+    throw InputError("diagnosis." + invalid.substr(0, colon), invalid.substr(colon + 2));
+  }
+  const std::vector<EffectParameter> params = EffectSetParameters(data, effects);
+  const int n = static_cast<int>(params.size());
+  if (start.size() != n) {
+    throw InputError("start", "has " + std::to_string(start.size()) + " values for " +
+                                  std::to_string(n) + " effect parameters");
+  }
+  NonlinearProblem p;
+  p.num_residuals = NumEffectResiduals(data);
+  p.initial = start;
+  p.lower.resize(n);
+  p.upper.resize(n);
+  for (int i = 0; i < n; ++i) {
+    p.names.push_back(params[i].name);
+    p.groups.push_back(params[i].name.substr(0, params[i].name.find('.')));
+    p.lower[i] = params[i].lower;
+    p.upper[i] = params[i].upper;
+    if (!(start[i] >= p.lower[i] && start[i] <= p.upper[i])) {
+      std::ostringstream msg;
+      msg << params[i].name << " = " << start[i] << " is outside its range ["
+          << p.lower[i] << ", " << p.upper[i] << "]";
+      throw InputError("start", msg.str());
+    }
+  }
+  p.residuals_whitened = true;
+  const Eigen::VectorXd lower = p.lower, upper = p.upper;
+  p.evaluate = [data, effects, lower, upper](const Eigen::VectorXd& x, Eigen::VectorXd* r,
+                                             Eigen::MatrixXd* jac, std::string* why) {
+    std::vector<PredictedState> pred;
+    if (!PredictEffectModes(data, effects, x, &pred, why)) return false;
+    *r = EffectResiduals(data, pred);
+    if (jac == nullptr) return true;
+    jac->resize(r->size(), x.size());
+    // Forward differences (backward at the upper bound): one evaluation per
+    // parameter.
+    for (Eigen::Index i = 0; i < x.size(); ++i) {
+      const double h = 1e-6 * (upper[i] - lower[i]);
+      Eigen::VectorXd xs = x;
+      xs[i] = x[i] + h <= upper[i] ? x[i] + h : x[i] - h;
+      if (!PredictEffectModes(data, effects, xs, &pred, why)) return false;
+      jac->col(i) = (EffectResiduals(data, pred) - *r) / (xs[i] - x[i]);
+    }
+    return true;
+  };
+  return p;
+}
+
+}  // namespace femup

@@ -1,0 +1,239 @@
+#include "femup/problems/effects.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "femup/errors.h"
+
+namespace femup {
+
+namespace {
+
+Eigen::VectorXd Vec(std::initializer_list<double> v) {
+  Eigen::VectorXd out(static_cast<Eigen::Index>(v.size()));
+  Eigen::Index i = 0;
+  for (double x : v) out[i++] = x;
+  return out;
+}
+
+// Extra transverse mass per length over [0, depth].
+class AddedMassEffect : public Effect {
+ public:
+  std::string kind() const override { return "added_mass"; }
+  std::vector<EffectParameter> Parameters(const CantileverSpec& s) const override {
+    const double length = BeamLength(s);
+    return {{"ln_mass_ratio", "ln(added mass per length / rho A)", std::log(1e-3),
+             std::log(5.0), false},
+            {"depth", "height above the support it reaches (m)", 0.05 * length, length,
+             true}};
+  }
+  std::vector<Eigen::VectorXd> Starts(const CantileverSpec& s) const override {
+    const double length = BeamLength(s);
+    std::vector<Eigen::VectorXd> out;
+    for (double f : {0.3, 0.6, 0.95}) out.push_back(Vec({std::log(0.05), f * length}));
+    return out;
+  }
+  void Apply(const Eigen::VectorXd& t, Immersion immersion, bool wet_only,
+             const CantileverSpec& nominal, CantileverSpec* spec) const override {
+    if (wet_only && immersion != Immersion::kWet) return;
+    CantileverSpec::DistributedMass m;
+    m.z0 = 0;
+    m.z1 = std::min(t[1], BeamLength(nominal));
+    m.mass_per_length = std::exp(t[0]) * BeamMassPerLength(nominal);
+    spec->distributed_masses.push_back(m);
+  }
+  EffectLocation Location(const CantileverSpec&,
+                          const Eigen::VectorXd& t) const override {
+    EffectLocation l;
+    l.depth = t[1];
+    l.x0 = 0;
+    l.x1 = t[1];
+    return l;
+  }
+  std::vector<EffectMagnitude> Magnitudes(const CantileverSpec& s,
+                                          const Eigen::VectorXd& t) const override {
+    const double m = std::exp(t[0]) * BeamMassPerLength(s);
+    return {{"added_mass_per_length", "kg/m", m},
+            {"added_mass_ratio", "1 (per rho A)", std::exp(t[0])},
+            {"added_mass_total", "kg", m * t[1]}};
+  }
+};
+
+// Springs at the base in series with the nominal support (rigid when 0).
+class SupportFlexibilityEffect : public Effect {
+ public:
+  std::string kind() const override { return "support_flexibility"; }
+  std::vector<EffectParameter> Parameters(const CantileverSpec&) const override {
+    return {{"ln_rotation_compliance", "ln(EI / (k_rotation L))", std::log(1e-6),
+             std::log(10.0), false},
+            {"ln_translation_compliance", "ln(3 EI / (k_translation L^3))",
+             std::log(1e-6), std::log(10.0), false}};
+  }
+  std::vector<Eigen::VectorXd> Starts(const CantileverSpec&) const override {
+    return {Vec({std::log(1e-3), std::log(1e-5)}), Vec({std::log(1e-5), std::log(1e-3)}),
+            Vec({std::log(0.03), std::log(0.03)})};
+  }
+  static double Series(double nominal, double added) {
+    // 0 in a CantileverSpec means rigid.
+    return nominal > 0 ? 1.0 / (1.0 / nominal + 1.0 / added) : added;
+  }
+  void Apply(const Eigen::VectorXd& t, Immersion, bool, const CantileverSpec& nominal,
+             CantileverSpec* spec) const override {
+    const double ei = BeamBendingStiffness(nominal), length = BeamLength(nominal);
+    const double k_rot = ei / (length * std::exp(t[0]));
+    const double k_tr = 3 * ei / (length * length * length * std::exp(t[1]));
+    spec->support_rotation = Series(spec->support_rotation, k_rot);
+    spec->support_transverse = Series(spec->support_transverse, k_tr);
+  }
+  EffectLocation Location(const CantileverSpec&, const Eigen::VectorXd&) const override {
+    EffectLocation l;
+    l.x = 0;
+    return l;
+  }
+  std::vector<EffectMagnitude> Magnitudes(const CantileverSpec& s,
+                                          const Eigen::VectorXd& t) const override {
+    const double ei = BeamBendingStiffness(s), length = BeamLength(s);
+    return {{"rotational_stiffness", "N m/rad", ei / (length * std::exp(t[0]))},
+            {"translational_stiffness", "N/m",
+             3 * ei / (length * length * length * std::exp(t[1]))},
+            {"rotation_compliance_ratio", "1 (EI / (k L))", std::exp(t[0])},
+            {"translation_compliance_ratio", "1 (3 EI / (k L^3))", std::exp(t[1])}};
+  }
+};
+
+// A point mass at height x.
+class AttachedMassEffect : public Effect {
+ public:
+  std::string kind() const override { return "attached_mass"; }
+  std::vector<EffectParameter> Parameters(const CantileverSpec& s) const override {
+    const double length = BeamLength(s);
+    return {{"ln_mass_ratio", "ln(mass / rho A L)", std::log(1e-4), std::log(2.0), false},
+            {"x", "height above the support (m)", 0.02 * length, length, true}};
+  }
+  std::vector<Eigen::VectorXd> Starts(const CantileverSpec& s) const override {
+    const double length = BeamLength(s);
+    std::vector<Eigen::VectorXd> out;
+    for (double f : {0.25, 0.5, 0.75, 1.0})
+      out.push_back(Vec({std::log(0.02), f * length}));
+    return out;
+  }
+  void Apply(const Eigen::VectorXd& t, Immersion, bool, const CantileverSpec& nominal,
+             CantileverSpec* spec) const override {
+    CantileverSpec::PointMass p;
+    p.height = std::min(t[1], BeamLength(nominal));
+    p.mass = std::exp(t[0]) * BeamMassPerLength(nominal) * BeamLength(nominal);
+    spec->point_masses.push_back(p);
+  }
+  EffectLocation Location(const CantileverSpec&,
+                          const Eigen::VectorXd& t) const override {
+    EffectLocation l;
+    l.x = t[1];
+    return l;
+  }
+  std::vector<EffectMagnitude> Magnitudes(const CantileverSpec& s,
+                                          const Eigen::VectorXd& t) const override {
+    return {{"mass", "kg", std::exp(t[0]) * BeamMassPerLength(s) * BeamLength(s)},
+            {"mass_ratio", "1 (per beam mass)", std::exp(t[0])}};
+  }
+};
+
+// EI times (1 - fraction) over a region a tenth of the length wide.
+class StiffnessLossEffect : public Effect {
+ public:
+  static constexpr double kWidth = 0.1;  // of the length
+  std::string kind() const override { return "stiffness_loss"; }
+  std::vector<EffectParameter> Parameters(const CantileverSpec& s) const override {
+    const double length = BeamLength(s);
+    return {{"ln_loss", "ln(fraction of EI lost)", std::log(3e-3), std::log(0.9), false},
+            {"x", "centre of the region (m)", 0.5 * kWidth * length,
+             (1 - 0.5 * kWidth) * length, true}};
+  }
+  std::vector<Eigen::VectorXd> Starts(const CantileverSpec& s) const override {
+    const double length = BeamLength(s);
+    std::vector<Eigen::VectorXd> out;
+    for (double f : {0.05, 0.25, 0.45, 0.65, 0.85})
+      out.push_back(Vec({std::log(0.1), f * length}));
+    return out;
+  }
+  void Apply(const Eigen::VectorXd& t, Immersion, bool, const CantileverSpec& nominal,
+             CantileverSpec* spec) const override {
+    const double length = BeamLength(nominal), half = 0.5 * kWidth * length;
+    CantileverSpec::StiffnessChange c;
+    c.z0 = std::max(0.0, t[1] - half);
+    c.z1 = std::min(length, t[1] + half);
+    c.factor = -std::exp(t[0]);
+    spec->stiffness_changes.push_back(c);
+  }
+  EffectLocation Location(const CantileverSpec& s,
+                          const Eigen::VectorXd& t) const override {
+    const double half = 0.5 * kWidth * BeamLength(s);
+    EffectLocation l;
+    l.x = t[1];
+    l.x0 = t[1] - half;
+    l.x1 = t[1] + half;
+    return l;
+  }
+  std::vector<EffectMagnitude> Magnitudes(const CantileverSpec& s,
+                                          const Eigen::VectorXd& t) const override {
+    return {{"ei_loss_fraction", "1", std::exp(t[0])},
+            {"region_width", "m", kWidth * BeamLength(s)}};
+  }
+};
+
+// Young's modulus (the E / rho ratio) off by a uniform factor.
+class MaterialScalingEffect : public Effect {
+ public:
+  std::string kind() const override { return "material_scaling"; }
+  std::vector<EffectParameter> Parameters(const CantileverSpec&) const override {
+    return {{"ln_e_factor", "ln(E_real / E_model)", -0.7, 0.7, false}};
+  }
+  std::vector<Eigen::VectorXd> Starts(const CantileverSpec&) const override {
+    return {Vec({0.0})};
+  }
+  void Apply(const Eigen::VectorXd& t, Immersion, bool, const CantileverSpec& nominal,
+             CantileverSpec* spec) const override {
+    spec->section.E = nominal.section.E * std::exp(t[0]);
+  }
+  EffectLocation Location(const CantileverSpec& s,
+                          const Eigen::VectorXd&) const override {
+    EffectLocation l;
+    l.x0 = 0;
+    l.x1 = BeamLength(s);
+    return l;
+  }
+  std::vector<EffectMagnitude> Magnitudes(const CantileverSpec&,
+                                          const Eigen::VectorXd& t) const override {
+    return {{"e_factor", "1", std::exp(t[0])}};
+  }
+};
+
+}  // namespace
+
+std::vector<std::string> AvailableEffects() {
+  return {"added_mass", "support_flexibility", "attached_mass", "stiffness_loss",
+          "material_scaling"};
+}
+
+std::unique_ptr<Effect> CreateEffect(const std::string& kind) {
+  if (kind == "added_mass") return std::make_unique<AddedMassEffect>();
+  if (kind == "support_flexibility") return std::make_unique<SupportFlexibilityEffect>();
+  if (kind == "attached_mass") return std::make_unique<AttachedMassEffect>();
+  if (kind == "stiffness_loss") return std::make_unique<StiffnessLossEffect>();
+  if (kind == "material_scaling") return std::make_unique<MaterialScalingEffect>();
+  std::string known;
+  for (const auto& k : AvailableEffects()) known += (known.empty() ? "" : ", ") + k;
+  throw InputError("effect",
+                   "unknown effect '" + kind + "' (expected none, " + known + ")");
+}
+
+double BeamMassPerLength(const CantileverSpec& spec) {
+  return spec.section.rho * spec.section.A;
+}
+double BeamBendingStiffness(const CantileverSpec& spec) {
+  return spec.section.E * spec.section.I;
+}
+double BeamLength(const CantileverSpec& spec) {
+  return spec.node_heights.empty() ? 0.0 : spec.node_heights.back();
+}
+
+}  // namespace femup

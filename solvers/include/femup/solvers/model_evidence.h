@@ -1,0 +1,44 @@
+// Evidence for a model class from a least-squares fit (Laplace's approximation):
+// how probable the data are under the class, averaged over its prior, so that
+// classes with different numbers of parameters can be compared (MacKay 1992;
+// Beck and Yuen 2004 for structural model classes).
+//
+// With whitened residuals r(x) (unit variance under the stated noise), chi2 =
+// ||r(x*)||^2 at the best fit x*, and a uniform prior on the box [lower, upper]:
+//   log Z = -chi2 / (2 T) + log Occam,
+//   log Occam = 1/2 log det(2 pi H^-1) - sum_i log(upper_i - lower_i)
+//               - (log 2 for each parameter at a bound),
+//   H = J'J / T + diag(12 / (upper_i - lower_i)^2),
+// the small diagonal term being a Gaussian with the prior's variance so that a
+// direction the data do not see costs nothing (Occam factor 1 there); log Occam
+// is capped at 0. T >= 1 is a noise temperature: the stated variances times T
+// (T = 1: the noise as stated). The constant -n/2 log(2 pi T) common to all
+// classes fitted to the same data is left out.
+#pragma once
+
+#include <Eigen/Core>
+
+namespace femup {
+
+struct ModelEvidence {
+  double log_evidence = 0;
+  double chi2 = 0;       // at the best fit (not divided by T)
+  double log_occam = 0;  // <= 0
+  int num_parameters = 0;
+  Eigen::VectorXd sigma;  // posterior standard deviations (Laplace), per parameter
+};
+
+// x, lower, upper: the parameters at the best fit and the prior box (empty for
+// a class without parameters); jacobian: whitened, residuals x parameters.
+// Throws InputError for size mismatches, an empty or non-finite box, T < 1 or a
+// negative or non-finite chi2.
+ModelEvidence LaplaceEvidence(double chi2, const Eigen::MatrixXd& jacobian,
+                              const Eigen::VectorXd& x, const Eigen::VectorXd& lower,
+                              const Eigen::VectorXd& upper, double temperature = 1.0);
+
+// Posterior probabilities from log evidences and prior probabilities (same
+// size; priors > 0, not necessarily normalised): softmax of log Z + log prior.
+Eigen::VectorXd PosteriorProbabilities(const Eigen::VectorXd& log_evidence,
+                                       const Eigen::VectorXd& prior);
+
+}  // namespace femup

@@ -1,0 +1,70 @@
+#include "femup/solvers/model_evidence.h"
+
+#include <Eigen/Cholesky>
+#include <cmath>
+
+#include "femup/errors.h"
+
+namespace femup {
+
+ModelEvidence LaplaceEvidence(double chi2, const Eigen::MatrixXd& jacobian,
+                              const Eigen::VectorXd& x, const Eigen::VectorXd& lower,
+                              const Eigen::VectorXd& upper, double temperature) {
+  const Eigen::Index n = x.size();
+  if (lower.size() != n || upper.size() != n || (n > 0 && jacobian.cols() != n)) {
+    throw InputError("evidence",
+                     "x, lower, upper and the Jacobian's columns differ in size");
+  }
+  if (!(chi2 >= 0) || !std::isfinite(chi2))
+    throw InputError("evidence.chi2", "must be finite and >= 0");
+  if (!(temperature >= 1) || !std::isfinite(temperature))
+    throw InputError("evidence.temperature", "must be finite and >= 1");
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (!(upper[i] > lower[i]) || !std::isfinite(upper[i] - lower[i])) {
+      throw InputError("evidence.range[" + std::to_string(i + 1) + "]",
+                       "the prior range must be finite and not empty");
+    }
+  }
+  if (n > 0 && !jacobian.allFinite())
+    throw InputError("evidence.jacobian", "has non-finite entries");
+  ModelEvidence e;
+  e.chi2 = chi2;
+  e.num_parameters = static_cast<int>(n);
+  e.log_evidence = -0.5 * chi2 / temperature;
+  if (n == 0) return e;
+  const Eigen::ArrayXd range = (upper - lower).array();
+  Eigen::MatrixXd h = jacobian.transpose() * jacobian / temperature;
+  h.diagonal().array() += 12.0 / range.square();
+  const Eigen::LLT<Eigen::MatrixXd> llt(h);
+  const Eigen::MatrixXd l = llt.matrixL();
+  const double log_det_h = 2 * l.diagonal().array().log().sum();
+  const double two_pi = 2 * std::acos(-1.0);
+  double log_occam = 0.5 * (n * std::log(two_pi) - log_det_h) - range.log().sum();
+  const double edge = 1e-6;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (x[i] <= lower[i] + edge * range[i] || x[i] >= upper[i] - edge * range[i])
+      log_occam -= std::log(2.0);
+  }
+  e.log_occam = std::min(0.0, log_occam);
+  e.log_evidence += e.log_occam;
+  e.sigma = llt.solve(Eigen::MatrixXd::Identity(n, n)).diagonal().cwiseSqrt();
+  return e;
+}
+
+Eigen::VectorXd PosteriorProbabilities(const Eigen::VectorXd& log_evidence,
+                                       const Eigen::VectorXd& prior) {
+  if (log_evidence.size() != prior.size() || log_evidence.size() == 0) {
+    throw InputError("posterior", "needs one prior per class and at least one class");
+  }
+  if (!(prior.array() > 0).all() || !prior.allFinite())
+    throw InputError("posterior.prior",
+                     "prior probabilities must be positive and finite");
+  if (!log_evidence.allFinite())
+    throw InputError("posterior.log_evidence", "log evidences must be finite");
+  Eigen::ArrayXd s = log_evidence.array() + prior.array().log();
+  s -= s.maxCoeff();
+  const Eigen::ArrayXd w = s.exp();
+  return (w / w.sum()).matrix();
+}
+
+}  // namespace femup

@@ -1,0 +1,90 @@
+// The blind benchmark of `femup diagnose` (`femup benchmark`): a generator makes
+// "measured" modes of random cantilevers from a model three times finer than
+// the diagnosis model, with effects whose true form differs from the fitted
+// families (water added mass fading towards the surface, damage of random
+// width, springs in rotation and translation, an attached mass with rotary
+// inertia between nodes, two effects at once), noise on frequencies and
+// shapes, 2-4 modes, 5 or 10 sensors, some cases without shapes. Each case is
+// written as a study file; its truth goes to a separate folder that the
+// diagnosis never reads. Every case is then diagnosed from its study file and
+// scored against the truth.
+//
+// Suites:
+//   "single": one effect (or none) per case, noise 0.1 % on frequencies and 1 %
+//             on shapes, 4 modes, 10 sensors.
+//   "mixed":  everything mixed: none / one / two effects, noise 0.1-1 % and
+//             1-5 %, 2-4 modes, 5 or 10 sensors, a third without shapes.
+// Effect sizes are set by the largest relative frequency shift they cause on the
+// measured modes, in multiples of the frequency noise: log-uniform in [5, 50]
+// for four cases in five and [1, 5] (at the noise level) for the rest.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "femup/output_dir.h"
+
+namespace femup {
+
+struct BenchmarkOptions {
+  std::string suite = "mixed";  // "single" or "mixed"
+  int cases = 100;
+  unsigned long long seed = 20261121;
+  int threads = 2;  // cases diagnosed in parallel
+  int diagnosis_elements = 20;
+  int refinement = 3;            // truth mesh = refinement x diagnosis mesh
+  std::string Validate() const;  // "" or "<field>: what is wrong"
+};
+
+// One generated case, as the truth file records it.
+struct BenchmarkEffect {
+  std::string kind;
+  // Where, m from the support (NaN where not applicable).
+  double depth = 0, x = 0, x0 = 0, x1 = 0;
+  double shift_in_noise = 0;  // largest frequency shift / frequency noise
+  std::string description;
+};
+
+struct BenchmarkCase {
+  std::string name;                      // "mixed_007"
+  std::vector<BenchmarkEffect> effects;  // empty = none
+  double length = 0;
+  int modes = 0, sensors = 0;
+  bool shapes = true;
+  double frequency_noise = 0, shape_noise = 0;
+  // Diagnosis outcome.
+  std::string top;  // label of the top class
+  std::vector<std::string> top_kinds, second_kinds;
+  double probability = 0;
+  bool separated = false;
+  std::vector<std::string> indistinguishable;
+  double location_error = -1;            // m, worst over located true effects; -1: none
+  double gap_before = 0, gap_after = 0;  // rms relative frequency error, fitted modes
+  double held_out_before = -1, held_out_after = -1;  // -1: nothing held out
+  bool failed = false;
+  std::string error;
+  double seconds = 0;
+};
+
+struct BenchmarkResult {
+  BenchmarkOptions options;
+  std::vector<BenchmarkCase> cases;
+};
+
+// Generates the cases into <out>/cases/<name>.yaml and <out>/truth/<name>.json.
+// Returns the cases (truth only).
+std::vector<BenchmarkCase> GenerateBenchmark(const BenchmarkOptions& options,
+                                             const std::string& out_dir);
+
+// Diagnoses each generated case from its study file (in parallel) and fills in
+// the outcome.
+BenchmarkResult RunBenchmark(const BenchmarkOptions& options, const std::string& out_dir);
+
+// scores.json, scores.md, results.jsonl and, when `plots`, accuracy.png and
+// calibration.png.
+void WriteBenchmarkOutputs(const BenchmarkResult& result, bool plots, OutputDir* out,
+                           std::vector<std::string>* warnings);
+
+std::string BenchmarkReport(const BenchmarkResult& result);
+
+}  // namespace femup
