@@ -2,9 +2,11 @@
 
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <sstream>
 
 #include "assembly.h"
+#include "femup/beam_modifications.h"
 #include "femup/errors.h"
 
 namespace femup {
@@ -12,6 +14,87 @@ namespace femup {
 using internal::FromTriplets;
 using internal::Scatter;
 using internal::Triplets;
+
+namespace {
+
+// The shortest of 15 or 17 significant digits that reads back as `v`.
+std::string Str(double v) {
+  for (int digits : {15, 17}) {
+    std::ostringstream out;
+    out.precision(digits);
+    out << v;
+    if (digits == 17 || std::strtod(out.str().c_str(), nullptr) == v) return out.str();
+  }
+  return {};
+}
+
+// 0 <= z0 < z1 <= tip, finite.
+void CheckInterval(const std::string& where, double z0, double z1, double tip) {
+  if (!std::isfinite(z0) || !std::isfinite(z1) || !(z0 >= 0) || !(z1 > z0) ||
+      !(z1 <= tip)) {
+    throw InputError(where, "z0 = " + Str(z0) + ", z1 = " + Str(z1) +
+                                " m; expected 0 <= z0 < z1 <= " + Str(tip) +
+                                " (the tip)");
+  }
+}
+
+void CheckNonNegative(const std::string& where, const char* name, double v,
+                      const char* unit) {
+  if (!(v >= 0) || !std::isfinite(v)) {
+    throw InputError(where, std::string(name) + " = " + Str(v) + "; expected a finite " +
+                                unit + " >= 0");
+  }
+}
+
+// The modifications of `spec` (heights up to `tip`), each named by its entry.
+void CheckModifications(const CantileverSpec& spec, double tip) {
+  for (std::size_t i = 0; i < spec.distributed_masses.size(); ++i) {
+    const CantileverSpec::DistributedMass& d = spec.distributed_masses[i];
+    const std::string where = "model.distributed_masses[" + std::to_string(i + 1) + "]";
+    CheckInterval(where, d.z0, d.z1, tip);
+    CheckNonNegative(where, "mass_per_length", d.mass_per_length,
+                     "mass per length (kg/m)");
+    CheckNonNegative(where, "fade", d.fade, "length (m)");
+  }
+  const auto& changes = spec.stiffness_changes;
+  for (std::size_t i = 0; i < changes.size(); ++i) {
+    const std::string where = "model.stiffness_changes[" + std::to_string(i + 1) + "]";
+    CheckInterval(where, changes[i].z0, changes[i].z1, tip);
+    if (!(changes[i].factor > -1) || !std::isfinite(changes[i].factor)) {
+      throw InputError(where, "factor = " + Str(changes[i].factor) +
+                                  "; expected a finite number > -1 (E I times 1 + factor "
+                                  "must stay positive)");
+    }
+  }
+  // Overlapping changes add up; the sum is lowest at the start of some change.
+  for (std::size_t i = 0; i < changes.size(); ++i) {
+    const double z = changes[i].z0;
+    double sum = 0;
+    for (const CantileverSpec::StiffnessChange& c : changes) {
+      if (c.z0 <= z && z < c.z1) sum += c.factor;
+    }
+    if (!(1 + sum > 0)) {
+      throw InputError("model.stiffness_changes",
+                       "the factors of the changes that overlap at z = " + Str(z) +
+                           " m add up to " + Str(sum) +
+                           "; expected a sum > -1 (E I must stay positive)");
+    }
+  }
+  for (std::size_t i = 0; i < spec.point_masses.size(); ++i) {
+    const CantileverSpec::PointMass& p = spec.point_masses[i];
+    const std::string where = "model.point_masses[" + std::to_string(i + 1) + "]";
+    if (!(p.height >= 0 && p.height <= tip)) {
+      throw InputError(where, "height = " + Str(p.height) +
+                                  " m; expected 0 <= height <= " + Str(tip) +
+                                  " (the tip)");
+    }
+    CheckNonNegative(where, "mass", p.mass, "mass (kg)");
+    CheckNonNegative(where, "rotary_inertia", p.rotary_inertia,
+                     "rotary inertia (kg m^2)");
+  }
+}
+
+}  // namespace
 
 Structure BuildSpringMassChain(const ChainSpec& spec) {
   const int n = static_cast<int>(spec.masses.size());
@@ -127,6 +210,7 @@ Structure BuildCantilever(const CantileverSpec& spec) {
       throw InputError("model.support", "spring stiffnesses must be finite and >= 0");
     }
   }
+  CheckModifications(spec, z.back());
 
   // Global DOF numbering: base DOFs only where a support spring frees them.
   static const char* kDofNames[3] = {"ux", "uy", "rz"};
@@ -157,6 +241,12 @@ Structure BuildCantilever(const CantileverSpec& spec) {
     el.x0 = z[e];
     el.x1 = z[e + 1];
     el.wet = 0.5 * (z[e] + z[e + 1]) < spec.water_depth;
+    if (!spec.element_matrices) {
+      Scatter(ke, d, &kt);
+      Scatter(me, d, &mt);
+      s.elements.push_back(std::move(el));
+      continue;
+    }
     Triplets tk, tm, tw;
     Scatter(ke, d, &tk);
     Scatter(me, d, &tm);
@@ -195,6 +285,19 @@ Structure BuildCantilever(const CantileverSpec& spec) {
   s.stiffness = FromTriplets(n, kt);
   s.mass = FromTriplets(n, mt);
   s.length = z.back();
+  // Local modifications: on the global matrices only, after assembly.
+  for (const CantileverSpec::DistributedMass& d : spec.distributed_masses) {
+    s.mass += TransverseMassOverInterval(s, d.z0, d.z1, d.mass_per_length, d.fade);
+  }
+  const double ei = spec.section.E * spec.section.I;
+  for (const CantileverSpec::StiffnessChange& c : spec.stiffness_changes) {
+    s.stiffness += BendingStiffnessOverInterval(s, c.z0, c.z1, c.factor * ei);
+  }
+  for (const CantileverSpec::PointMass& p : spec.point_masses) {
+    s.mass += PointMassAt(s, p.height, p.mass, p.rotary_inertia);
+  }
+  s.stiffness.makeCompressed();
+  s.mass.makeCompressed();
   std::ostringstream desc;
   desc << "2D frame cantilever, " << num_nodes - 1 << " elements over " << z.back()
        << " m, water depth " << spec.water_depth << " m, added-mass basis "

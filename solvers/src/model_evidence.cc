@@ -34,11 +34,11 @@ ModelEvidence LaplaceEvidence(double chi2, const Eigen::MatrixXd& jacobian,
   if (n == 0) return e;
   const Eigen::ArrayXd range = (upper - lower).array();
   Eigen::MatrixXd h = jacobian.transpose() * jacobian / temperature;
-  h.diagonal().array() += 12.0 / range.square();
+  const double two_pi = 2 * std::acos(-1.0);
+  h.diagonal().array() += two_pi / range.square();
   const Eigen::LLT<Eigen::MatrixXd> llt(h);
   const Eigen::MatrixXd l = llt.matrixL();
   const double log_det_h = 2 * l.diagonal().array().log().sum();
-  const double two_pi = 2 * std::acos(-1.0);
   double log_occam = 0.5 * (n * std::log(two_pi) - log_det_h) - range.log().sum();
   const double edge = 1e-6;
   for (Eigen::Index i = 0; i < n; ++i) {

@@ -49,6 +49,34 @@ struct CantileverSpec {
   double support_axial = 0;
   double support_rotation = 0;
   std::vector<LumpedMass> lumped_masses;
+
+  // Local modifications along the height z (m above the base, 0 <= z0 < z1 <=
+  // tip), exact on elements they cover only in part (beam_modifications.h).
+  // They are added to the global stiffness and mass after assembly, like the
+  // supports and lumped masses: the elements' own matrices (and so the factors
+  // and added-mass bases built on them) do not include them.
+  struct DistributedMass {
+    double z0 = 0, z1 = 0;
+    double mass_per_length = 0;  // kg/m, >= 0, on transverse motion only
+    double fade = 0;  // m, >= 0: linear fade to zero over the top `fade` m below z1
+  };
+  struct StiffnessChange {
+    double z0 = 0, z1 = 0;
+    double factor = 0;  // E I becomes E I (1 + factor) over [z0, z1]; factor > -1
+  };
+  struct PointMass {
+    double height = 0;          // m, 0 <= height <= tip, between nodes allowed
+    double mass = 0;            // kg, >= 0, on both translations
+    double rotary_inertia = 0;  // kg m^2, >= 0
+  };
+  std::vector<DistributedMass> distributed_masses;
+  // Overlapping changes add up: 1 + the sum of the factors must stay > 0.
+  std::vector<StiffnessChange> stiffness_changes;
+  std::vector<PointMass> point_masses;
+  // Keep each element's own matrices (for correction factors). False builds
+  // only the global K and M, faster, for fits that rebuild the model often;
+  // the elements then carry their ids and extents with empty matrices.
+  bool element_matrices = true;
 };
 // `num_elements` equal elements over `length`.
 std::vector<double> UniformHeights(double length, int num_elements);

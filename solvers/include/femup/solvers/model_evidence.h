@@ -8,9 +8,10 @@
 //   log Z = -chi2 / (2 T) + log Occam,
 //   log Occam = 1/2 log det(2 pi H^-1) - sum_i log(upper_i - lower_i)
 //               - (log 2 for each parameter at a bound),
-//   H = J'J / T + diag(12 / (upper_i - lower_i)^2),
-// the small diagonal term being a Gaussian with the prior's variance so that a
-// direction the data do not see costs nothing (Occam factor 1 there); log Occam
+//   H = J'J / T + diag(2 pi / (upper_i - lower_i)^2),
+// the small diagonal term being the Gaussian whose peak density equals the
+// uniform prior's (variance range^2 / 2 pi), so that a direction the data do
+// not see costs nothing (Occam factor exactly 1 there); log Occam
 // is capped at 0. T >= 1 is a noise temperature: the stated variances times T
 // (T = 1: the noise as stated). The constant -n/2 log(2 pi T) common to all
 // classes fitted to the same data is left out.
