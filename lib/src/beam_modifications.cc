@@ -12,6 +12,7 @@
 #include "cantilever_geometry.h"
 #include "femup/errors.h"
 #include "femup/fe.h"
+#include "text_util.h"
 
 namespace femup {
 
@@ -27,16 +28,7 @@ using internal::Vector6;
 
 namespace {
 
-// The shortest of 15 or 17 significant digits that reads back as `v`.
-std::string Str(double v) {
-  for (int digits : {15, 17}) {
-    std::ostringstream out;
-    out.precision(digits);
-    out << v;
-    if (digits == 17 || std::strtod(out.str().c_str(), nullptr) == v) return out.str();
-  }
-  return {};
-}
+std::string Str(double v) { return internal::ShortestDecimal(v); }
 
 void RequireFinite(const char* field, double v, const char* unit) {
   if (!std::isfinite(v)) {

@@ -8,6 +8,7 @@
 #include "assembly.h"
 #include "femup/beam_modifications.h"
 #include "femup/errors.h"
+#include "text_util.h"
 
 namespace femup {
 
@@ -17,16 +18,7 @@ using internal::Triplets;
 
 namespace {
 
-// The shortest of 15 or 17 significant digits that reads back as `v`.
-std::string Str(double v) {
-  for (int digits : {15, 17}) {
-    std::ostringstream out;
-    out.precision(digits);
-    out << v;
-    if (digits == 17 || std::strtod(out.str().c_str(), nullptr) == v) return out.str();
-  }
-  return {};
-}
+std::string Str(double v) { return internal::ShortestDecimal(v); }
 
 // 0 <= z0 < z1 <= tip, finite.
 void CheckInterval(const std::string& where, double z0, double z1, double tip) {

@@ -8,20 +8,12 @@
 #include <vector>
 
 #include "femup/errors.h"
+#include "text_util.h"
 
 namespace femup::internal {
 namespace {
 
-// The shortest of 15 or 17 significant digits that reads back as `v`.
-std::string Str(double v) {
-  for (int digits : {15, 17}) {
-    std::ostringstream out;
-    out.precision(digits);
-    out << v;
-    if (digits == 17 || std::strtod(out.str().c_str(), nullptr) == v) return out.str();
-  }
-  return {};
-}
+std::string Str(double v) { return internal::ShortestDecimal(v); }
 
 const char kNotCantilever[] = "not a vertical cantilever from BuildCantilever: ";
 

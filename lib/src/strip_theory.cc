@@ -9,6 +9,7 @@
 #include "cantilever_geometry.h"
 #include "femup/beam_modifications.h"
 #include "femup/errors.h"
+#include "text_util.h"
 
 namespace femup {
 
@@ -16,12 +17,7 @@ namespace {
 
 const double kPi = std::acos(-1.0);
 
-std::string Str(double v) {
-  std::ostringstream out;
-  out.precision(17);
-  out << v;
-  return out.str();
-}
+std::string Str(double v) { return internal::ShortestDecimal(v); }
 
 void RequirePositiveFinite(const char* field, double v, const char* unit) {
   if (!(v > 0) || !std::isfinite(v)) {

@@ -1,6 +1,9 @@
 // Private to femup_core: small text helpers shared by the file readers.
 #pragma once
 
+#include <cstdlib>
+#include <sstream>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -43,6 +46,18 @@ inline std::vector<std::string_view> Tokens(std::string_view line) {
     i = j;
   }
   return out;
+}
+
+// `v` with the fewest of 15 or 17 significant digits that reads back exactly
+// ("0.9", not "0.90000000000000002"): numbers quoted in error messages.
+inline std::string ShortestDecimal(double v) {
+  for (int digits : {15, 17}) {
+    std::ostringstream out;
+    out.precision(digits);
+    out << v;
+    if (digits == 17 || std::strtod(out.str().c_str(), nullptr) == v) return out.str();
+  }
+  return {};
 }
 
 }  // namespace femup::internal

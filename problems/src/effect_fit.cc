@@ -237,6 +237,36 @@ bool PredictEffectModes(const EffectFitData& data,
   return true;
 }
 
+bool BendingModesAtSensors(const CantileverSpec& spec,
+                           const std::vector<std::string>& sensors, int count,
+                           Eigen::VectorXd* frequencies_hz, Eigen::MatrixXd* shapes,
+                           std::string* why) {
+  // Frequency-only observations numbered 1..count pair mode k with the k-th
+  // bending mode; their values do not enter the prediction.
+  EffectFitData d;
+  d.nominal = spec;
+  ObservedState st;
+  st.state = "modes";
+  st.sensors = sensors;
+  for (int k = 1; k <= count; ++k) {
+    ObservedMode m;
+    m.number = k;
+    m.frequency_hz = 1;
+    m.frequency_sigma = 1;
+    st.modes.push_back(m);
+  }
+  d.states.push_back(st);
+  std::vector<PredictedState> pred;
+  if (!PredictEffectModes(d, {}, Eigen::VectorXd(), &pred, why)) return false;
+  frequencies_hz->resize(count);
+  shapes->resize(static_cast<Eigen::Index>(sensors.size()), count);
+  for (int k = 0; k < count; ++k) {
+    (*frequencies_hz)[k] = pred[0].modes[k].frequency_hz;
+    if (!sensors.empty()) shapes->col(k) = pred[0].modes[k].shape;
+  }
+  return true;
+}
+
 int NumEffectResiduals(const EffectFitData& data) {
   int n = 0;
   for (const ObservedState& st : data.states) {

@@ -40,29 +40,8 @@ constexpr Material kMaterials[] = {{"steel", 210e9, 7850}, {"aluminium", 70e9, 2
 // Truth bending modes at the sensors: frequencies and shapes (largest entry 1).
 bool TruthModes(const CantileverSpec& spec, const std::vector<std::string>& sensors,
                 int count, Eigen::VectorXd* f, Eigen::MatrixXd* shapes) {
-  EffectFitData d;
-  d.nominal = spec;
-  ObservedState st;
-  st.state = "truth";
-  st.sensors = sensors;
-  for (int k = 1; k <= count; ++k) {
-    ObservedMode m;
-    m.number = k;
-    m.frequency_hz = 1;
-    m.frequency_sigma = 1;
-    st.modes.push_back(m);
-  }
-  d.states.push_back(st);
-  std::vector<PredictedState> pred;
   std::string why;
-  if (!PredictEffectModes(d, {}, Eigen::VectorXd(), &pred, &why)) return false;
-  f->resize(count);
-  shapes->resize(static_cast<Eigen::Index>(sensors.size()), count);
-  for (int k = 0; k < count; ++k) {
-    (*f)[k] = pred[0].modes[k].frequency_hz;
-    if (!sensors.empty()) shapes->col(k) = pred[0].modes[k].shape;
-  }
-  return true;
+  return BendingModesAtSensors(spec, sensors, count, f, shapes, &why);
 }
 
 // A true effect of a given kind with a strength s in (0, 1] that sets its size;

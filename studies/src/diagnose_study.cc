@@ -140,24 +140,11 @@ CantileverSpec Refined(const CantileverSpec& spec) {
 
 // Bending frequencies 1..count of a spec (no effects), for the mesh check.
 Eigen::VectorXd BendingFrequencies(const CantileverSpec& spec, int count) {
-  EffectFitData d;
-  d.nominal = spec;
-  ObservedState st;
-  st.state = "mesh";
-  for (int k = 1; k <= count; ++k) {
-    ObservedMode m;
-    m.number = k;
-    m.frequency_hz = 1;
-    m.frequency_sigma = 1;
-    st.modes.push_back(m);
-  }
-  d.states.push_back(st);
-  std::vector<PredictedState> pred;
+  Eigen::VectorXd f;
+  Eigen::MatrixXd unused;
   std::string why;
-  if (!PredictEffectModes(d, {}, Eigen::VectorXd(), &pred, &why))
+  if (!BendingModesAtSensors(spec, {}, count, &f, &unused, &why))
     throw InputError("model", "the nominal model cannot be solved: " + why);
-  Eigen::VectorXd f(count);
-  for (int k = 0; k < count; ++k) f[k] = pred[0].modes[k].frequency_hz;
   return f;
 }
 

@@ -76,6 +76,15 @@ bool PredictEffectModes(const EffectFitData& data,
                         const Eigen::VectorXd& theta, std::vector<PredictedState>* out,
                         std::string* why);
 
+// The lowest `count` bending modes of `spec` as it is (no effects): their
+// frequencies and, at the `sensors` (DOF labels; may be empty), their shapes
+// scaled to a largest entry of 1. Returns false with *why when the model cannot
+// be solved or has fewer bending modes.
+bool BendingModesAtSensors(const CantileverSpec& spec,
+                           const std::vector<std::string>& sensors, int count,
+                           Eigen::VectorXd* frequencies_hz, Eigen::MatrixXd* shapes,
+                           std::string* why);
+
 // Whitened residuals of the observed modes for predictions `predicted`.
 Eigen::VectorXd EffectResiduals(const EffectFitData& data,
                                 const std::vector<PredictedState>& predicted);
