@@ -1,0 +1,82 @@
+#!/usr/bin/env bash
+# The sim-to-real gap from the command line (femup diagnose, femup benchmark):
+#  1. femup diagnose on examples/diagnosis/support_flexibility.yaml (a 20-element
+#     cantilever; "measured" modes from a 60-element truth with springs at the
+#     base): exit 0, diagnosis.json names support_flexibility as the verdict
+#     with probabilities summing to 1, and the three plots are there when
+#     gnuplot is.
+#  2. femup benchmark --suite single --cases 3 --seed 5: exit 0, scores.json
+#     has top1 and calibration, cases/ and truth/ hold one file per case, and no
+#     case's study file gives its truth away (its effect kinds, its description).
+#  3. Bad input: an unknown effect among the candidates and a chain model exit 1
+#     with a message naming the problem, and leave no diagnosis.json behind.
+source "$(dirname "$0")/lib.sh"
+
+# 1. A diagnosis.
+"$FEMUP" diagnose "$ROOT/examples/diagnosis/support_flexibility.yaml" -o diag > diag.txt \
+  || fail "diagnose exit $?: $(cat diag.txt)"
+[ -s diag/diagnosis.json ] || fail "no diagnosis.json"
+[ "$(json diag/diagnosis.json "j['verdict']['kind']")" = support_flexibility ] \
+  || fail "verdict: $(json diag/diagnosis.json "j['verdict']")"
+[ "$(json diag/diagnosis.json "abs(sum(e['probability'] for e in j['effects']) - 1) < 1e-9")" \
+  = True ] || fail "probabilities do not sum to 1"
+[ "$(json diag/diagnosis.json "j['effects'][0]['location']['x']")" = 0.0 ] \
+  || fail "support not at the base"
+grep -q "verdict: support_flexibility" diag.txt || fail "report: $(cat diag.txt)"
+if command -v gnuplot > /dev/null; then
+  for f in localisation.png effects.png gap.png; do
+    [ -s "diag/$f" ] || fail "missing $f"
+  done
+fi
+
+# 2. The blind benchmark, small.
+"$FEMUP" benchmark --suite single --cases 3 --seed 5 -o bench -q > bench.txt 2>&1 \
+  || fail "benchmark exit $?: $(cat bench.txt)"
+[ -s bench/scores.json ] || fail "no scores.json"
+[ "$(json bench/scores.json "'top1' in j and 'calibration' in j")" = True ] \
+  || fail "scores.json keys: $(json bench/scores.json "sorted(j)")"
+[ "$(json bench/scores.json "j['top1']['cases']")" = 3 ] || fail "top1 counts 3 cases"
+[ -d bench/cases ] && [ -d bench/truth ] || fail "cases/ and truth/"
+[ "$(ls bench/cases/*.yaml | wc -l)" = 3 ] || fail "3 case files: $(ls bench/cases)"
+[ "$(ls bench/truth/*.json | wc -l)" = 3 ] || fail "3 truth files: $(ls bench/truth)"
+python3 - bench <<'PY' || fail "a case gives its truth away"
+import json, os, sys
+d = sys.argv[1]
+for name in sorted(os.listdir(os.path.join(d, "truth"))):
+    truth = json.load(open(os.path.join(d, "truth", name)))
+    case = open(os.path.join(d, "cases", name[:-5] + ".yaml")).read()
+    for e in truth["effects"]:
+        assert e["kind"] not in case, (name, e["kind"])
+        assert e["description"] not in case, (name, e["description"])
+print("benchmark cases: no truth in the study files")
+PY
+
+# 3. Bad input: nothing is written.
+{ sed -e '/^diagnosis:/,$d' "$ROOT/examples/diagnosis/added_mass.yaml"
+  echo "diagnosis: {candidates: [added_mass, corrosion]}"; } > unknown.yaml
+set +e
+"$FEMUP" diagnose unknown.yaml -o out_unknown 2> err1.txt
+rc=$?
+set -e
+[ "$rc" = 1 ] || fail "unknown effect: exit $rc"
+grep -q "diagnosis.candidates" err1.txt && grep -q "corrosion" err1.txt \
+  || fail "message: $(cat err1.txt)"
+[ ! -e out_unknown/diagnosis.json ] || fail "unknown effect: diagnosis.json written"
+cat > chain.yaml <<'EOF'
+name: chain_diagnosis
+model:
+  type: chain
+  masses: [50, 50, 50]
+  springs: [2.9e7, 2.9e7, 2.9e7]
+measurements:
+  - state: air
+    frequencies_hz: [60, 170, 245]
+EOF
+set +e
+"$FEMUP" diagnose chain.yaml -o out_chain 2> err2.txt
+rc=$?
+set -e
+[ "$rc" = 1 ] || fail "chain model: exit $rc"
+grep -q "cantilever" err2.txt || fail "message: $(cat err2.txt)"
+[ ! -e out_chain/diagnosis.json ] || fail "chain model: diagnosis.json written"
+echo "diagnose: ok"
