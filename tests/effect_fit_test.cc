@@ -142,7 +142,7 @@ std::map<std::string, Eigen::VectorXd> Truths() {
       {"added_mass", Vec({std::log(0.4), 0.63 * kLength})},
       {"support_flexibility", Vec({std::log(0.05), std::log(0.02)})},
       {"attached_mass", Vec({std::log(0.15), 0.57 * kLength})},
-      {"stiffness_loss", Vec({std::log(0.35), 0.37 * kLength})},
+      {"stiffness_loss", Vec({std::log(0.35), 0.37 * kLength, std::log(0.1)})},
       {"material_scaling", Vec({0.23})},
   };
 }

@@ -257,7 +257,7 @@ TEST(Effects, EachKindLowersOrScalesTheBendingFrequencies) {
       {"added_mass", Theta({std::log(0.5), 0.6 * kLength})},
       {"support_flexibility", Theta({std::log(0.1), std::log(0.1)})},
       {"attached_mass", Theta({std::log(0.2), 0.55 * kLength})},
-      {"stiffness_loss", Theta({std::log(0.5), 0.37 * kLength})},
+      {"stiffness_loss", Theta({std::log(0.5), 0.37 * kLength, std::log(0.1)})},
   };
   for (const auto& [kind, t] : theta) {
     SCOPED_TRACE(kind);
@@ -529,7 +529,7 @@ TEST(Effects, StiffnessLossOverWholeElementsMatchesAHandAssembledBeam) {
   for (int centre_node : {1, 5, 12, 19}) {
     SCOPED_TRACE(centre_node);
     const double x = kLength * centre_node / kElements;
-    const Eigen::VectorXd t = Theta({std::log(loss), x});
+    const Eigen::VectorXd t = Theta({std::log(loss), x, std::log(0.1)});
     std::vector<double> factor(kElements, 1.0);
     factor[centre_node - 1] = factor[centre_node] = 1 - loss;
     Eigen::MatrixXd k, m;
@@ -549,22 +549,50 @@ TEST(Effects, StiffnessLossOverWholeElementsMatchesAHandAssembledBeam) {
   }
 }
 
-TEST(Effects, StiffnessLossNearTheBaseLowersModeOneMoreThanNearTheTip) {
+TEST(Effects, StiffnessLossWidthSetsTheRegionAndIsClippedAtTheEnds) {
+  // Width 0.3 L centred on node 10 covers elements 8..13 (six elements).
   const std::unique_ptr<Effect> e = CreateEffect("stiffness_loss");
   const std::vector<EffectParameter> p = e->Parameters(Nominal());
+  ASSERT_EQ(p.size(), 3u);
+  EXPECT_EQ(p[2].name, "ln_width");
+  EXPECT_NEAR(std::exp(p[2].lower), 0.02, 1e-15);
+  EXPECT_NEAR(std::exp(p[2].upper), 0.4, 1e-15);
+  const double loss = 0.5, x = 0.5 * kLength;
+  const Eigen::VectorXd t = Theta({std::log(loss), x, std::log(0.3)});
+  std::vector<double> factor(kElements, 1.0);
+  for (int k = 7; k < 13; ++k) factor[k] = 1 - loss;
+  Eigen::MatrixXd k, m;
+  std::vector<std::string> labels;
+  AssembleByHand(factor, &k, &m, &labels);
+  const Eigen::VectorXd expected = BendingFrequencies(k, m, labels);
+  const Eigen::VectorXd f = BendingFrequencies(Applied(*e, t));
+  for (int i = 0; i < 6; ++i) EXPECT_NEAR(f[i] / expected[i], 1.0, 1e-9) << i;
+  ExpectMagnitude(e->Magnitudes(Nominal(), t), "region_width", "m", 0.3 * kLength);
+  // Centred 0.05 L from the base with width 0.3 L: the region is [0, 0.2 L],
+  // and its location is that region's centre.
+  const Eigen::VectorXd at_base = Theta({std::log(loss), 0.05 * kLength, std::log(0.3)});
+  const EffectLocation l = e->Location(Nominal(), at_base);
+  EXPECT_NEAR(l.x0, 0.0, 1e-15);
+  EXPECT_NEAR(l.x1, 0.2 * kLength, 1e-14);
+  EXPECT_NEAR(l.x, 0.1 * kLength, 1e-14);
+  ExpectMagnitude(e->Magnitudes(Nominal(), at_base), "region_width", "m", 0.2 * kLength);
+}
+
+TEST(Effects, StiffnessLossNearTheBaseLowersModeOneMoreThanNearTheTip) {
+  const std::unique_ptr<Effect> e = CreateEffect("stiffness_loss");
   const Eigen::VectorXd f0 = BendingFrequencies(Nominal());
   const double ln_loss = std::log(0.3);
   const Eigen::VectorXd base =
-      BendingFrequencies(Applied(*e, Theta({ln_loss, p[1].lower})));
+      BendingFrequencies(Applied(*e, Theta({ln_loss, 0.05 * kLength, std::log(0.1)})));
   const Eigen::VectorXd tip =
-      BendingFrequencies(Applied(*e, Theta({ln_loss, p[1].upper})));
+      BendingFrequencies(Applied(*e, Theta({ln_loss, 0.95 * kLength, std::log(0.1)})));
   EXPECT_LT(base[0], f0[0]);
   EXPECT_LE(tip[0], f0[0]);
   // Mode 1's curvature is largest at the base and vanishes at the tip.
   EXPECT_GT(f0[0] - base[0], 10 * (f0[0] - tip[0]));
   // A larger loss at the same place lowers more.
-  const Eigen::VectorXd bigger =
-      BendingFrequencies(Applied(*e, Theta({std::log(0.6), p[1].lower})));
+  const Eigen::VectorXd bigger = BendingFrequencies(
+      Applied(*e, Theta({std::log(0.6), 0.05 * kLength, std::log(0.1)})));
   EXPECT_LT(bigger[0], base[0]);
 }
 

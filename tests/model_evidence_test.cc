@@ -353,6 +353,57 @@ TEST(LaplaceEvidence, BadInputThrows) {
 
 // ----------------------------------------------------------------------------
 
+// The held-out rows' predictive density is the evidence of all the data over the
+// evidence of the fitted rows: log Z(fit + held) - log Z(fit), each by quadrature
+// (the boxes are wide enough that the prior's edges do not matter).
+TEST(LogPredictiveDensity, IsTheEvidenceRatioOfALinearGaussianModel) {
+  const Eigen::MatrixXd a = A2();
+  const Eigen::VectorXd b = B2();
+  Eigen::MatrixXd held(2, 2);
+  held << 1.5, -0.7,  //
+      0.4, 2.2;
+  const Eigen::VectorXd held_b = Vec({0.9, -0.6});
+  Eigen::MatrixXd all(6, 2);
+  all << a, held;
+  Eigen::VectorXd all_b(6);
+  all_b << b, held_b;
+  const LinearFit fit = Fit(a, b);
+  const Eigen::VectorXd lower = Vec({-200, -150}), upper = Vec({200, 250});
+  for (double t : {1.0, 3.0}) {
+    SCOPED_TRACE(t);
+    const ModelEvidence e = LaplaceEvidence(fit.chi2, a, fit.x, lower, upper, t);
+    const Eigen::VectorXd r = held * fit.x - held_b;
+    const double reference = LogEvidenceByQuadrature(all, all_b, lower, upper, t, 3000) -
+                             LogEvidenceByQuadrature(a, b, lower, upper, t, 3000);
+    EXPECT_NEAR(LogPredictiveDensity(r, held, e.covariance, t), reference, 1e-3);
+    // The plug-in likelihood -r'r / (2T) ignores the spread of the fit: it is
+    // not this density.
+    EXPECT_GT(std::abs(-0.5 * r.squaredNorm() / t - reference), 0.05);
+  }
+}
+
+TEST(LogPredictiveDensity, NoParametersIsThePlainLikelihood) {
+  const Eigen::VectorXd r = Vec({0.5, -1.5, 2.0});
+  EXPECT_NEAR(LogPredictiveDensity(r, Eigen::MatrixXd(3, 0), Eigen::MatrixXd(), 2.0),
+              -0.5 * r.squaredNorm() / 2.0, 1e-15);
+  EXPECT_EQ(LogPredictiveDensity(Eigen::VectorXd(), Eigen::MatrixXd(0, 2),
+                                 Eigen::MatrixXd::Identity(2, 2)),
+            0.0);
+}
+
+TEST(LogPredictiveDensity, BadInputThrows) {
+  const Eigen::VectorXd r = Vec({0.5, -1.5});
+  const Eigen::MatrixXd j = Eigen::MatrixXd::Identity(2, 2);
+  const Eigen::MatrixXd c = Eigen::MatrixXd::Identity(2, 2);
+  EXPECT_NO_THROW(LogPredictiveDensity(r, j, c));
+  EXPECT_THROW(LogPredictiveDensity(Vec({1.0}), j, c), InputError);
+  EXPECT_THROW(LogPredictiveDensity(r, j, Eigen::MatrixXd::Identity(3, 3)), InputError);
+  EXPECT_THROW(LogPredictiveDensity(r, j, c, 0.5), InputError);
+  EXPECT_THROW(LogPredictiveDensity(r, j, c, kInf), InputError);
+  EXPECT_THROW(LogPredictiveDensity(Vec({kNaN, 0.0}), j, c), InputError);
+  EXPECT_THROW(LogPredictiveDensity(r, j, -4 * c), InputError);
+}
+
 TEST(PosteriorProbabilities, SoftmaxByHandSumsToOne) {
   const Eigen::VectorXd log_z = Vec({-12.0, -10.5, -11.2, -20.0});
   const Eigen::VectorXd prior = Vec({1, 1, 1, 1});

@@ -140,24 +140,27 @@ class AttachedMassEffect : public Effect {
 // EI times (1 - fraction) over a region a tenth of the length wide.
 class StiffnessLossEffect : public Effect {
  public:
-  static constexpr double kWidth = 0.1;  // of the length
+  // Region widths, as fractions of the length: "a short region".
+  static constexpr double kMinWidth = 0.02, kMaxWidth = 0.4, kStartWidth = 0.1;
   std::string kind() const override { return "stiffness_loss"; }
   std::vector<EffectParameter> Parameters(const CantileverSpec& s) const override {
     const double length = BeamLength(s);
     return {{"ln_loss", "ln(fraction of EI lost)", std::log(3e-3), std::log(0.9), false},
-            {"x", "centre of the region (m)", 0.5 * kWidth * length,
-             (1 - 0.5 * kWidth) * length, true}};
+            {"x", "centre of the region (m)", 0.0, length, true},
+            {"ln_width", "ln(width of the region / L)", std::log(kMinWidth),
+             std::log(kMaxWidth), false}};
   }
   std::vector<Eigen::VectorXd> Starts(const CantileverSpec& s) const override {
     const double length = BeamLength(s);
     std::vector<Eigen::VectorXd> out;
     for (double f : {0.05, 0.25, 0.45, 0.65, 0.85})
-      out.push_back(Vec({std::log(0.1), f * length}));
+      out.push_back(Vec({std::log(0.1), f * length, std::log(kStartWidth)}));
     return out;
   }
   void Apply(const Eigen::VectorXd& t, Immersion, bool, const CantileverSpec& nominal,
              CantileverSpec* spec) const override {
-    const double length = BeamLength(nominal), half = 0.5 * kWidth * length;
+    const double length = BeamLength(nominal);
+    const double half = 0.5 * std::exp(t[2]) * length;
     CantileverSpec::StiffnessChange c;
     c.z0 = std::max(0.0, t[1] - half);
     c.z1 = std::min(length, t[1] + half);
@@ -166,17 +169,20 @@ class StiffnessLossEffect : public Effect {
   }
   EffectLocation Location(const CantileverSpec& s,
                           const Eigen::VectorXd& t) const override {
-    const double half = 0.5 * kWidth * BeamLength(s);
+    const double length = BeamLength(s);
+    const double half = 0.5 * std::exp(t[2]) * length;
     EffectLocation l;
-    l.x = t[1];
-    l.x0 = t[1] - half;
-    l.x1 = t[1] + half;
+    l.x0 = std::max(0.0, t[1] - half);
+    l.x1 = std::min(length, t[1] + half);
+    l.x = 0.5 * (l.x0 + l.x1);
     return l;
   }
   std::vector<EffectMagnitude> Magnitudes(const CantileverSpec& s,
                                           const Eigen::VectorXd& t) const override {
-    return {{"ei_loss_fraction", "1", std::exp(t[0])},
-            {"region_width", "m", kWidth * BeamLength(s)}};
+    const double length = BeamLength(s);
+    const double half = 0.5 * std::exp(t[2]) * length;
+    const double width = std::min(length, t[1] + half) - std::max(0.0, t[1] - half);
+    return {{"ei_loss_fraction", "1", std::exp(t[0])}, {"region_width", "m", width}};
   }
 };
 

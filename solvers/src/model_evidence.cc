@@ -47,8 +47,32 @@ ModelEvidence LaplaceEvidence(double chi2, const Eigen::MatrixXd& jacobian,
   }
   e.log_occam = std::min(0.0, log_occam);
   e.log_evidence += e.log_occam;
-  e.sigma = llt.solve(Eigen::MatrixXd::Identity(n, n)).diagonal().cwiseSqrt();
+  e.covariance = llt.solve(Eigen::MatrixXd::Identity(n, n));
+  e.sigma = e.covariance.diagonal().cwiseSqrt();
   return e;
+}
+
+double LogPredictiveDensity(const Eigen::VectorXd& residual,
+                            const Eigen::MatrixXd& jacobian,
+                            const Eigen::MatrixXd& covariance, double temperature) {
+  const Eigen::Index m = residual.size();
+  const Eigen::Index n = covariance.rows();
+  if (covariance.cols() != n || jacobian.rows() != m || (n > 0 && jacobian.cols() != n)) {
+    throw InputError("predictive", "residuals, Jacobian and covariance differ in size");
+  }
+  if (!(temperature >= 1) || !std::isfinite(temperature))
+    throw InputError("predictive.temperature", "must be finite and >= 1");
+  if (!residual.allFinite() || !jacobian.allFinite() || !covariance.allFinite())
+    throw InputError("predictive", "has non-finite entries");
+  if (m == 0) return 0.0;
+  Eigen::MatrixXd s = Eigen::MatrixXd::Identity(m, m);
+  if (n > 0) s += jacobian * covariance * jacobian.transpose() / temperature;
+  const Eigen::LLT<Eigen::MatrixXd> llt(s);
+  if (llt.info() != Eigen::Success)
+    throw InputError("predictive.covariance", "is not positive semi-definite");
+  const Eigen::MatrixXd l = llt.matrixL();
+  const double log_det = 2 * l.diagonal().array().log().sum();
+  return -0.5 * residual.dot(llt.solve(residual)) / temperature - 0.5 * log_det;
 }
 
 Eigen::VectorXd PosteriorProbabilities(const Eigen::VectorXd& log_evidence,

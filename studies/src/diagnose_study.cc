@@ -420,10 +420,18 @@ DiagnosisResult RunDiagnosis(const Study& study) {
       if (cls.size() == 1) best_single[cls[0]] = fit.theta;
     }
     if (!PredictEffectModes(r.fitted_data, ptrs, c.theta, &c.fitted, &why)) continue;
+    c.held_out_jacobian.resize(0, c.theta.size());
     if (!r.held_out_data.states.empty()) {
       if (!PredictEffectModes(r.held_out_data, ptrs, c.theta, &c.held_out, &why))
         continue;
-      c.held_out_chi2 = EffectResiduals(r.held_out_data, c.held_out).squaredNorm();
+      c.held_out_residual = EffectResiduals(r.held_out_data, c.held_out);
+      c.held_out_chi2 = c.held_out_residual.squaredNorm();
+      c.held_out_jacobian.resize(c.held_out_residual.size(), c.theta.size());
+      if (c.theta.size() > 0) {
+        const NonlinearProblem p = BuildEffectFitProblem(r.held_out_data, ptrs, c.theta);
+        Eigen::VectorXd rh;
+        if (!p.evaluate(c.theta, &rh, &c.held_out_jacobian, &why)) continue;
+      }
     }
     int offset = 0;
     for (const auto& e : effects) {
@@ -449,7 +457,9 @@ DiagnosisResult RunDiagnosis(const Study& study) {
         hi[static_cast<Eigen::Index>(i)] = params[i].upper;
       }
       c.evidence = LaplaceEvidence(c.chi2, c.jacobian, c.theta, lo, hi, temperature);
-      c.score = c.evidence.log_evidence - 0.5 * c.held_out_chi2 / temperature;
+      c.held_out_log_predictive = LogPredictiveDensity(
+          c.held_out_residual, c.held_out_jacobian, c.evidence.covariance, temperature);
+      c.score = c.evidence.log_evidence + c.held_out_log_predictive;
     }
   };
   score_all(1.0);
@@ -597,6 +607,7 @@ void WriteDiagnosisOutputs(const DiagnosisResult& r, bool plots, OutputDir* out,
                          {"log_occam", c.evidence.log_occam},
                          {"chi2", c.chi2},
                          {"held_out_chi2", c.held_out_chi2},
+                         {"held_out_log_predictive", c.held_out_log_predictive},
                          {"converged", c.converged},
                          {"fits", c.starts}};
     nlohmann::json params = nlohmann::json::object();

@@ -17,8 +17,9 @@
 //                       compliances relative to the beam's own: ln(EI / (k_r L)),
 //                       ln(3 EI / (k_t L^3)).
 //   attached_mass       a point mass at a height: ln(m / (rho A L)), x.
-//   stiffness_loss      EI reduced by a fraction over a short region (a tenth of
-//                       the length) centred at x: loss fraction, x.
+//   stiffness_loss      EI reduced by a fraction over a short region (2 % to 40 %
+//                       of the length) centred at x: ln(loss fraction), x,
+//                       ln(width / L).
 //   material_scaling    uniform error of the E/rho ratio: ln(E factor).
 // Several effects at once are a list of effects whose parameter vectors are
 // concatenated (effect_fit.h). To add a kind, derive from Effect and register it

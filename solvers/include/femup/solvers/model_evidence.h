@@ -26,7 +26,8 @@ struct ModelEvidence {
   double chi2 = 0;       // at the best fit (not divided by T)
   double log_occam = 0;  // <= 0
   int num_parameters = 0;
-  Eigen::VectorXd sigma;  // posterior standard deviations (Laplace), per parameter
+  Eigen::VectorXd sigma;       // posterior standard deviations (Laplace), per parameter
+  Eigen::MatrixXd covariance;  // posterior covariance H^-1 (Laplace)
 };
 
 // x, lower, upper: the parameters at the best fit and the prior box (empty for
@@ -36,6 +37,20 @@ struct ModelEvidence {
 ModelEvidence LaplaceEvidence(double chi2, const Eigen::MatrixXd& jacobian,
                               const Eigen::VectorXd& x, const Eigen::VectorXd& lower,
                               const Eigen::VectorXd& upper, double temperature = 1.0);
+
+// Log density of data left out of a fit, predicted from it (the Laplace
+// posterior predictive, linearised): with the held-out whitened residuals r at
+// the best fit, their Jacobian J and the fit's posterior covariance C,
+//   r ~ N(0, S),  S = T I + J C J',
+//   log p = -1/2 r' S^-1 r - 1/2 log det(S / T)
+// (the constant -m/2 log(2 pi T) common to all classes is left out, as in
+// LaplaceEvidence). A class whose parameters the fitted data leave loose
+// predicts with a wide S and gains less from a lucky held-out match: the
+// complexity penalty that a plug-in likelihood -1/2 r'r / T lacks.
+// Throws InputError for size mismatches, non-finite input or T < 1.
+double LogPredictiveDensity(const Eigen::VectorXd& residual,
+                            const Eigen::MatrixXd& jacobian,
+                            const Eigen::MatrixXd& covariance, double temperature = 1.0);
 
 // Posterior probabilities from log evidences and prior probabilities (same
 // size; priors > 0, not necessarily normalised): softmax of log Z + log prior.

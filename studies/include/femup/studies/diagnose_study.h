@@ -42,15 +42,18 @@ struct DiagnosisCandidate {
   std::string label;               // "none", "added_mass", "added_mass+stiffness_loss"
   bool converged = false;          // the best fit's solver status
   std::string message;
-  Eigen::VectorXd theta;           // best fit, concatenated effect parameters
-  std::vector<std::string> names;  // "<kind>.<parameter>"
-  ModelEvidence evidence;          // at the final temperature
-  Eigen::MatrixXd jacobian;        // whitened, at theta
-  double chi2 = 0;                 // fitted modes
-  double held_out_chi2 = 0;        // held-out modes, predicted from theta
-  double score = 0;                // log evidence + held-out log-likelihood
-  double probability = 0;          // posterior
-  int starts = 0;                  // fits run
+  Eigen::VectorXd theta;               // best fit, concatenated effect parameters
+  std::vector<std::string> names;      // "<kind>.<parameter>"
+  ModelEvidence evidence;              // at the final temperature
+  Eigen::MatrixXd jacobian;            // whitened, at theta
+  double chi2 = 0;                     // fitted modes
+  double held_out_chi2 = 0;            // held-out modes, predicted from theta
+  Eigen::VectorXd held_out_residual;   // whitened, at theta
+  Eigen::MatrixXd held_out_jacobian;   // whitened, at theta
+  double held_out_log_predictive = 0;  // LogPredictiveDensity, at the final temperature
+  double score = 0;                    // log evidence + held-out log predictive density
+  double probability = 0;              // posterior
+  int starts = 0;                      // fits run
   // Per effect: location and physical size.
   std::vector<EffectLocation> locations;
   std::vector<std::vector<EffectMagnitude>> magnitudes;
