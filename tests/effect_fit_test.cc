@@ -139,7 +139,7 @@ CantileverSpec Applied(const Effect& e, const Eigen::VectorXd& theta) {
 // An interior parameter vector per kind (the "truth" of the synthetic data).
 std::map<std::string, Eigen::VectorXd> Truths() {
   return {
-      {"added_mass", Vec({std::log(0.4), 0.63 * kLength})},
+      {"added_mass", Vec({std::log(0.4), 0.63 * kLength, 0.25})},
       {"support_flexibility", Vec({std::log(0.05), std::log(0.02)})},
       {"attached_mass", Vec({std::log(0.15), 0.57 * kLength})},
       {"stiffness_loss", Vec({std::log(0.35), 0.37 * kLength, std::log(0.1)})},

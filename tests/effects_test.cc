@@ -254,7 +254,7 @@ TEST(Effects, EachKindLowersOrScalesTheBendingFrequencies) {
   const Eigen::VectorXd f0 = BendingFrequencies(Nominal());
   // A sizeable parameter vector per kind, inside the ranges.
   const std::map<std::string, Eigen::VectorXd> theta = {
-      {"added_mass", Theta({std::log(0.5), 0.6 * kLength})},
+      {"added_mass", Theta({std::log(0.5), 0.6 * kLength, 0.0})},
       {"support_flexibility", Theta({std::log(0.1), std::log(0.1)})},
       {"attached_mass", Theta({std::log(0.2), 0.55 * kLength})},
       {"stiffness_loss", Theta({std::log(0.5), 0.37 * kLength, std::log(0.1)})},
@@ -301,7 +301,7 @@ TEST(Effects, AddedMassOverTheWholeLengthLowersByOneOverSqrtOnePlusR) {
   const Eigen::VectorXd f0 = BendingFrequencies(Nominal());
   for (double r : {0.01, 0.5, 2.0, 4.9}) {
     const Eigen::VectorXd f =
-        BendingFrequencies(Applied(*e, Theta({std::log(r), kLength})));
+        BendingFrequencies(Applied(*e, Theta({std::log(r), kLength, 0.0})));
     for (int k = 0; k < 8; ++k) {
       EXPECT_NEAR(f[k] / f0[k], 1 / std::sqrt(1 + r), 1e-9) << "r " << r << " mode " << k;
     }
@@ -313,7 +313,7 @@ TEST(Effects, AddedMassDeeperLowersMoreAndReportsDepth) {
   const double r = 0.8;
   Eigen::VectorXd previous = BendingFrequencies(Nominal());
   for (double depth : {0.2, 0.45, 0.7, 1.0}) {
-    const Eigen::VectorXd t = Theta({std::log(r), depth * kLength});
+    const Eigen::VectorXd t = Theta({std::log(r), depth * kLength, 0.0});
     const Eigen::VectorXd f = BendingFrequencies(Applied(*e, t));
     // Mode 1 moves most where it moves most: more wetted length, lower f1.
     EXPECT_LT(f[0], previous[0]) << depth;
@@ -330,10 +330,41 @@ TEST(Effects, AddedMassDeeperLowersMoreAndReportsDepth) {
   }
 }
 
+TEST(Effects, AddedMassFadeLiesBetweenTheSharpEndsItSpans) {
+  // A mass faded linearly over the top part f d of its depth d carries
+  // r rho A (d - f d / 2) kg; its mass distribution lies between that of the
+  // sharp-ended mass to d - f d and the sharp-ended mass to d, so every bending
+  // frequency does too (the Rayleigh quotient falls as mass is added).
+  const std::unique_ptr<Effect> e = CreateEffect("added_mass");
+  const std::vector<EffectParameter> p = e->Parameters(Nominal());
+  ASSERT_EQ(p.size(), 3u);
+  EXPECT_EQ(p[2].name, "fade");
+  EXPECT_EQ(p[2].lower, 0.0);
+  EXPECT_EQ(p[2].upper, 0.5);
+  const double r = 0.6, depth = 0.8 * kLength;
+  for (double fade : {0.1, 0.3, 0.5}) {
+    SCOPED_TRACE(fade);
+    const Eigen::VectorXd t = Theta({std::log(r), depth, fade});
+    const Eigen::VectorXd faded = BendingFrequencies(Applied(*e, t));
+    const Eigen::VectorXd full =
+        BendingFrequencies(Applied(*e, Theta({std::log(r), depth, 0.0})));
+    const Eigen::VectorXd shorter =
+        BendingFrequencies(Applied(*e, Theta({std::log(r), depth * (1 - fade), 0.0})));
+    for (int k = 0; k < 4; ++k) {
+      EXPECT_LT(full[k], faded[k]) << k;
+      EXPECT_LT(faded[k], shorter[k]) << k;
+    }
+    const auto m = e->Magnitudes(Nominal(), t);
+    ExpectMagnitude(m, "fade_length", "m", fade * depth);
+    ExpectMagnitude(m, "added_mass_total", "kg", r * RhoA() * depth * (1 - fade / 2));
+    EXPECT_DOUBLE_EQ(e->Location(Nominal(), t).depth, depth);
+  }
+}
+
 TEST(Effects, AddedMassActsInWetStatesOnlyWhenAsked) {
   const std::unique_ptr<Effect> e = CreateEffect("added_mass");
   const CantileverSpec nominal = Nominal();
-  const Eigen::VectorXd t = Theta({std::log(0.5), kLength});
+  const Eigen::VectorXd t = Theta({std::log(0.5), kLength, 0.0});
   CantileverSpec dry = nominal, wet = nominal, dry_always = nominal;
   e->Apply(t, Immersion::kDry, true, nominal, &dry);
   e->Apply(t, Immersion::kWet, true, nominal, &wet);

@@ -16,21 +16,26 @@ Eigen::VectorXd Vec(std::initializer_list<double> v) {
   return out;
 }
 
-// Extra transverse mass per length over [0, depth].
+// Extra transverse mass per length over [0, depth], fading linearly to zero over
+// its top `fade` fraction (water added mass decays towards the free surface).
 class AddedMassEffect : public Effect {
  public:
+  static constexpr double kMaxFade = 0.5;  // of the depth
   std::string kind() const override { return "added_mass"; }
   std::vector<EffectParameter> Parameters(const CantileverSpec& s) const override {
     const double length = BeamLength(s);
-    return {{"ln_mass_ratio", "ln(added mass per length / rho A)", std::log(1e-3),
-             std::log(5.0), false},
-            {"depth", "height above the support it reaches (m)", 0.05 * length, length,
-             true}};
+    return {
+        {"ln_mass_ratio", "ln(added mass per length / rho A)", std::log(1e-3),
+         std::log(5.0), false},
+        {"depth", "height above the support it reaches (m)", 0.05 * length, length, true},
+        {"fade", "fraction of the depth over which it fades to zero at the top", 0.0,
+         kMaxFade, false}};
   }
   std::vector<Eigen::VectorXd> Starts(const CantileverSpec& s) const override {
     const double length = BeamLength(s);
     std::vector<Eigen::VectorXd> out;
-    for (double f : {0.3, 0.6, 0.95}) out.push_back(Vec({std::log(0.05), f * length}));
+    for (double f : {0.3, 0.6, 0.95})
+      out.push_back(Vec({std::log(0.05), f * length, 0.1}));
     return out;
   }
   void Apply(const Eigen::VectorXd& t, Immersion immersion, bool wet_only,
@@ -40,6 +45,7 @@ class AddedMassEffect : public Effect {
     m.z0 = 0;
     m.z1 = std::min(t[1], BeamLength(nominal));
     m.mass_per_length = std::exp(t[0]) * BeamMassPerLength(nominal);
+    m.fade = std::clamp(t[2], 0.0, kMaxFade) * m.z1;
     spec->distributed_masses.push_back(m);
   }
   EffectLocation Location(const CantileverSpec&,
@@ -53,9 +59,11 @@ class AddedMassEffect : public Effect {
   std::vector<EffectMagnitude> Magnitudes(const CantileverSpec& s,
                                           const Eigen::VectorXd& t) const override {
     const double m = std::exp(t[0]) * BeamMassPerLength(s);
+    const double fade = std::clamp(t[2], 0.0, kMaxFade) * t[1];
     return {{"added_mass_per_length", "kg/m", m},
             {"added_mass_ratio", "1 (per rho A)", std::exp(t[0])},
-            {"added_mass_total", "kg", m * t[1]}};
+            {"fade_length", "m", fade},
+            {"added_mass_total", "kg", m * (t[1] - 0.5 * fade)}};
   }
 };
 

@@ -12,7 +12,9 @@
 //
 // The library (CreateEffect):
 //   added_mass          extra transverse mass per length from the base up to a
-//                       depth (water, soil, marine growth): ln(m_a / rho A), depth.
+//                       depth (water, soil, marine growth), fading linearly to
+//                       zero over its top part: ln(m_a / rho A), depth, fade
+//                       (fraction of the depth, 0 to 0.5).
 //   support_flexibility rotational and translational springs at the base, as
 //                       compliances relative to the beam's own: ln(EI / (k_r L)),
 //                       ln(3 EI / (k_t L^3)).
