@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "femup/fe.h"
+#include "femup/frame3d.h"
 #include "femup/model.h"
 
 namespace femup::internal {
@@ -25,6 +26,17 @@ inline void Scatter(const Matrix6& ke, const std::array<int, 6>& dof, Triplets* 
   for (int i = 0; i < 6; ++i) {
     if (dof[i] < 0) continue;
     for (int j = 0; j < 6; ++j) {
+      if (dof[j] < 0 || ke(i, j) == 0.0) continue;
+      out->emplace_back(dof[i], dof[j], ke(i, j));
+    }
+  }
+}
+
+// The same for a 12x12 (3D frame) element matrix.
+inline void Scatter(const Matrix12& ke, const std::array<int, 12>& dof, Triplets* out) {
+  for (int i = 0; i < 12; ++i) {
+    if (dof[i] < 0) continue;
+    for (int j = 0; j < 12; ++j) {
       if (dof[j] < 0 || ke(i, j) == 0.0) continue;
       out->emplace_back(dof[i], dof[j], ke(i, j));
     }

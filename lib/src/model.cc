@@ -1,5 +1,6 @@
 #include "femup/model.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -30,6 +31,19 @@ bool ParameterKindFromString(const std::string& text, ParameterKind* kind) {
   return false;
 }
 
+namespace {
+
+// Moves `from` into `to` without copying the basis matrix.
+void MoveParameter(Parameter* from, Parameter* to) {
+  to->name = std::move(from->name);
+  to->kind = from->kind;
+  to->basis.swap(from->basis);
+  to->elements = std::move(from->elements);
+  to->tags = std::move(from->tags);
+}
+
+}  // namespace
+
 bool Parameter::HasTag(const std::string& tag) const {
   for (const auto& t : tags) {
     if (t == tag) return true;
@@ -39,7 +53,6 @@ bool Parameter::HasTag(const std::string& tag) const {
 
 bool IsSymmetric(const SparseMatrix& a, double relative_tolerance) {
   if (a.rows() != a.cols()) return false;
-  SparseMatrix diff = SparseMatrix(a.transpose()) - a;
   double scale = 0;
   for (int k = 0; k < a.outerSize(); ++k) {
     for (SparseMatrix::InnerIterator it(a, k); it; ++it) {
@@ -47,6 +60,26 @@ bool IsSymmetric(const SparseMatrix& a, double relative_tolerance) {
     }
   }
   double worst = 0;
+  if (a.isCompressed()) {
+    // Each stored a(r, c) against a(c, r), found by binary search in column r
+    // (inner indices are sorted): O(nnz log) and no O(n) temporaries, which
+    // matters for thousands of factor bases of a large model.
+    const int* outer = a.outerIndexPtr();
+    const int* inner = a.innerIndexPtr();
+    const double* value = a.valuePtr();
+    for (int c = 0; c < a.outerSize(); ++c) {
+      for (int p = outer[c]; p < outer[c + 1]; ++p) {
+        const int r = inner[p];
+        const int* first = inner + outer[r];
+        const int* last = inner + outer[r + 1];
+        const int* hit = std::lower_bound(first, last, c);
+        const double mirror = (hit != last && *hit == c) ? value[hit - inner] : 0.0;
+        worst = std::max(worst, std::abs(value[p] - mirror));
+      }
+    }
+    return worst <= relative_tolerance * scale;
+  }
+  SparseMatrix diff = SparseMatrix(a.transpose()) - a;
   for (int k = 0; k < diff.outerSize(); ++k) {
     for (SparseMatrix::InnerIterator it(diff, k); it; ++it) {
       worst = std::max(worst, std::abs(it.value()));
@@ -113,7 +146,20 @@ int ParametrisedModel::AddParameter(Parameter parameter) {
     throw InputError(where, "basis matrix is not symmetric");
   }
   parameter.basis.makeCompressed();
-  parameters_.push_back(std::move(parameter));
+  // Eigen 3.4's SparseMatrix has no move constructor, so push_back and the
+  // vector's growth would copy every basis (O(n) each even when nearly empty);
+  // grow by hand and swap the matrices instead.
+  if (parameters_.size() == parameters_.capacity()) {
+    std::vector<Parameter> grown;
+    grown.reserve(std::max<std::size_t>(16, 2 * parameters_.size()));
+    for (Parameter& p : parameters_) {
+      grown.emplace_back();
+      MoveParameter(&p, &grown.back());
+    }
+    parameters_.swap(grown);
+  }
+  parameters_.emplace_back();
+  MoveParameter(&parameter, &parameters_.back());
   return num_parameters() - 1;
 }
 
