@@ -35,7 +35,7 @@ class AddedMassEffect : public Effect {
     const double length = BeamLength(s);
     std::vector<Eigen::VectorXd> out;
     for (double f : {0.3, 0.6, 0.95})
-      out.push_back(Vec({std::log(0.05), f * length, 0.1}));
+      out.push_back(Vec({std::log(0.05), f * length, 0.0}));
     return out;
   }
   void Apply(const Eigen::VectorXd& t, Immersion immersion, bool wet_only,
