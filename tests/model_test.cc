@@ -153,6 +153,49 @@ TEST(ParametrisedModel, ConstructorRejectsBadMatrices) {
   EXPECT_THROW(ParametrisedModel(Sparse(k), Sparse(nan), {"x1", "x2"}), InputError);
 }
 
+TEST_F(SmallModel, ManyParametersKeepEveryFieldAsTheListGrows) {
+  // More parameters than the list's first capacities (16, 32, ...): each keeps
+  // its name, kind, basis, elements and tags when the list is regrown.
+  for (int i = 0; i < 40; ++i) {
+    Eigen::Matrix3d b = Eigen::Matrix3d::Zero();
+    b(i % 3, i % 3) = i + 1.0;
+    Parameter p = Make("p[" + std::to_string(i) + "]",
+                       i % 2 ? ParameterKind::kStiffness : ParameterKind::kMass, b);
+    p.elements = {i, i + 1};
+    p.tags = {"tag" + std::to_string(i)};
+    ASSERT_EQ(model_.AddParameter(std::move(p)), i);
+  }
+  for (int i = 0; i < 40; ++i) {
+    const Parameter& p = model_.parameter(i);
+    EXPECT_EQ(p.name, "p[" + std::to_string(i) + "]");
+    EXPECT_EQ(p.kind, i % 2 ? ParameterKind::kStiffness : ParameterKind::kMass);
+    EXPECT_EQ(p.elements, (std::vector<int>{i, i + 1}));
+    EXPECT_TRUE(p.HasTag("tag" + std::to_string(i)));
+    ASSERT_EQ(p.basis.rows(), 3);
+    EXPECT_EQ(p.basis.nonZeros(), 1);
+    EXPECT_EQ(p.basis.coeff(i % 3, i % 3), i + 1.0);
+  }
+}
+
+TEST(ParametrisedModel, IsSymmetricFindsAMissingMirrorCompressedOrNot) {
+  // An entry whose mirror is not stored at all, in a compressed matrix and in
+  // one built by insert() (uncompressed).
+  SparseMatrix a(4, 4);
+  a.insert(0, 0) = 1;
+  a.insert(3, 1) = 2;
+  a.insert(1, 3) = 2;
+  a.insert(2, 2) = 5;
+  EXPECT_TRUE(IsSymmetric(a, 0.0));
+  a.insert(3, 0) = 1e-3;  // a(0, 3) missing
+  EXPECT_FALSE(IsSymmetric(a, 1e-6));
+  EXPECT_TRUE(IsSymmetric(a, 1e-3));  // relative to the largest entry, 5
+  a.makeCompressed();
+  EXPECT_FALSE(IsSymmetric(a, 1e-6));
+  EXPECT_TRUE(IsSymmetric(a, 1e-3));
+  a.coeffRef(0, 3) = 1e-3;
+  EXPECT_TRUE(IsSymmetric(a, 0.0));
+}
+
 TEST(ParametrisedModel, KindNamesAndMatrixPredicates) {
   EXPECT_STREQ(ToString(ParameterKind::kMass), "mass");
   EXPECT_STREQ(ToString(ParameterKind::kStiffness), "stiffness");
