@@ -1,0 +1,530 @@
+// femup's sparse shift-invert eigensolver (SolveModes, kSparseShiftInvert:
+// Spectra's SymGEigsShiftSolver on a CHOLMOD factorisation) against
+// scipy.sparse.linalg.eigsh with shift-invert (ARPACK mode 3 on SuperLU) on the
+// jacket-like space frames of space_frame.h, all in one run of this program.
+// For each size the frame is built once and K and M are written as Matrix
+// Market files to a temporary directory; femup's solve then runs in a fork()ed
+// child that inherits K and M (so that its peak resident set is its own), and
+// bench/peer/eigsh_peer.py times scipy on the same files and returns its
+// eigenvalues as JSON. Prints Markdown tables: times with the scipy/femup
+// ratio, peak memory and MB per 10^5 DOF, and the agreement of the answers.
+//
+// Usage: femup_eigen_peer_compare [--dofs 1e5,1e6] [--modes 10] [--shift 0]
+//                                 [--tolerance 1e-10] [--python /usr/bin/python3]
+//                                 [--script path] [--markdown file] [--keep dir]
+// --dofs takes presets (1e4, 1e5, 1e6: the specs of docs/space_frame.md) or
+// BXxBYxLEVELS (4 elements per member, one block, X bracing, dry).
+// When the script cannot run (no python, no scipy) the reason is printed and
+// the scipy columns are left out.
+//
+// Memory, both sides measured the same way: the peak resident set (VmHWM) of
+// the process doing the solve, reset through /proc/self/clear_refs just before
+// the solve, so it counts K and M as held in memory (and, for scipy, the
+// interpreter and its modules) plus the solver's working memory. The forked
+// child starts with the parent's resident pages (K and M; the model is freed
+// and the heap trimmed before the fork). "growth" is that peak minus the
+// resident set at the start of the solve: the solver's own working memory.
+#include <malloc.h>
+#include <stdlib.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "femup/matrix_market.h"
+#include "femup/modal.h"
+#include "femup/space_frame.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+double Seconds(Clock::time_point since) {
+  return std::chrono::duration<double>(Clock::now() - since).count();
+}
+
+// One size: a name for the table and the frame it builds.
+struct Size {
+  std::string name;
+  femup::SpaceFrameSpec spec;
+};
+
+// "1e5", "1e6" (docs/space_frame.md), "1e4" (a small one for a quick run) or
+// "BXxBYxLEVELS"; throws CLI::ValidationError otherwise.
+Size ParseSize(const std::string& item) {
+  Size s;
+  s.name = item;
+  if (item == "1e4") {  // 10,560 DOF
+    s.spec.bays_x = 2;
+    s.spec.bays_y = 2;
+    s.spec.levels = 10;
+    s.spec.blocks_per_level = 1;
+    s.spec.water_depth = 30;
+  } else if (item == "1e5") {  // 100,152 DOF
+    s.spec.bays_x = 4;
+    s.spec.bays_y = 4;
+    s.spec.levels = 39;
+    s.spec.blocks_per_level = 2;
+    s.spec.water_depth = 100;
+  } else if (item == "1e6") {  // 998,400 DOF
+    s.spec.bays_x = 10;
+    s.spec.bays_y = 10;
+    s.spec.levels = 100;
+    s.spec.blocks_per_level = 1;
+    s.spec.water_depth = 300;
+  } else {
+    char x1 = 0, x2 = 0;
+    std::stringstream in(item);
+    if (!(in >> s.spec.bays_x >> x1 >> s.spec.bays_y >> x2 >> s.spec.levels) ||
+        x1 != 'x' || x2 != 'x' || !in.eof()) {
+      throw CLI::ValidationError("--dofs",
+                                 "'" + item + "' is not 1e4, 1e5, 1e6 or BXxBYxLEVELS");
+    }
+    s.spec.blocks_per_level = 1;
+  }
+  s.spec.elements_per_member = 4;
+  const std::string invalid = s.spec.Validate();
+  if (!invalid.empty()) throw CLI::ValidationError("--dofs", item + ": " + invalid);
+  return s;
+}
+
+std::vector<Size> ParseSizes(const std::string& text) {
+  std::vector<Size> sizes;
+  std::stringstream list(text);
+  std::string item;
+  while (std::getline(list, item, ',')) sizes.push_back(ParseSize(item));
+  if (sizes.empty()) throw CLI::ValidationError("--dofs", "no size given");
+  return sizes;
+}
+
+// VmRSS / VmHWM (MB) from /proc/self/status; -1 when unreadable.
+double StatusMb(const char* field) {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  const std::string key = std::string(field) + ":";
+  while (std::getline(status, line)) {
+    if (line.compare(0, key.size(), key) == 0) {
+      return std::stod(line.substr(key.size())) / 1024.0;  // kB
+    }
+  }
+  return -1;
+}
+
+// Resets VmHWM to the current resident set (Linux >= 4.0).
+bool ResetPeakRss() {
+  std::ofstream clear("/proc/self/clear_refs");
+  clear << "5";
+  clear.flush();
+  return static_cast<bool>(clear);
+}
+
+// The femup solve, in the calling process: time, answers, memory.
+nlohmann::json SolveFemup(const femup::SparseMatrix& K, const femup::SparseMatrix& M,
+                          const femup::EigenOptions& options) {
+  nlohmann::json out;
+  const bool have_peak = ResetPeakRss();
+  out["rss_before_solve_mb"] = StatusMb("VmRSS");
+  const auto start = Clock::now();
+  const femup::Modes modes = femup::SolveModes(K, M, options);
+  out["time"] = Seconds(start);
+  if (have_peak) {
+    out["solve_peak_rss_mb"] = StatusMb("VmHWM");
+  } else {
+    out["solve_peak_rss_mb"] = nullptr;
+  }
+  rusage usage{};
+  ::getrusage(RUSAGE_SELF, &usage);
+  out["maxrss_mb"] = usage.ru_maxrss / 1024.0;  // kB on Linux
+  std::vector<double> values, residuals;
+  for (int j = 0; j < modes.size(); ++j) {
+    const Eigen::VectorXd phi = modes.shapes.col(j);
+    const Eigen::VectorXd k_phi = K * phi;
+    const double lambda = modes.eigenvalues[j];
+    values.push_back(lambda);
+    residuals.push_back((k_phi - lambda * (M * phi)).norm() / k_phi.norm());
+  }
+  out["eigenvalues"] = values;
+  out["residuals"] = residuals;
+  return out;
+}
+
+// What one side returned; `error` says why not when empty.
+struct Result {
+  nlohmann::json json;
+  std::string error;
+};
+
+// Runs SolveFemup in a fork()ed child and reads its JSON through a pipe, so
+// that the child's peak resident set is the solve's (plus K and M inherited).
+Result SolveFemupInChild(const femup::SparseMatrix& K, const femup::SparseMatrix& M,
+                         const femup::EigenOptions& options) {
+  Result out;
+  int fds[2];
+  if (::pipe(fds) != 0) {
+    out.error = std::string("pipe: ") + std::strerror(errno);
+    return out;
+  }
+  std::cout.flush();
+  std::cerr.flush();
+  const pid_t pid = ::fork();
+  if (pid < 0) {
+    out.error = std::string("fork: ") + std::strerror(errno);
+    ::close(fds[0]);
+    ::close(fds[1]);
+    return out;
+  }
+  if (pid == 0) {
+    ::close(fds[0]);
+    std::string text;
+    int code = 0;
+    try {
+      text = SolveFemup(K, M, options).dump();
+    } catch (const std::exception& e) {
+      text = nlohmann::json{{"error", e.what()}}.dump();
+      code = 1;
+    }
+    for (std::size_t done = 0; done < text.size();) {
+      const ssize_t wrote = ::write(fds[1], text.data() + done, text.size() - done);
+      if (wrote <= 0) break;
+      done += static_cast<std::size_t>(wrote);
+    }
+    ::close(fds[1]);
+    ::_exit(code);
+  }
+  ::close(fds[1]);
+  std::string text;
+  char buffer[1 << 16];
+  for (ssize_t got; (got = ::read(fds[0], buffer, sizeof buffer)) > 0;) {
+    text.append(buffer, static_cast<std::size_t>(got));
+  }
+  ::close(fds[0]);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  if (WIFSIGNALED(status)) {
+    out.error = "the femup child died of signal " + std::to_string(WTERMSIG(status));
+    return out;
+  }
+  try {
+    out.json = nlohmann::json::parse(text);
+    if (out.json.contains("error")) out.error = out.json["error"].get<std::string>();
+  } catch (const nlohmann::json::exception& e) {
+    out.error = std::string("unreadable output of the femup child: ") + e.what();
+  }
+  return out;
+}
+
+// Single quotes for /bin/sh.
+std::string ShellQuote(const std::string& text) {
+  std::string out = "'";
+  for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+std::string ReadFile(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::string Format(const char* format, double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, format, value);
+  return buffer;
+}
+
+// Runs the script on `dir` with one BLAS thread.
+Result RunPeer(const std::string& python, const std::string& script, const fs::path& dir,
+               int modes, double shift, double tolerance) {
+  const fs::path err = dir / "peer.stderr";
+  const std::string command =
+      "OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1 " + ShellQuote(python) +
+      " " + ShellQuote(script) + " " + ShellQuote(dir.string()) + " --k " +
+      std::to_string(modes) + " --shift " + Format("%.17g", shift) + " --tol " +
+      Format("%.17g", tolerance) + " 2>" + ShellQuote(err.string());
+  Result out;
+  FILE* pipe = ::popen(command.c_str(), "r");
+  if (pipe == nullptr) {
+    out.error = "could not start " + python;
+    return out;
+  }
+  std::string text;
+  char buffer[1 << 16];
+  for (std::size_t got; (got = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) {
+    text.append(buffer, got);
+  }
+  const int status = ::pclose(pipe);
+  const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  if (code != 0) {
+    std::string why = ReadFile(err);
+    while (!why.empty() && why.back() == '\n') why.pop_back();
+    if (code == 127) why = python + " not found (" + why + ")";
+    out.error =
+        why.empty() ? "the script exited with status " + std::to_string(code) : why;
+    return out;
+  }
+  try {
+    out.json = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::exception& e) {
+    out.error = std::string("unreadable output of the script: ") + e.what();
+  }
+  return out;
+}
+
+// Everything measured on one size.
+struct Row {
+  std::string name;
+  long long dofs = 0;
+  long long nnz_k = 0;  // full symmetric storage
+  double build_time = 0, write_time = 0;
+  Result femup, peer;
+};
+
+double MaxOf(const nlohmann::json& values) {
+  double out = 0;
+  for (const auto& v : values) out = std::max(out, v.get<double>());
+  return out;
+}
+
+// Max over modes of |lambda_femup - lambda_scipy| / |lambda_scipy|.
+double MaxRelativeDifference(const nlohmann::json& a, const nlohmann::json& b) {
+  double out = 0;
+  for (std::size_t j = 0; j < std::min(a.size(), b.size()); ++j) {
+    const double x = a[j].get<double>(), y = b[j].get<double>();
+    out = std::max(out, std::abs(x - y) / std::abs(y));
+  }
+  return out;
+}
+
+// Peak resident set during the solve, or the whole process's when that could
+// not be reset.
+double PeakMb(const nlohmann::json& j) {
+  return j["solve_peak_rss_mb"].is_null() ? j["maxrss_mb"].get<double>()
+                                          : j["solve_peak_rss_mb"].get<double>();
+}
+
+std::string Tables(const std::vector<Row>& rows, bool have_peer,
+                   const std::string& peer_note) {
+  std::ostringstream md;
+  md << "### Time and memory\n\n";
+  if (!have_peer) md << "scipy columns skipped: " << peer_note << "\n\n";
+  md << "| DOF | nnz K | femup (s) |";
+  if (have_peer) md << " scipy eigsh (s) | scipy / femup |";
+  md << " femup peak (MB) |";
+  if (have_peer) md << " scipy peak (MB) |";
+  md << " femup MB per 10^5 DOF |";
+  if (have_peer) md << " scipy MB per 10^5 DOF | max rel. eigenvalue difference |";
+  md << "\n|---|---|---|" << (have_peer ? "---|---|" : "") << "---|"
+     << (have_peer ? "---|" : "") << "---|" << (have_peer ? "---|---|" : "") << "\n";
+  for (const Row& r : rows) {
+    const double per = static_cast<double>(r.dofs) / 1e5;
+    md << "| " << r.dofs << " | " << r.nnz_k << " |";
+    if (!r.femup.error.empty()) {
+      md << " failed: " << r.femup.error << " |\n";
+      continue;
+    }
+    const double ft = r.femup.json["time"].get<double>();
+    const double fm = PeakMb(r.femup.json);
+    md << " " << Format("%.3g", ft) << " |";
+    if (have_peer) {
+      const double st = r.peer.json["time"].get<double>();
+      md << " " << Format("%.3g", st) << " | " << Format("%.2f", st / ft) << " |";
+    }
+    md << " " << Format("%.0f", fm) << " |";
+    if (have_peer) md << " " << Format("%.0f", PeakMb(r.peer.json)) << " |";
+    md << " " << Format("%.0f", fm / per) << " |";
+    if (have_peer) {
+      md << " " << Format("%.0f", PeakMb(r.peer.json) / per) << " | "
+         << Format("%.1e", MaxRelativeDifference(r.femup.json["eigenvalues"],
+                                                 r.peer.json["eigenvalues"]))
+         << " |";
+    }
+    md << "\n";
+  }
+
+  md << "\n### Details\n\n"
+     << "| DOF | build (s) | write K, M (s) | femup growth (MB) | femup max residual |";
+  if (have_peer) {
+    md << " scipy read (s) | scipy growth (MB) | scipy process peak incl. reading (MB) | "
+          "scipy max residual |";
+  }
+  md << " lowest, highest eigenvalue (femup, rad^2/s^2) |\n|---|---|---|---|---|"
+     << (have_peer ? "---|---|---|---|" : "") << "---|\n";
+  for (const Row& r : rows) {
+    md << "| " << r.dofs << " | " << Format("%.1f", r.build_time) << " | "
+       << Format("%.1f", r.write_time) << " |";
+    if (!r.femup.error.empty()) {
+      md << " failed |\n";
+      continue;
+    }
+    const nlohmann::json& f = r.femup.json;
+    const auto growth = [](const nlohmann::json& j) {
+      return j["solve_peak_rss_mb"].is_null()
+                 ? std::string("n/a")
+                 : Format("%.0f", j["solve_peak_rss_mb"].get<double>() -
+                                      j["rss_before_solve_mb"].get<double>());
+    };
+    md << " " << growth(f) << " | " << Format("%.1e", MaxOf(f["residuals"])) << " |";
+    if (have_peer) {
+      const nlohmann::json& p = r.peer.json;
+      md << " " << Format("%.1f", p["read_time"].get<double>()) << " | " << growth(p)
+         << " | " << Format("%.0f", p["maxrss_mb"].get<double>()) << " | "
+         << Format("%.1e", MaxOf(p["residuals"])) << " |";
+    }
+    const auto& ev = f["eigenvalues"];
+    md << " " << Format("%.6g", ev.front().get<double>()) << ", "
+       << Format("%.6g", ev.back().get<double>()) << " |\n";
+  }
+  md << "\nPeak: VmHWM of the solving process, reset just before the solve, so it counts "
+        "K and M as held (scipy: also the interpreter and its modules); growth: that "
+        "peak minus the resident set at the start of the solve. Residual: max over "
+        "modes of ||K phi - lambda M phi|| / ||K phi||, each side on its own vectors.\n";
+  return md.str();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"femup's sparse shift-invert eigensolver against scipy's eigsh"};
+  std::string sizes_text = "1e5";
+  int modes = 10;
+  double shift = 0;
+  double tolerance = 1e-10;
+  std::string python = "/usr/bin/python3";
+  std::string script = FEMUP_EIGSH_PEER_SCRIPT;
+  std::string markdown, keep;
+  app.add_option("--dofs", sizes_text,
+                 "frames, comma-separated: 1e4, 1e5, 1e6 (docs/space_frame.md) or "
+                 "BXxBYxLEVELS");
+  app.add_option("--modes", modes, "number of modes (lowest above the shift)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--shift", shift, "shift sigma (rad^2/s^2), both sides");
+  app.add_option("--tolerance", tolerance,
+                 "relative convergence tolerance, both sides (femup EigenOptions, "
+                 "eigsh tol)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--python", python, "python interpreter that has scipy");
+  app.add_option("--script", script, "the peer script (eigsh_peer.py)");
+  app.add_option("--markdown", markdown, "also write the tables to this file");
+  app.add_option("--keep", keep,
+                 "write K.mtx and M.mtx under this directory (one subdirectory per "
+                 "size) and keep them, instead of a temporary directory");
+  CLI11_PARSE(app, argc, argv);
+  std::vector<Size> sizes;
+  try {
+    sizes = ParseSizes(sizes_text);
+  } catch (const CLI::Error& e) {
+    return app.exit(e);
+  }
+
+  std::string pattern = (fs::temp_directory_path() / "femup-eigsh-XXXXXX").string();
+  if (keep.empty() && ::mkdtemp(pattern.data()) == nullptr) {
+    std::cerr << "cannot create a temporary directory from " << pattern << "\n";
+    return 1;
+  }
+  const fs::path tmp = keep.empty() ? fs::path(pattern) : fs::path(keep);
+  if (!keep.empty()) fs::create_directories(tmp);
+
+  femup::EigenOptions options;
+  options.method = femup::EigenOptions::Method::kSparseShiftInvert;
+  options.num_modes = modes;
+  options.shift = shift;
+  options.tolerance = tolerance;
+
+  std::vector<Row> rows;
+  std::string peer_note, versions;
+  bool have_peer = true;
+  for (const Size& size : sizes) {
+    Row row;
+    row.name = size.name;
+    std::cerr << size.name << ": building the frame\n";
+    femup::SparseMatrix K, M;
+    {
+      auto start = Clock::now();
+      femup::ParametrisedModel model = femup::BuildSpaceFrame(size.spec);
+      row.build_time = Seconds(start);
+      K = model.stiffness();
+      M = model.mass();
+    }
+    ::malloc_trim(0);  // the model's memory back to the system before the fork
+    row.dofs = K.rows();
+    row.nnz_k = K.nonZeros();
+    const fs::path dir = tmp / size.name;
+    fs::create_directories(dir);
+    std::cerr << size.name << ": " << row.dofs << " DOF, nnz K " << row.nnz_k
+              << " (build " << Format("%.1f", row.build_time) << " s); writing K, M\n";
+    auto start = Clock::now();
+    femup::WriteMatrixMarket((dir / "K.mtx").string(), K, true);
+    femup::WriteMatrixMarket((dir / "M.mtx").string(), M, true);
+    row.write_time = Seconds(start);
+
+    std::cerr << size.name << ": femup\n";
+    row.femup = SolveFemupInChild(K, M, options);
+    if (!row.femup.error.empty())
+      std::cerr << "  femup failed: " << row.femup.error << "\n";
+    K.resize(0, 0);  // not needed any more: leave the memory to the peer
+    M.resize(0, 0);
+    K.data().squeeze();
+    M.data().squeeze();
+    ::malloc_trim(0);
+
+    if (have_peer) {
+      std::cerr << size.name << ": scipy\n";
+      row.peer = RunPeer(python, script, dir, modes, shift, tolerance);
+      if (!row.peer.error.empty()) {
+        peer_note = row.peer.error;
+        have_peer = false;
+        std::cerr << "  scipy not run: " << peer_note << "\n";
+      } else {
+        versions = "scipy " + row.peer.json["scipy"].get<std::string>() + ", numpy " +
+                   row.peer.json["numpy"].get<std::string>();
+      }
+    }
+    if (keep.empty()) fs::remove_all(dir);
+    rows.push_back(std::move(row));
+  }
+  if (keep.empty()) fs::remove_all(tmp);
+
+  const char* omp = std::getenv("OMP_NUM_THREADS");
+  std::ostringstream out;
+  out << "Frames: space_frame.h (X bracing, 4 elements per member), K and M in full "
+         "storage for femup, read from the same Matrix Market files by scipy. "
+      << modes << " modes nearest above shift " << shift << ", tolerance " << tolerance
+      << " on both sides; one run each. femup: SolveModes(kSparseShiftInvert) in a "
+         "forked child (OMP_NUM_THREADS="
+      << (omp != nullptr ? omp : "unset") << "). "
+      << (have_peer
+              ? "Peer: " + versions + ", eigsh(K, k, M=M, sigma, which='LM', tol) (" +
+                    python + ", one BLAS thread)."
+              : std::string("Peer: not run."))
+      << "\n\n"
+      << Tables(rows, have_peer, peer_note);
+  std::cout << out.str();
+  if (!markdown.empty()) {
+    std::ofstream file(markdown);
+    file << out.str();
+    if (!file) {
+      std::cerr << "cannot write " << markdown << "\n";
+      return 1;
+    }
+  }
+  const bool all_solved = std::all_of(rows.begin(), rows.end(),
+                                      [](const Row& r) { return r.femup.error.empty(); });
+  return all_solved ? 0 : 1;
+}
