@@ -49,10 +49,17 @@
 #include "femup/matrix_market.h"
 #include "femup/modal.h"
 #include "femup/space_frame.h"
+#include "peer_runner.h"
 
 namespace {
 
 namespace fs = std::filesystem;
+using femup_bench::Format;
+using femup_bench::PeerResult;
+using femup_bench::ResetPeakRss;
+using femup_bench::RunInChild;
+using femup_bench::RunPeerScript;
+using femup_bench::StatusMb;
 using Clock = std::chrono::steady_clock;
 
 double Seconds(Clock::time_point since) {
@@ -113,27 +120,6 @@ std::vector<Size> ParseSizes(const std::string& text) {
   return sizes;
 }
 
-// VmRSS / VmHWM (MB) from /proc/self/status; -1 when unreadable.
-double StatusMb(const char* field) {
-  std::ifstream status("/proc/self/status");
-  std::string line;
-  const std::string key = std::string(field) + ":";
-  while (std::getline(status, line)) {
-    if (line.compare(0, key.size(), key) == 0) {
-      return std::stod(line.substr(key.size())) / 1024.0;  // kB
-    }
-  }
-  return -1;
-}
-
-// Resets VmHWM to the current resident set (Linux >= 4.0).
-bool ResetPeakRss() {
-  std::ofstream clear("/proc/self/clear_refs");
-  clear << "5";
-  clear.flush();
-  return static_cast<bool>(clear);
-}
-
 // The femup solve, in the calling process: time, answers, memory.
 nlohmann::json SolveFemup(const femup::SparseMatrix& K, const femup::SparseMatrix& M,
                           const femup::EigenOptions& options) {
@@ -164,127 +150,13 @@ nlohmann::json SolveFemup(const femup::SparseMatrix& K, const femup::SparseMatri
   return out;
 }
 
-// What one side returned; `error` says why not when empty.
-struct Result {
-  nlohmann::json json;
-  std::string error;
-};
-
-// Runs SolveFemup in a fork()ed child and reads its JSON through a pipe, so
-// that the child's peak resident set is the solve's (plus K and M inherited).
-Result SolveFemupInChild(const femup::SparseMatrix& K, const femup::SparseMatrix& M,
-                         const femup::EigenOptions& options) {
-  Result out;
-  int fds[2];
-  if (::pipe(fds) != 0) {
-    out.error = std::string("pipe: ") + std::strerror(errno);
-    return out;
-  }
-  std::cout.flush();
-  std::cerr.flush();
-  const pid_t pid = ::fork();
-  if (pid < 0) {
-    out.error = std::string("fork: ") + std::strerror(errno);
-    ::close(fds[0]);
-    ::close(fds[1]);
-    return out;
-  }
-  if (pid == 0) {
-    ::close(fds[0]);
-    std::string text;
-    int code = 0;
-    try {
-      text = SolveFemup(K, M, options).dump();
-    } catch (const std::exception& e) {
-      text = nlohmann::json{{"error", e.what()}}.dump();
-      code = 1;
-    }
-    for (std::size_t done = 0; done < text.size();) {
-      const ssize_t wrote = ::write(fds[1], text.data() + done, text.size() - done);
-      if (wrote <= 0) break;
-      done += static_cast<std::size_t>(wrote);
-    }
-    ::close(fds[1]);
-    ::_exit(code);
-  }
-  ::close(fds[1]);
-  std::string text;
-  char buffer[1 << 16];
-  for (ssize_t got; (got = ::read(fds[0], buffer, sizeof buffer)) > 0;) {
-    text.append(buffer, static_cast<std::size_t>(got));
-  }
-  ::close(fds[0]);
-  int status = 0;
-  ::waitpid(pid, &status, 0);
-  if (WIFSIGNALED(status)) {
-    out.error = "the femup child died of signal " + std::to_string(WTERMSIG(status));
-    return out;
-  }
-  try {
-    out.json = nlohmann::json::parse(text);
-    if (out.json.contains("error")) out.error = out.json["error"].get<std::string>();
-  } catch (const nlohmann::json::exception& e) {
-    out.error = std::string("unreadable output of the femup child: ") + e.what();
-  }
-  return out;
-}
-
-// Single quotes for /bin/sh.
-std::string ShellQuote(const std::string& text) {
-  std::string out = "'";
-  for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-std::string ReadFile(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-std::string Format(const char* format, double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, format, value);
-  return buffer;
-}
-
-// Runs the script on `dir` with one BLAS thread.
-Result RunPeer(const std::string& python, const std::string& script, const fs::path& dir,
-               int modes, double shift, double tolerance) {
-  const fs::path err = dir / "peer.stderr";
-  const std::string command =
-      "OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1 " + ShellQuote(python) +
-      " " + ShellQuote(script) + " " + ShellQuote(dir.string()) + " --k " +
-      std::to_string(modes) + " --shift " + Format("%.17g", shift) + " --tol " +
-      Format("%.17g", tolerance) + " 2>" + ShellQuote(err.string());
-  Result out;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (pipe == nullptr) {
-    out.error = "could not start " + python;
-    return out;
-  }
-  std::string text;
-  char buffer[1 << 16];
-  for (std::size_t got; (got = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) {
-    text.append(buffer, got);
-  }
-  const int status = ::pclose(pipe);
-  const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  if (code != 0) {
-    std::string why = ReadFile(err);
-    while (!why.empty() && why.back() == '\n') why.pop_back();
-    if (code == 127) why = python + " not found (" + why + ")";
-    out.error =
-        why.empty() ? "the script exited with status " + std::to_string(code) : why;
-    return out;
-  }
-  try {
-    out.json = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception& e) {
-    out.error = std::string("unreadable output of the script: ") + e.what();
-  }
-  return out;
+// Runs the script on `dir` (one BLAS thread).
+PeerResult RunPeer(const std::string& python, const std::string& script,
+                   const fs::path& dir, int modes, double shift, double tolerance) {
+  return RunPeerScript(python, script, dir,
+                       "--k " + std::to_string(modes) + " --shift " +
+                           Format("%.17g", shift) + " --tol " +
+                           Format("%.17g", tolerance));
 }
 
 // Everything measured on one size.
@@ -293,7 +165,7 @@ struct Row {
   long long dofs = 0;
   long long nnz_k = 0;  // full symmetric storage
   double build_time = 0, write_time = 0;
-  Result femup, peer;
+  PeerResult femup, peer;
 };
 
 double MaxOf(const nlohmann::json& values) {
@@ -475,7 +347,7 @@ int main(int argc, char** argv) {
     row.write_time = Seconds(start);
 
     std::cerr << size.name << ": femup\n";
-    row.femup = SolveFemupInChild(K, M, options);
+    row.femup = RunInChild([&] { return SolveFemup(K, M, options); });
     if (!row.femup.error.empty())
       std::cerr << "  femup failed: " << row.femup.error << "\n";
     K.resize(0, 0);  // not needed any more: leave the memory to the peer

@@ -31,10 +31,14 @@
 #include "bounded_problem.h"
 #include "femup/matrix_market.h"
 #include "femup/solvers/linear_solver.h"
+#include "peer_runner.h"
 
 namespace {
 
 namespace fs = std::filesystem;
+using femup_bench::Format;
+using femup_bench::PeerResult;
+using femup_bench::RunPeerScript;
 
 const char* const kFemupSolvers[] = {"bvls", "ceres", "ipopt"};
 const char* const kScipyMethods[] = {"bvls", "trf"};
@@ -87,68 +91,12 @@ Timed TimeSolver(const femup::LinearSolver& solver, const femup::LinearProblem& 
   return out;
 }
 
-// Single quotes for /bin/sh.
-std::string ShellQuote(const std::string& text) {
-  std::string out = "'";
-  for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-std::string ReadFile(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-// What the peer script returned for one problem; `error` says why not when empty.
-struct PeerResult {
-  nlohmann::json json;
-  std::string error;
-};
-
-// Runs the script on `dir` with one BLAS thread (femup's solvers use one thread).
+// Runs the script on `dir` (one BLAS thread).
 PeerResult RunPeer(const std::string& python, const std::string& script,
                    const fs::path& dir, int repeat, double budget) {
-  const fs::path err = dir / "peer.stderr";
-  const std::string command =
-      "OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1 " + ShellQuote(python) +
-      " " + ShellQuote(script) + " " + ShellQuote(dir.string()) + " --repeat " +
-      std::to_string(repeat) + " --budget " + std::to_string(budget) + " 2>" +
-      ShellQuote(err.string());
-  PeerResult out;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (pipe == nullptr) {
-    out.error = "could not start " + python;
-    return out;
-  }
-  std::string text;
-  char buffer[1 << 16];
-  for (std::size_t got; (got = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) {
-    text.append(buffer, got);
-  }
-  const int status = ::pclose(pipe);
-  const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  if (code != 0) {
-    std::string why = ReadFile(err);
-    while (!why.empty() && why.back() == '\n') why.pop_back();
-    if (code == 127) why = python + " not found (" + why + ")";
-    out.error =
-        why.empty() ? "the script exited with status " + std::to_string(code) : why;
-    return out;
-  }
-  try {
-    out.json = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception& e) {
-    out.error = std::string("unreadable output of the script: ") + e.what();
-  }
-  return out;
-}
-
-std::string Format(const char* format, double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, format, value);
-  return buffer;
+  return RunPeerScript(
+      python, script, dir,
+      "--repeat " + std::to_string(repeat) + " --budget " + std::to_string(budget));
 }
 
 // Everything measured on one size.

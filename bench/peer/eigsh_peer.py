@@ -27,41 +27,18 @@ reason on stderr, when scipy cannot be imported; 2 for bad arguments.
 import argparse
 import gc
 import json
-import resource
 import sys
 import time
 
 try:
     import numpy as np
     import scipy
-    import scipy.io
-    import scipy.sparse
     from scipy.sparse.linalg import eigsh
+
+    from peer_common import maxrss_mb, read_csc, reset_peak_rss, status_mb
 except ImportError as error:
     print(f"scipy is not available to {sys.executable}: {error}", file=sys.stderr)
     sys.exit(3)
-
-
-def status_mb(field):
-    """VmRSS / VmHWM of this process from /proc/self/status, MB; None if unreadable."""
-    try:
-        with open("/proc/self/status") as status:
-            for line in status:
-                if line.startswith(field + ":"):
-                    return int(line.split()[1]) / 1024.0
-    except OSError:
-        pass
-    return None
-
-
-def reset_peak_rss():
-    """Resets VmHWM to the current RSS (Linux >= 4.0); False when not possible."""
-    try:
-        with open("/proc/self/clear_refs", "w") as clear:
-            clear.write("5")
-        return True
-    except OSError:
-        return False
 
 
 def main():
@@ -75,8 +52,8 @@ def main():
     args = parser.parse_args()
 
     start = time.perf_counter()
-    k_matrix = scipy.sparse.csc_matrix(scipy.io.mmread(f"{args.dir}/K.mtx"), dtype=float)
-    m_matrix = scipy.sparse.csc_matrix(scipy.io.mmread(f"{args.dir}/M.mtx"), dtype=float)
+    k_matrix = read_csc(f"{args.dir}/K.mtx")
+    m_matrix = read_csc(f"{args.dir}/M.mtx")
     read_time = time.perf_counter() - start
     gc.collect()
 
@@ -114,8 +91,7 @@ def main():
         "residuals": residuals,
         "rss_before_solve_mb": rss_before,
         "solve_peak_rss_mb": solve_peak,
-        # ru_maxrss is in kilobytes on Linux.
-        "maxrss_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0,
+        "maxrss_mb": maxrss_mb(),
     }, sys.stdout)
     sys.stdout.write("\n")
 

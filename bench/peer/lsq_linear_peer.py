@@ -24,8 +24,9 @@ import time
 try:
     import numpy as np
     import scipy
-    import scipy.io
     from scipy.optimize import lsq_linear
+
+    from peer_common import read_dense, read_vector
 except ImportError as error:
     print(f"scipy is not available to {sys.executable}: {error}", file=sys.stderr)
     sys.exit(3)
@@ -34,10 +35,6 @@ except ImportError as error:
 # lsq_linear's status codes.
 TERMINATION = {-1: "no progress", 0: "iteration limit", 1: "optimality < tol",
                2: "cost change < tol", 3: "unconstrained optimum"}
-
-
-def read_vector(path):
-    return np.asarray(scipy.io.mmread(path), dtype=float).ravel()
 
 
 def solve(a, b, lower, upper, method, repeat, budget):
@@ -74,7 +71,7 @@ def main():
                         help="seconds after which no further run is started")
     args = parser.parse_args()
 
-    a = np.asarray(scipy.io.mmread(f"{args.dir}/A.mtx"), dtype=float)
+    a = read_dense(f"{args.dir}/A.mtx")
     b = read_vector(f"{args.dir}/b.mtx")
     lower = read_vector(f"{args.dir}/lower.mtx")
     upper = read_vector(f"{args.dir}/upper.mtx")
