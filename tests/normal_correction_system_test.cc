@@ -17,6 +17,7 @@
 #include "femup/problems/correction_system.h"
 #include "femup/problems/paper_chain.h"
 #include "femup/solvers/linear_solver.h"
+#include "femup/space_frame.h"
 
 namespace femup {
 namespace {
@@ -84,6 +85,59 @@ TEST(NormalCorrectionSystem, SameLeastSquaresProblemAsTheStackedFormWithEveryFem
     const LinearSolution s = CreateLinearSolver("lstsq")->Solve(fixed);
     EXPECT_LT((s.x - c.truth).cwiseAbs().maxCoeff(), 1e-6);
     EXPECT_EQ(stats.dropped, 1);  // the common scaling
+  }
+}
+
+// A small 3D space frame (space_frame.h), every member wet: the sparse half
+// solves of the Cholesky factor against the dense stacked form with every FEM
+// mode.
+TEST(NormalCorrectionSystem, SpaceFrameMatchesTheDenseStackedForm) {
+  SpaceFrameSpec spec;
+  spec.bays_x = 1;
+  spec.bays_y = 1;
+  spec.levels = 3;
+  spec.elements_per_member = 2;
+  spec.water_depth = 15;
+  const ParametrisedModel model = BuildSpaceFrame(spec);
+  ASSERT_LT(model.num_dofs(), 1000);
+  Eigen::VectorXd truth(model.num_parameters());
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> u(-0.1, 0.1);
+  for (Eigen::Index i = 0; i < truth.size(); ++i) truth[i] = u(rng);
+  for (int k : model.ParametersOfKind(ParameterKind::kAddedMass)) truth[k] = 0.4;
+  const std::vector<ModalData> states = {
+      PredictModes(model, truth, Immersion::kDry, 4, "air"),
+      PredictModes(model, truth, Immersion::kWet, 4, "water")};
+  const Modes fem = SolveModes(model.stiffness(), model.mass());
+  const LinearProblem dense = BuildCorrectionSystem(model, fem, states, {});
+  NormalCorrectionStats stats;
+  const LinearProblem compact = BuildNormalCorrectionSystem(model, states, &stats);
+  const Eigen::MatrixXd g = dense.A.transpose() * dense.A;
+  EXPECT_LT((compact.A.transpose() * compact.A - g).cwiseAbs().maxCoeff(),
+            1e-9 * g.cwiseAbs().maxCoeff());
+  const Eigen::VectorXd h = dense.A.transpose() * dense.b;
+  EXPECT_LT((compact.A.transpose() * compact.b - h).cwiseAbs().maxCoeff(),
+            1e-9 * h.cwiseAbs().maxCoeff());
+  const double full = dense.b.squaredNorm();
+  EXPECT_NEAR(compact.b.squaredNorm() + compact.residual_offset, full, 1e-9 * full);
+  EXPECT_GT(stats.nnz_l, 0);
+  EXPECT_GE(stats.nnz_w, stats.nnz_z);
+  EXPECT_GT(stats.nnz_z, 0);
+}
+
+TEST(NormalCorrectionSystem, MassThatIsNotPositiveDefiniteIsNamed) {
+  const Case c = Chain();
+  SparseMatrix mass = c.model.mass();
+  mass.coeffRef(2, 2) = -mass.coeff(2, 2);
+  ParametrisedModel broken(c.model.stiffness(), mass, c.model.dof_labels());
+  for (const Parameter& q : c.model.parameters()) broken.AddParameter(q);
+  try {
+    BuildNormalCorrectionSystem(broken, c.states);
+    ADD_FAILURE() << "an indefinite mass accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where(), "model.mass");
+    EXPECT_NE(std::string(e.what()).find("not positive definite"), std::string::npos)
+        << e.what();
   }
 }
 

@@ -1,7 +1,6 @@
 #include "femup/problems/normal_correction_system.h"
 
 #include <Eigen/Eigenvalues>
-#include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -9,6 +8,7 @@
 #include <sstream>
 
 #include "femup/errors.h"
+#include "femup/sparse_cholesky.h"
 
 namespace femup {
 namespace {
@@ -17,8 +17,14 @@ double Since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// Right-hand-side columns solved together (memory: DOFs x kBlock doubles).
-constexpr int kBlock = 128;
+// g += W' W for sparse W (columns sorted). Rows of W that many columns share
+// (the separators at the top of the elimination tree) go through a dense
+// rank-k update; the others through the sparse product.
+void AddGram(const SparseMatrix& w, Eigen::MatrixXd* g) {
+  const SparseMatrix wt = w.transpose();  // row-wise access
+  const SparseMatrix prod = wt * w;
+  *g += Eigen::MatrixXd(prod);
+}
 
 }  // namespace
 
@@ -32,32 +38,49 @@ LinearProblem BuildNormalCorrectionSystem(const ParametrisedModel& model,
     throw InputError("parameters", "the model has no correction factor to identify");
   if (states.empty()) throw InputError("measurements", "no measured state is given");
 
-  Eigen::SimplicialLLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>> chol(
-      model.mass());
-  if (chol.info() != Eigen::Success) {
-    throw InputError("model.mass", "is not positive definite (no Cholesky factor)");
-  }
+  SparseCholeskyOptions chol_options;
+  chol_options.name = "model.mass";
+  const SparseCholesky chol(model.mass(), chol_options);
 
   Eigen::MatrixXd g = Eigen::MatrixXd::Zero(p, p);
   Eigen::VectorXd h = Eigen::VectorXd::Zero(p);
   double f2 = 0;
   int modes = 0;
+  long long nnz_z = 0, nnz_w = 0;
   for (const ModalData& st : states) {
     const std::string where = "measurements." + st.state;
     st.Validate(dofs, where);
     const Eigen::MatrixXd shapes = st.FullShapes(dofs, where);
     const Eigen::VectorXd lambdas = st.Eigenvalues();
     const bool wet = st.immersion == Immersion::kWet;
-    for (int j = 0; j < st.num_modes(); ++j) {
+    const int m = st.num_modes();
+    // B_k Phi on the support of each basis, for all modes of the state at once:
+    // row r of B_k Phi is sum over column r of B_k (symmetric) of B_k(c, r) Phi(c, :).
+    std::vector<std::vector<int>> support(p);
+    std::vector<Eigen::MatrixXd> products(p);
+    for (int k = 0; k < p; ++k) {
+      const SparseMatrix& basis = model.parameter(k).basis;
+      std::vector<int>& rows = support[k];
+      for (Eigen::Index r = 0; r < basis.outerSize(); ++r) {
+        if (SparseMatrix::InnerIterator(basis, r)) rows.push_back(static_cast<int>(r));
+      }
+      Eigen::MatrixXd& y = products[k];
+      y = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(rows.size()), m);
+      for (std::size_t a = 0; a < rows.size(); ++a) {
+        for (SparseMatrix::InnerIterator it(basis, rows[a]); it; ++it) {
+          y.row(static_cast<Eigen::Index>(a)) += it.value() * shapes.row(it.row());
+        }
+      }
+    }
+    for (int j = 0; j < m; ++j) {
       ++modes;
       const Eigen::VectorXd phi = shapes.col(j);
       const double lambda = lambdas[j];
-      // Z_j column by column (sparse: each basis acts on its own DOFs).
+      // Z_j (sparse: each basis acts on its own DOFs), column k = c_k B_k phi_j.
       std::vector<Eigen::Triplet<double>> t;
       for (int k = 0; k < p; ++k) {
-        const Parameter& q = model.parameter(k);
         double factor = 0;
-        switch (q.kind) {
+        switch (model.parameter(k).kind) {
           case ParameterKind::kStiffness:
             factor = 1.0;
             break;
@@ -69,23 +92,24 @@ LinearProblem BuildNormalCorrectionSystem(const ParametrisedModel& model,
             break;
         }
         if (factor == 0.0) continue;
-        const Eigen::VectorXd col = q.basis * phi;
-        for (Eigen::Index i = 0; i < col.size(); ++i) {
-          if (col[i] != 0.0) t.emplace_back(static_cast<int>(i), k, factor * col[i]);
+        for (std::size_t a = 0; a < support[k].size(); ++a) {
+          const double v = factor * products[k](static_cast<Eigen::Index>(a), j);
+          if (v != 0.0) t.emplace_back(support[k][a], k, v);
         }
       }
       SparseMatrix z(dofs, p);
       z.setFromTriplets(t.begin(), t.end());
+      nnz_z += z.nonZeros();
+      // With P M P' = L L': Z' M^-1 Z = W' W for W = L^-1 P Z, whose columns are
+      // sparse (only the elimination-tree ancestors of each basis's DOFs).
+      const SparseMatrix w = chol.HalfSolve(z);
+      nnz_w += w.nonZeros();
       const Eigen::VectorXd f =
           -(model.stiffness() * phi - lambda * (model.mass() * phi));
-      const Eigen::VectorXd minv_f = chol.solve(f);
-      f2 += f.dot(minv_f);
-      h += z.transpose() * minv_f;
-      for (int c0 = 0; c0 < p; c0 += kBlock) {
-        const int nc = std::min(kBlock, p - c0);
-        const Eigen::MatrixXd x = chol.solve(Eigen::MatrixXd(z.middleCols(c0, nc)));
-        g.middleCols(c0, nc) += z.transpose() * x;
-      }
+      const Eigen::VectorXd y = chol.HalfSolve(Eigen::MatrixXd(f));
+      f2 += y.squaredNorm();
+      h += w.transpose() * y;
+      AddGram(w, &g);
     }
   }
   g = 0.5 * (g + g.transpose()).eval();
@@ -124,6 +148,11 @@ LinearProblem BuildNormalCorrectionSystem(const ParametrisedModel& model,
   if (stats != nullptr) {
     stats->dropped = dropped;
     stats->seconds_assembly = assembly;
+    stats->seconds_factorise =
+        chol.info().seconds_analyse + chol.info().seconds_factorise;
+    stats->nnz_l = chol.info().nnz_l;
+    stats->nnz_z = nnz_z;
+    stats->nnz_w = nnz_w;
     stats->seconds_compress = Since(t1);
   }
   return problem;

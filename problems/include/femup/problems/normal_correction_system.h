@@ -5,8 +5,11 @@
 // and the stacked form of correction_system.h with ALL FEM modes weights it by
 // M^-1 (Phi Phi' = M^-1, method.md). This builds the same least-squares problem
 // without the eigenbasis, from a sparse Cholesky factor of M:
-//   G = sum_j Z_j' M^-1 Z_j,  h = sum_j Z_j' M^-1 F_j,  f = sum_j F_j' M^-1 F_j,
-// and returns A (n x n) and b with A'A = G, A'b = h, so that for every x
+//   G = sum_j Z_j' M^-1 Z_j,  h = sum_j Z_j' M^-1 F_j,  f = sum_j F_j' M^-1 F_j
+// (with P M P' = L L', G = sum_j W_j' W_j for W_j = L^-1 P Z_j: a sparse
+// triangular solve per column that touches only the elimination-tree
+// ancestors of the column's DOFs, sparse_cholesky.h), and returns A (n x n)
+// and b with A'A = G, A'b = h, so that for every x
 //   ||A x - b||^2 + residual_offset = sum_j (Z_j x - F_j)' M^-1 (Z_j x - F_j),
 // source_rows = (number of DOFs) x (number of modes). Memory is O(n^2 + nnz)
 // instead of O(DOFs x modes x n).
@@ -26,9 +29,13 @@
 namespace femup {
 
 struct NormalCorrectionStats {
-  int dropped = 0;              // eigen-directions of G below the threshold
-  double seconds_assembly = 0;  // Z_j, M^-1 Z_j and G
-  double seconds_compress = 0;  // eigen-decomposition of G
+  int dropped = 0;               // eigen-directions of G below the threshold
+  double seconds_factorise = 0;  // sparse Cholesky of M (analysis included)
+  double seconds_assembly = 0;   // Z_j, L^-1 P Z_j and G, factorisation included
+  double seconds_compress = 0;   // eigen-decomposition of G
+  long long nnz_l = 0;           // entries of M's Cholesky factor
+  long long nnz_z = 0;           // entries of all Z_j together
+  long long nnz_w = 0;           // entries of all L^-1 P Z_j together
 };
 
 // Throws InputError for shapes that are not on every DOF, a model without

@@ -1,0 +1,382 @@
+// The linear correction-factor system of a large model, femup against a
+// SciPy implementation of the same computation, in one run of this program.
+//
+// The model: a jacket-like space frame (space_frame.h) of about 10^5 DOF with
+// about 10^3 correction factors (mass per level; leg, brace and horizontal
+// stiffness and added mass per level and block). "Measured" modes: the lowest
+// modes of the model with random preset factors (fixed seed), in air and in
+// water, with shapes on every DOF. Both sides then build the least-squares
+// problem of the linear method with the "all FEM modes" weighting M^-1
+// (problems/normal_correction_system.h),
+//   G = sum_j Z_j' M^-1 Z_j,  h = sum_j Z_j' M^-1 F_j,
+// and solve it for the factors:
+//   femup: BuildNormalCorrectionSystem (sparse Cholesky of M, sparse half
+//          solves L^-1 P Z_j) and the "lstsq" linear solver (column-scaled
+//          SVD, with its identifiability report and covariance);
+//   scipy: bench/peer/normal_system_peer.py (Z_j assembled from the basis
+//          matrices, M^-1 Z_j by SuperLU with a symmetric ordering, G and h
+//          by products, numpy.linalg.lstsq on G d = h).
+// Both fix the first factor (a mass factor) at its preset value: scaling K and
+// M together changes no residual, so one factor must be fixed.
+// The matrices (K, M, every basis, the modes) are built once and written as
+// Matrix Market files; femup runs in a fork()ed child (its peak resident set
+// is its own), scipy reads the files.
+//
+// The bound: the time to read every stored entry of K, M and the bases once
+// from memory (values and indices, best of 3 passes): no method that looks at
+// the whole model can beat it. Reported as femup's time over that bound.
+//
+// Usage: femup_system_peer_compare [--size 1e5] [--air-modes 5] [--water-modes 5]
+//                                  [--python /usr/bin/python3] [--script path]
+//                                  [--markdown file] [--keep dir]
+// --size: 1e5 (4 x 4 bays, 40 levels, 4 blocks, all wet: 102,720 DOF, 1000
+// factors), 1e4 (2 x 2 bays, 10 levels, 2 blocks, all wet) or BXxBYxLEVELSxBLOCKS
+// (all wet).
+#include <malloc.h>
+#include <stdlib.h>
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "femup/matrix_market.h"
+#include "femup/measurement.h"
+#include "femup/problems/normal_correction_system.h"
+#include "femup/solvers/linear_solver.h"
+#include "femup/space_frame.h"
+#include "peer_runner.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+using femup_bench::Format;
+using femup_bench::PeerResult;
+
+constexpr std::uint64_t kSeed = 20261124;
+
+double Seconds(Clock::time_point since) {
+  return std::chrono::duration<double>(Clock::now() - since).count();
+}
+
+femup::SpaceFrameSpec ParseSize(const std::string& item) {
+  femup::SpaceFrameSpec spec;
+  spec.elements_per_member = 4;
+  if (item == "1e5") {
+    spec.bays_x = 4;
+    spec.bays_y = 4;
+    spec.levels = 40;
+    spec.blocks_per_level = 4;
+  } else if (item == "1e4") {
+    spec.bays_x = 2;
+    spec.bays_y = 2;
+    spec.levels = 10;
+    spec.blocks_per_level = 2;
+  } else {
+    char x1 = 0, x2 = 0, x3 = 0;
+    std::stringstream in(item);
+    if (!(in >> spec.bays_x >> x1 >> spec.bays_y >> x2 >> spec.levels >> x3 >>
+          spec.blocks_per_level) ||
+        x1 != 'x' || x2 != 'x' || x3 != 'x' || !in.eof()) {
+      throw CLI::ValidationError("--size",
+                                 "'" + item + "' is not 1e4, 1e5 or BXxBYxLEVELSxBLOCKS");
+    }
+  }
+  spec.water_depth = spec.levels * spec.level_height + 1;  // every member wet
+  const std::string invalid = spec.Validate();
+  if (!invalid.empty()) throw CLI::ValidationError("--size", item + ": " + invalid);
+  return spec;
+}
+
+// One pass over every stored value and index of the matrices; returns the
+// best time of three and a checksum (so the reads are not optimised away).
+double ReadBound(const std::vector<const femup::SparseMatrix*>& matrices,
+                 double* checksum) {
+  double best = 1e300;
+  for (int pass = 0; pass < 3; ++pass) {
+    const auto start = Clock::now();
+    double sum = 0;
+    long long index_sum = 0;
+    for (const femup::SparseMatrix* a : matrices) {
+      const double* v = a->valuePtr();
+      const int* inner = a->innerIndexPtr();
+      const int* outer = a->outerIndexPtr();
+      for (Eigen::Index k = 0; k < a->nonZeros(); ++k) {
+        sum += v[k];
+        index_sum += inner[k];
+      }
+      for (Eigen::Index k = 0; k <= a->outerSize(); ++k) index_sum += outer[k];
+    }
+    best = std::min(best, Seconds(start));
+    *checksum = sum + static_cast<double>(index_sum);
+  }
+  return best;
+}
+
+// Writes every basis into one coordinate file of size n x (n * p): basis k's
+// entry (r, c) at column k * n + c (1-based in the file).
+void WriteBases(const fs::path& path, const femup::ParametrisedModel& model) {
+  long long nnz = 0;
+  for (const femup::Parameter& q : model.parameters()) nnz += q.basis.nonZeros();
+  std::ofstream out(path);
+  out << "%%MatrixMarket matrix coordinate real general\n"
+      << "% femup_system_peer_compare: basis k's entry (r, c) at column k * n + c\n"
+      << model.num_dofs() << " "
+      << static_cast<long long>(model.num_dofs()) * model.num_parameters() << " " << nnz
+      << "\n";
+  char line[96];
+  for (int k = 0; k < model.num_parameters(); ++k) {
+    const femup::SparseMatrix& b = model.parameter(k).basis;
+    const long long offset = static_cast<long long>(k) * model.num_dofs();
+    for (Eigen::Index c = 0; c < b.outerSize(); ++c) {
+      for (femup::SparseMatrix::InnerIterator it(b, c); it; ++it) {
+        const int len = std::snprintf(line, sizeof line, "%lld %lld %.17g\n",
+                                      static_cast<long long>(it.row()) + 1,
+                                      offset + c + 1, it.value());
+        out.write(line, len);
+      }
+    }
+  }
+  if (!out) throw std::runtime_error("cannot write " + path.string());
+}
+
+// The femup side, in the calling process: time, answer, memory.
+nlohmann::json SolveFemup(const femup::ParametrisedModel& model,
+                          const std::vector<femup::ModalData>& states,
+                          const Eigen::VectorXd& truth) {
+  nlohmann::json out;
+  const bool have_peak = femup_bench::ResetPeakRss();
+  out["rss_before_solve_mb"] = femup_bench::StatusMb("VmRSS");
+  const auto start = Clock::now();
+  femup::NormalCorrectionStats stats;
+  femup::LinearProblem problem =
+      femup::BuildNormalCorrectionSystem(model, states, &stats);
+  // Scaling K and M together leaves every mode's residual zero: fix the first
+  // factor (a mass factor) at its preset value, as the linear method does.
+  problem.fixed = {{0, truth[0]}};
+  const double assembly = Seconds(start);
+  const auto solve_start = Clock::now();
+  const femup::LinearSolution solution =
+      femup::CreateLinearSolver("lstsq")->Solve(problem);
+  out["solve_time"] = Seconds(solve_start);
+  out["assembly_time"] = assembly;
+  out["time"] = Seconds(start);
+  out["solve_peak_rss_mb"] =
+      have_peak ? nlohmann::json(femup_bench::StatusMb("VmHWM")) : nlohmann::json();
+  out["factorise_time"] = stats.seconds_factorise;
+  out["compress_time"] = stats.seconds_compress;
+  out["nnz_l"] = stats.nnz_l;
+  out["nnz_z"] = stats.nnz_z;
+  out["nnz_w"] = stats.nnz_w;
+  out["dropped"] = stats.dropped;
+  out["status"] = solution.summary.usable() ? "usable" : "not usable";
+  out["error_vs_truth"] = (solution.x - truth).cwiseAbs().maxCoeff();
+  out["x"] =
+      std::vector<double>(solution.x.data(), solution.x.data() + solution.x.size());
+  return out;
+}
+
+double MaxAbsDifference(const nlohmann::json& a, const nlohmann::json& b) {
+  double out = 0;
+  for (std::size_t k = 0; k < std::min(a.size(), b.size()); ++k) {
+    out = std::max(out, std::abs(a[k].get<double>() - b[k].get<double>()));
+  }
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"the linear correction-factor system at scale: femup against scipy"};
+  std::string size = "1e5";
+  int air_modes = 5, water_modes = 5;
+  std::string python = "/usr/bin/python3";
+  std::string script = FEMUP_SYSTEM_PEER_SCRIPT;
+  std::string markdown, keep;
+  app.add_option("--size", size, "1e5, 1e4 or BXxBYxLEVELSxBLOCKS");
+  app.add_option("--air-modes", air_modes, "measured modes in air")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--water-modes", water_modes, "measured modes in water")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--python", python, "python interpreter that has scipy");
+  app.add_option("--script", script, "the peer script (normal_system_peer.py)");
+  app.add_option("--markdown", markdown, "also write the tables to this file");
+  app.add_option("--keep", keep, "write the files under this directory and keep them");
+  CLI11_PARSE(app, argc, argv);
+  femup::SpaceFrameSpec spec;
+  try {
+    spec = ParseSize(size);
+    if (air_modes + water_modes < 1)
+      throw CLI::ValidationError("--air-modes", "no measured mode");
+  } catch (const CLI::Error& e) {
+    return app.exit(e);
+  }
+
+  std::string pattern = (fs::temp_directory_path() / "femup-system-XXXXXX").string();
+  if (keep.empty() && ::mkdtemp(pattern.data()) == nullptr) {
+    std::cerr << "cannot create a temporary directory from " << pattern << "\n";
+    return 1;
+  }
+  const fs::path dir = keep.empty() ? fs::path(pattern) : fs::path(keep);
+  fs::create_directories(dir);
+
+  std::cerr << size << ": building the frame\n";
+  auto start = Clock::now();
+  const femup::ParametrisedModel model = femup::BuildSpaceFrame(spec);
+  const double build_time = Seconds(start);
+  const int n = model.num_dofs(), p = model.num_parameters();
+
+  // Preset factors: stiffness and mass within +-10 %, added mass 0.2 to 0.6.
+  Eigen::VectorXd truth(p);
+  std::mt19937_64 rng(kSeed);
+  std::uniform_real_distribution<double> small(-0.1, 0.1), added(0.2, 0.6);
+  for (int k = 0; k < p; ++k) {
+    truth[k] = model.parameter(k).kind == femup::ParameterKind::kAddedMass ? added(rng)
+                                                                           : small(rng);
+  }
+  std::cerr << size << ": " << n << " DOF, " << p << " factors; measured modes\n";
+  start = Clock::now();
+  std::vector<femup::ModalData> states;
+  if (air_modes > 0)
+    states.push_back(
+        femup::PredictModes(model, truth, femup::Immersion::kDry, air_modes, "air"));
+  if (water_modes > 0)
+    states.push_back(
+        femup::PredictModes(model, truth, femup::Immersion::kWet, water_modes, "water"));
+  const double modes_time = Seconds(start);
+
+  std::vector<const femup::SparseMatrix*> matrices = {&model.stiffness(), &model.mass()};
+  long long nnz_bases = 0;
+  for (const femup::Parameter& q : model.parameters()) {
+    matrices.push_back(&q.basis);
+    nnz_bases += q.basis.nonZeros();
+  }
+  double checksum = 0;
+  const double bound = ReadBound(matrices, &checksum);
+  std::cerr << size << ": read bound " << bound << " s (checksum " << checksum << ")\n";
+  long long bytes = 0;
+  for (const femup::SparseMatrix* a : matrices)
+    bytes += a->nonZeros() * 12LL + (a->outerSize() + 1) * 4LL;
+
+  std::cerr << size << ": writing K, M, the bases and the modes\n";
+  start = Clock::now();
+  femup::WriteMatrixMarket((dir / "K.mtx").string(), model.stiffness(), true);
+  femup::WriteMatrixMarket((dir / "M.mtx").string(), model.mass(), true);
+  WriteBases(dir / "bases.mtx", model);
+  {
+    nlohmann::json meta;
+    meta["kinds"] = nlohmann::json::array();
+    for (const femup::Parameter& q : model.parameters())
+      meta["kinds"].push_back(femup::ToString(q.kind));
+    meta["truth"] = std::vector<double>(truth.data(), truth.data() + p);
+    meta["fixed"] = {{"index", 0}, {"value", truth[0]}};
+    meta["states"] = nlohmann::json::array();
+    for (const femup::ModalData& st : states) {
+      const std::string file = st.state + "_shapes.mtx";
+      femup::WriteMatrixMarket((dir / file).string(), Eigen::MatrixXd(st.shapes));
+      const Eigen::VectorXd lambdas = st.Eigenvalues();
+      meta["states"].push_back(
+          {{"name", st.state},
+           {"wet", st.immersion == femup::Immersion::kWet},
+           {"shapes", file},
+           {"eigenvalues",
+            std::vector<double>(lambdas.data(), lambdas.data() + lambdas.size())}});
+    }
+    std::ofstream(dir / "problem.json") << meta.dump() << "\n";
+  }
+  const double write_time = Seconds(start);
+  ::malloc_trim(0);
+
+  std::cerr << size << ": femup\n";
+  const PeerResult femup_side =
+      femup_bench::RunInChild([&] { return SolveFemup(model, states, truth); });
+  if (!femup_side.error.empty())
+    std::cerr << "  femup failed: " << femup_side.error << "\n";
+  std::cerr << size << ": scipy\n";
+  const PeerResult peer = femup_bench::RunPeerScript(python, script, dir, "");
+  if (!peer.error.empty()) std::cerr << "  scipy not run: " << peer.error << "\n";
+  if (keep.empty()) fs::remove_all(dir);
+
+  std::ostringstream md;
+  const double per = n / 1e5;
+  md << "Frame: space_frame.h, " << spec.bays_x << " x " << spec.bays_y << " bays, "
+     << spec.levels << " levels, " << spec.blocks_per_level
+     << " blocks per level, X bracing, 4 elements per member, all members wet: " << n
+     << " DOF, " << p << " factors, nnz K " << model.stiffness().nonZeros()
+     << ", all bases " << nnz_bases << ". Measured: " << air_modes << " modes in air, "
+     << water_modes << " in water, of the model with random preset factors (seed "
+     << kSeed << "), shapes on every DOF. Build " << Format("%.1f", build_time)
+     << " s, modes " << Format("%.1f", modes_time) << " s, writing "
+     << Format("%.1f", write_time) << " s.\n\n";
+  md << "| side | assembly (s) | solve (s) | total (s) | scipy / femup | total / read "
+        "bound | peak (MB) | MB per 10^5 DOF | max error vs preset |\n"
+     << "|---|---|---|---|---|---|---|---|---|\n";
+  const auto peak = [](const nlohmann::json& j) {
+    return j["solve_peak_rss_mb"].is_null() ? -1.0 : j["solve_peak_rss_mb"].get<double>();
+  };
+  double femup_total = 0;
+  if (femup_side.error.empty()) {
+    const nlohmann::json& f = femup_side.json;
+    femup_total = f["time"].get<double>();
+    md << "| femup | " << Format("%.2f", f["assembly_time"].get<double>()) << " | "
+       << Format("%.2f", f["solve_time"].get<double>()) << " | "
+       << Format("%.2f", femup_total) << " | 1 | " << Format("%.0f", femup_total / bound)
+       << " | " << Format("%.0f", peak(f)) << " | " << Format("%.0f", peak(f) / per)
+       << " | " << Format("%.1e", f["error_vs_truth"].get<double>()) << " |\n";
+  } else {
+    md << "| femup | failed: " << femup_side.error << " |\n";
+  }
+  if (peer.error.empty()) {
+    const nlohmann::json& s = peer.json;
+    const double total = s["time"].get<double>();
+    md << "| scipy | " << Format("%.2f", s["assembly_time"].get<double>()) << " | "
+       << Format("%.2f", s["solve_time"].get<double>()) << " | " << Format("%.2f", total)
+       << " | "
+       << (femup_total > 0 ? Format("%.1f", total / femup_total) : std::string("-"))
+       << " | " << Format("%.0f", total / bound) << " | " << Format("%.0f", peak(s))
+       << " | " << Format("%.0f", peak(s) / per) << " | "
+       << Format("%.1e", s["error_vs_truth"].get<double>()) << " |\n";
+  } else {
+    md << "| scipy | not run: " << peer.error << " |\n";
+  }
+  md << "\nRead bound: one pass over the stored values and indices of K, M and every "
+        "basis ("
+     << Format("%.0f", bytes / 1e6) << " MB) takes " << Format("%.3f", bound) << " s ("
+     << Format("%.1f", bytes / bound / 1e9) << " GB/s).";
+  if (femup_side.error.empty()) {
+    const nlohmann::json& f = femup_side.json;
+    md << " femup: sparse Cholesky of M "
+       << Format("%.2f", f["factorise_time"].get<double>()) << " s (nnz L "
+       << f["nnz_l"].get<long long>() << "), nnz of all Z_j "
+       << f["nnz_z"].get<long long>() << ", of all L^-1 P Z_j "
+       << f["nnz_w"].get<long long>() << " ("
+       << Format("%.1f", f["nnz_w"].get<double>() / f["nnz_z"].get<double>())
+       << "x), eigen-decomposition of G "
+       << Format("%.2f", f["compress_time"].get<double>()) << " s, "
+       << f["dropped"].get<int>() << " directions dropped.";
+    if (peer.error.empty()) {
+      md << " Largest difference between the two answers: "
+         << Format("%.1e", MaxAbsDifference(f["x"], peer.json["x"])) << ".";
+    }
+  }
+  if (peer.error.empty()) {
+    md << " Peer: scipy " << peer.json["scipy"].get<std::string>() << ", numpy "
+       << peer.json["numpy"].get<std::string>() << " (" << python
+       << ", one BLAS thread); reading its files took "
+       << Format("%.1f", peer.json["read_time"].get<double>()) << " s (not counted).";
+  }
+  md << " Peak: VmHWM of the solving process, reset just before the work starts (it "
+        "counts the model held in memory; scipy: also the interpreter).\n";
+  std::cout << md.str();
+  if (!markdown.empty()) std::ofstream(markdown) << md.str();
+  return femup_side.error.empty() ? 0 : 1;
+}

@@ -1,0 +1,233 @@
+#include "femup/sparse_cholesky.h"
+
+#include <cholmod.h>
+#include <cs.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+#include <utility>
+
+#include "femup/errors.h"
+
+namespace femup {
+namespace {
+
+double Since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// A CHOLMOD view (no copy) of the lower triangle held in `lower`.
+cholmod_sparse ViewLower(SparseMatrix& lower) {
+  cholmod_sparse a{};
+  a.nrow = static_cast<std::size_t>(lower.rows());
+  a.ncol = static_cast<std::size_t>(lower.cols());
+  a.nzmax = static_cast<std::size_t>(lower.nonZeros());
+  a.p = lower.outerIndexPtr();
+  a.i = lower.innerIndexPtr();
+  a.x = lower.valuePtr();
+  a.stype = -1;
+  a.itype = CHOLMOD_INT;
+  a.xtype = CHOLMOD_REAL;
+  a.dtype = CHOLMOD_DOUBLE;
+  a.sorted = 1;
+  a.packed = 1;
+  return a;
+}
+
+}  // namespace
+
+struct SparseCholesky::Impl {
+  cholmod_common common{};
+  cholmod_factor* factor = nullptr;  // simplicial LL', packed, monotonic
+  std::vector<int> perm;             // row i of P A P' is row perm[i] of A
+  std::vector<int> inverse;          // inverse[perm[i]] = i
+  SparseCholeskyInfo info;
+  // Work space of the sparse half-solve.
+  mutable std::vector<int> xi;
+  mutable std::vector<double> x;
+
+  ~Impl() {
+    if (factor != nullptr) cholmod_free_factor(&factor, &common);
+    cholmod_finish(&common);
+  }
+
+  int n() const { return static_cast<int>(info.n); }
+  int* lp() const { return static_cast<int*>(factor->p); }
+  int* li() const { return static_cast<int*>(factor->i); }
+  double* lx() const { return static_cast<double*>(factor->x); }
+
+  Eigen::Map<const SparseMatrix> L() const {
+    return Eigen::Map<const SparseMatrix>(n(), n(), lp()[n()], lp(), li(), lx());
+  }
+};
+
+SparseCholesky::SparseCholesky(const SparseMatrix& a,
+                               const SparseCholeskyOptions& options)
+    : impl_(std::make_unique<Impl>()) {
+  const std::string& name = options.name;
+  if (a.rows() != a.cols()) {
+    throw InputError(name, "must be square, got " + std::to_string(a.rows()) + " x " +
+                               std::to_string(a.cols()));
+  }
+  SparseMatrix lower = a.triangularView<Eigen::Lower>();
+  lower.makeCompressed();
+  for (Eigen::Index k = 0; k < lower.nonZeros(); ++k) {
+    if (!std::isfinite(lower.valuePtr()[k])) {
+      throw InputError(name, "holds a non-finite entry");
+    }
+  }
+  Impl& m = *impl_;
+  m.info.n = a.rows();
+  m.info.nnz_a = lower.nonZeros();
+  cholmod_start(&m.common);
+  m.common.print = 0;
+  m.common.error_handler = nullptr;
+  m.common.final_ll = 1;
+  switch (options.ordering) {
+    case SparseCholeskyOptions::Ordering::kAuto:
+      break;
+    case SparseCholeskyOptions::Ordering::kAmd:
+      m.common.nmethods = 1;
+      m.common.method[0].ordering = CHOLMOD_AMD;
+      break;
+    case SparseCholeskyOptions::Ordering::kNestedDissection:
+      m.common.nmethods = 1;
+      m.common.method[0].ordering = CHOLMOD_METIS;
+      break;
+  }
+  if (a.rows() == 0) return;
+  cholmod_sparse view = ViewLower(lower);
+  auto t0 = std::chrono::steady_clock::now();
+  m.factor = cholmod_analyze(&view, &m.common);
+  if (m.factor == nullptr && m.common.status == CHOLMOD_NOT_INSTALLED) {
+    // A CHOLMOD built without METIS: minimum degree instead.
+    m.common.nmethods = 1;
+    m.common.method[0].ordering = CHOLMOD_AMD;
+    m.factor = cholmod_analyze(&view, &m.common);
+  }
+  if (m.factor == nullptr) {
+    throw InputError(name, "the sparse Cholesky analysis failed (CHOLMOD status " +
+                               std::to_string(m.common.status) + ")");
+  }
+  m.info.seconds_analyse = Since(t0);
+  t0 = std::chrono::steady_clock::now();
+  cholmod_factorize(&view, m.factor, &m.common);
+  const int* perm = static_cast<const int*>(m.factor->Perm);
+  if (m.common.status == CHOLMOD_NOT_POSDEF || m.factor->minor < m.factor->n) {
+    const std::size_t pivot = m.factor->minor;
+    const int dof =
+        perm != nullptr && pivot < m.factor->n ? perm[pivot] : static_cast<int>(pivot);
+    throw InputError(name,
+                     "is not positive definite (the Cholesky factorisation breaks "
+                     "down at DOF index " +
+                         std::to_string(dof) + ")");
+  }
+  if (m.common.status < CHOLMOD_OK) {
+    throw InputError(name, "the sparse Cholesky factorisation failed (CHOLMOD status " +
+                               std::to_string(m.common.status) + ")");
+  }
+  // Simplicial, packed, columns in order: L is a plain compressed-column matrix.
+  if (!cholmod_change_factor(CHOLMOD_REAL, 1, 0, 1, 1, m.factor, &m.common)) {
+    throw InputError(name, "could not convert the Cholesky factor (CHOLMOD status " +
+                               std::to_string(m.common.status) + ")");
+  }
+  m.info.seconds_factorise = Since(t0);
+  perm = static_cast<const int*>(m.factor->Perm);
+  const int n = m.n();
+  m.perm.resize(n);
+  m.inverse.resize(n);
+  for (int i = 0; i < n; ++i) {
+    m.perm[i] = perm != nullptr ? perm[i] : i;
+    m.inverse[m.perm[i]] = i;
+  }
+  m.info.nnz_l = m.lp()[n];
+  m.xi.assign(2 * static_cast<std::size_t>(n), 0);
+  m.x.assign(n, 0.0);
+}
+
+SparseCholesky::~SparseCholesky() = default;
+
+Eigen::Index SparseCholesky::size() const { return impl_->info.n; }
+
+const SparseCholeskyInfo& SparseCholesky::info() const { return impl_->info; }
+
+Eigen::MatrixXd SparseCholesky::HalfSolve(const Eigen::MatrixXd& b) const {
+  const Impl& m = *impl_;
+  if (b.rows() != size()) {
+    throw InputError("SparseCholesky::HalfSolve",
+                     "the right-hand side has " + std::to_string(b.rows()) +
+                         " rows, expected " + std::to_string(size()));
+  }
+  Eigen::MatrixXd y(b.rows(), b.cols());
+  for (int i = 0; i < m.n(); ++i) y.row(i) = b.row(m.perm[i]);
+  if (m.n() > 0) m.L().triangularView<Eigen::Lower>().solveInPlace(y);
+  return y;
+}
+
+Eigen::MatrixXd SparseCholesky::Solve(const Eigen::MatrixXd& b) const {
+  const Impl& m = *impl_;
+  Eigen::MatrixXd y = HalfSolve(b);
+  if (m.n() > 0) m.L().transpose().triangularView<Eigen::Upper>().solveInPlace(y);
+  Eigen::MatrixXd x(b.rows(), b.cols());
+  for (int i = 0; i < m.n(); ++i) x.row(m.perm[i]) = y.row(i);
+  return x;
+}
+
+SparseMatrix SparseCholesky::HalfSolve(const SparseMatrix& b) const {
+  const Impl& m = *impl_;
+  const int n = m.n();
+  if (b.rows() != size()) {
+    throw InputError("SparseCholesky::HalfSolve",
+                     "the right-hand side has " + std::to_string(b.rows()) +
+                         " rows, expected " + std::to_string(size()));
+  }
+  SparseMatrix out(n, b.cols());
+  if (n == 0 || b.cols() == 0) return out;
+  // P B in compressed columns (row indices permuted; cs_spsolve needs no order).
+  SparseMatrix pb = b;
+  pb.makeCompressed();
+  for (Eigen::Index k = 0; k < pb.nonZeros(); ++k) {
+    pb.innerIndexPtr()[k] = m.inverse[pb.innerIndexPtr()[k]];
+  }
+  cs_di l{};
+  l.nzmax = m.lp()[n];
+  l.m = n;
+  l.n = n;
+  l.p = m.lp();
+  l.i = m.li();
+  l.x = m.lx();
+  l.nz = -1;
+  cs_di rhs{};
+  rhs.nzmax = static_cast<int>(pb.nonZeros());
+  rhs.m = n;
+  rhs.n = static_cast<int>(pb.cols());
+  rhs.p = pb.outerIndexPtr();
+  rhs.i = pb.innerIndexPtr();
+  rhs.x = pb.valuePtr();
+  rhs.nz = -1;
+
+  std::vector<int> outer(b.cols() + 1, 0);
+  std::vector<int> inner;
+  std::vector<double> values;
+  std::vector<std::pair<int, double>> column;
+  for (int k = 0; k < rhs.n; ++k) {
+    const int top = cs_di_spsolve(&l, &rhs, k, m.xi.data(), m.x.data(), nullptr, 1);
+    column.clear();
+    for (int p = top; p < n; ++p) column.emplace_back(m.xi[p], m.x[m.xi[p]]);
+    std::sort(column.begin(), column.end());
+    for (const auto& [row, value] : column) {
+      inner.push_back(row);
+      values.push_back(value);
+    }
+    outer[k + 1] = static_cast<int>(inner.size());
+  }
+  out.resizeNonZeros(static_cast<Eigen::Index>(inner.size()));
+  std::copy(outer.begin(), outer.end(), out.outerIndexPtr());
+  std::copy(inner.begin(), inner.end(), out.innerIndexPtr());
+  std::copy(values.begin(), values.end(), out.valuePtr());
+  return out;
+}
+
+}  // namespace femup
