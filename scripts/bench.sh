@@ -8,11 +8,15 @@
 #                 (bench/peer_compare.cc), ratios measured in this one run
 #   eigen_peer.md femup's sparse shift-invert eigensolver against scipy's eigsh
 #                 on the space frames (bench/eigen_peer_compare.cc), 10 modes
+#   system_peer.md the linear correction-factor system of a 10^5-DOF frame with
+#                 10^3 factors and 10 measured modes, femup against scipy
+#                 (bench/system_peer_compare.cc), with the memory read bound
 # Each benchmark runs 3 repetitions of at least FEMUP_BENCH_MIN_TIME seconds
 # (default 0.2); the tables give the median and the spread. Environment:
 # FEMUP_BENCH_MIN_TIME, FEMUP_PEER_SIZES (default 500x50,2000x200,5000x500),
 # FEMUP_EIGEN_PEER_DOFS (default 1e5; 1e5,1e6 adds the 10^6-DOF frame: minutes and
-# several GB), FEMUP_BENCH_JOBS (build jobs, default 2).
+# several GB), FEMUP_SYSTEM_PEER_SIZE (default 1e5), FEMUP_BENCH_JOBS (build
+# jobs, default 2).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=build-bench
@@ -20,11 +24,12 @@ out=out/bench
 min_time=${FEMUP_BENCH_MIN_TIME:-0.2}
 sizes=${FEMUP_PEER_SIZES:-500x50,2000x200,5000x500}
 eigen_dofs=${FEMUP_EIGEN_PEER_DOFS:-1e5}
+system_size=${FEMUP_SYSTEM_PEER_SIZE:-1e5}
 
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DFEMUP_BUILD_TESTS=OFF \
   -DFEMUP_BUILD_BENCHMARKS=ON > /dev/null
 cmake --build "$build" --target solvers_bench femup_peer_compare \
-  femup_eigen_peer_compare -j "${FEMUP_BENCH_JOBS:-2}"
+  femup_eigen_peer_compare femup_system_peer_compare -j "${FEMUP_BENCH_JOBS:-2}"
 
 mkdir -p "$out"
 {
@@ -36,7 +41,7 @@ mkdir -p "$out"
   echo "source: $(git rev-parse --short HEAD 2>/dev/null || echo unknown)$(
     git diff --quiet HEAD 2>/dev/null || echo ' plus uncommitted changes')"
   echo "command: scripts/bench.sh (FEMUP_BENCH_MIN_TIME=$min_time FEMUP_PEER_SIZES=$sizes" \
-    "FEMUP_EIGEN_PEER_DOFS=$eigen_dofs)"
+    "FEMUP_EIGEN_PEER_DOFS=$eigen_dofs FEMUP_SYSTEM_PEER_SIZE=$system_size)"
 } > "$out/machine.txt"
 cat "$out/machine.txt"
 
@@ -54,5 +59,8 @@ echo "== peer comparison (scipy.sparse.linalg.eigsh, shift-invert)"
 # One OpenMP thread for CHOLMOD, as scipy gets one BLAS thread.
 OMP_NUM_THREADS=1 "$build/bench/femup_eigen_peer_compare" --dofs "$eigen_dofs" \
   --markdown "$out/eigen_peer.md"
+echo "== peer comparison (the linear correction-factor system, scipy)"
+OMP_NUM_THREADS=1 "$build/bench/femup_system_peer_compare" --size "$system_size" \
+  --markdown "$out/system_peer.md"
 echo "elapsed (build and runs): ${SECONDS} s" >> "$out/machine.txt"
 echo "results in $out/"

@@ -29,13 +29,15 @@
 namespace femup {
 
 struct NormalCorrectionStats {
-  int dropped = 0;               // eigen-directions of G below the threshold
-  double seconds_factorise = 0;  // sparse Cholesky of M (analysis included)
-  double seconds_assembly = 0;   // Z_j, L^-1 P Z_j and G, factorisation included
-  double seconds_compress = 0;   // eigen-decomposition of G
-  long long nnz_l = 0;           // entries of M's Cholesky factor
-  long long nnz_z = 0;           // entries of all Z_j together
-  long long nnz_w = 0;           // entries of all L^-1 P Z_j together
+  int dropped = 0;                // eigen-directions of G below the threshold
+  double seconds_factorise = 0;   // sparse Cholesky of M (analysis included)
+  double seconds_assembly = 0;    // Z_j, L^-1 P Z_j and G, factorisation included
+  double seconds_half_solve = 0;  // W_j = L^-1 P Z_j, all modes
+  double seconds_gram = 0;        // G += W_j' W_j, all modes
+  double seconds_compress = 0;    // eigen-decomposition of G
+  long long nnz_l = 0;            // entries of M's Cholesky factor
+  long long nnz_z = 0;            // entries of all Z_j together
+  long long nnz_w = 0;            // entries of all L^-1 P Z_j together
 };
 
 // Throws InputError for shapes that are not on every DOF, a model without
