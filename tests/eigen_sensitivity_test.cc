@@ -18,6 +18,7 @@
 #include "femup/modal.h"
 #include "femup/problems/noise.h"
 #include "femup/problems/paper_chain.h"
+#include "femup/space_frame.h"
 #include "femup/structure.h"
 
 namespace femup {
@@ -90,6 +91,42 @@ double JacobianError(const NonlinearProblem& p, const Eigen::VectorXd& x, double
     fd.col(i) = (4 * central[1] - central[0]) / 3;
   }
   return (jac - fd).cwiseAbs().maxCoeff() / jac.cwiseAbs().maxCoeff();
+}
+
+// The Jacobian's modes computed in parallel give the same bits as one thread,
+// on a model large enough for the sparse eigen-solver (a small space frame).
+TEST(EigenSensitivity, JacobianDoesNotDependOnTheThreadCount) {
+  SpaceFrameSpec spec;
+  spec.bays_x = 1;
+  spec.bays_y = 1;
+  spec.levels = 6;
+  spec.elements_per_member = 3;
+  spec.water_depth = 25;
+  const ParametrisedModel model = BuildSpaceFrame(spec);
+  ASSERT_GT(model.num_dofs(), 1500);  // the sparse path of SolveModes
+  Eigen::VectorXd truth = Eigen::VectorXd::Zero(model.num_parameters());
+  for (int k : model.ParametersOfKind(ParameterKind::kAddedMass)) truth[k] = 0.3;
+  std::vector<ModalData> data = {PredictModes(model, truth, Immersion::kDry, 4, "air"),
+                                 PredictModes(model, truth, Immersion::kWet, 4, "water")};
+  const std::vector<int> sensors = {0, 7, 13, 40, 101, 222, 333, 444, 555, 666};
+  for (ModalData& d : data) d = AtSensors(d, sensors);
+  Eigen::VectorXd x = Eigen::VectorXd::Constant(model.num_parameters(), 0.01);
+  EigenSensitivityOptions one;
+  EigenSensitivityOptions three;
+  three.threads = 3;
+  Eigen::VectorXd r1, r3;
+  Eigen::MatrixXd j1, j3;
+  std::string why;
+  ASSERT_TRUE(BuildEigenSensitivityProblem(model, data, one).evaluate(x, &r1, &j1, &why))
+      << why;
+  ASSERT_TRUE(
+      BuildEigenSensitivityProblem(model, data, three).evaluate(x, &r3, &j3, &why))
+      << why;
+  EXPECT_EQ(r1, r3);
+  EXPECT_EQ(j1, j3);
+  EXPECT_GT(j1.cwiseAbs().maxCoeff(), 0.0);
+  three.threads = 0;
+  EXPECT_NE(three.Validate().find("threads"), std::string::npos);
 }
 
 TEST(EigenSensitivity, LabelsNamesAndShape) {

@@ -9,6 +9,7 @@
 
 #include "femup/eigen_derivatives.h"
 #include "femup/errors.h"
+#include "femup/parallel.h"
 
 namespace femup {
 namespace {
@@ -40,6 +41,7 @@ struct Context {
   std::vector<StateTerms> states;
   double frequency_sigma = 0;
   double min_mac = 0;
+  int threads = 1;  // modes whose Jacobian rows are computed at once
   EigenOptions eigen;
   std::vector<int> prior_index;  // parameters with a prior
   Eigen::VectorXd prior_mean;    // n (zero when none given)
@@ -110,22 +112,29 @@ bool EvaluateState(const Context& c, const StateTerms& st, const SparseMatrix& k
     }
   }
 
-  const auto& parameters = c.model.parameters();
+  // Residuals mode by mode; what the Jacobian rows of each mode need is kept.
+  struct ModeTerms {
+    int row = 0;
+    double lambda = 0, lambda_weight = 0, c_scale = 1;
+    Eigen::VectorXd phi, s, dc_ds;
+  };
+  std::vector<ModeTerms> terms(st.lambdas.size());
   for (Eigen::Index j = 0; j < st.lambdas.size(); ++j) {
-    const int row = st.first_row + static_cast<int>(j) * st.rows_per_mode();
-    const double lambda = modes.eigenvalues[pairing[j]];
-    const Eigen::VectorXd phi = modes.shapes.col(pairing[j]);
-    const double lambda_weight = 1.0 / (st.lambdas[j] * c.frequency_sigma);
-    (*r)[row] = (lambda / st.lambdas[j] - 1.0) / c.frequency_sigma;
+    ModeTerms& t = terms[j];
+    t.row = st.first_row + static_cast<int>(j) * st.rows_per_mode();
+    const int row = t.row;
+    t.lambda = modes.eigenvalues[pairing[j]];
+    t.phi = modes.shapes.col(pairing[j]);
+    t.lambda_weight = 1.0 / (st.lambdas[j] * c.frequency_sigma);
+    (*r)[row] = (t.lambda / st.lambdas[j] - 1.0) / c.frequency_sigma;
 
     // The model shape at the sensors enters as c s: c = sign / ||s|| ("unit"),
     // sign ("mass") or the fitted N / D ("fit"). c's derivative is linear in
     // the shape's: dc = dc_ds' ds.
-    Eigen::VectorXd s, dc_ds;
-    double c_scale = 1;
     const Eigen::Index num_sensors = static_cast<Eigen::Index>(st.sensors.size());
     if (st.shape_residuals) {
-      s = phi(st.sensors);
+      t.s = t.phi(st.sensors);
+      const Eigen::VectorXd& s = t.s;
       const Eigen::VectorXd target = st.targets.col(j);
       if (!(s.norm() > 0)) {
         std::ostringstream msg;
@@ -139,44 +148,59 @@ bool EvaluateState(const Context& c, const StateTerms& st, const SparseMatrix& k
         // dc = (dN - c dD) / D with dN = (W^2 psi)' ds, dD = 2 (W^2 s)' ds.
         const Eigen::ArrayXd w2 = st.shape_weights.col(j).array().square();
         const double d = (w2 * s.array().square()).sum();
-        c_scale = (w2 * target.array() * s.array()).sum() / d;
-        dc_ds = ((w2 * target.array() - 2.0 * c_scale * w2 * s.array()) / d).matrix();
+        t.c_scale = (w2 * target.array() * s.array()).sum() / d;
+        t.dc_ds = ((w2 * target.array() - 2.0 * t.c_scale * w2 * s.array()) / d).matrix();
       } else if (st.scaling == "unit") {
-        c_scale = sign / s.norm();
-        dc_ds = -c_scale / s.squaredNorm() * s;  // d(1 / ||s||) = -s' ds / ||s||^3
+        t.c_scale = sign / s.norm();
+        t.dc_ds = -t.c_scale / s.squaredNorm() * s;  // d(1 / ||s||) = -s' ds / ||s||^3
       } else {
-        c_scale = sign;
-        dc_ds = Eigen::VectorXd::Zero(num_sensors);
+        t.c_scale = sign;
+        t.dc_ds = Eigen::VectorXd::Zero(num_sensors);
       }
       r->segment(row + 1, num_sensors) =
-          st.shape_weights.col(j).cwiseProduct(c_scale * s - target);
+          st.shape_weights.col(j).cwiseProduct(t.c_scale * s - target);
     }
-    if (jac == nullptr) continue;
+  }
+  if (jac == nullptr) return true;
 
+  // Jacobian rows, mode by mode in parallel (c.threads): each mode factorises
+  // its own Nelson matrix and writes only its own rows, so the result does not
+  // depend on the thread count.
+  const auto& parameters = c.model.parameters();
+  std::vector<std::string> failure(st.lambdas.size());
+  ParallelFor(static_cast<int>(st.lambdas.size()), c.threads, [&](int j) {
+    const ModeTerms& t = terms[j];
+    const int row = t.row;
+    const Eigen::Index num_sensors = static_cast<Eigen::Index>(st.sensors.size());
     std::unique_ptr<NelsonSolver> nelson;
     if (st.shape_residuals) {
-      nelson = std::make_unique<NelsonSolver>(k, m, lambda, phi);
+      nelson = std::make_unique<NelsonSolver>(k, m, t.lambda, t.phi);
       if (!nelson->ok()) {
         std::ostringstream msg;
         msg << st.name << " mode " << j + 1 << " (model mode " << pairing[j] + 1
             << "): no eigenvector derivative: " << nelson->message();
-        return Fail(why, msg.str());
+        failure[j] = msg.str();
+        return;
       }
     }
     for (int p = 0; p < c.model.num_parameters(); ++p) {
       const SparseMatrix *dk = nullptr, *dm = nullptr;
       if (!ParameterDerivative(parameters[p], st.wet, &dk, &dm)) continue;
       if (!nelson) {
-        (*jac)(row, p) = lambda_weight * EigenvalueDerivative(phi, lambda, *dk, *dm);
+        (*jac)(row, p) =
+            t.lambda_weight * EigenvalueDerivative(t.phi, t.lambda, *dk, *dm);
         continue;
       }
       const EigenpairDerivative d = nelson->Derivative(*dk, *dm);
-      (*jac)(row, p) = lambda_weight * d.eigenvalue;
+      (*jac)(row, p) = t.lambda_weight * d.eigenvalue;
       const Eigen::VectorXd ds = d.eigenvector(st.sensors);
       // d(c s) = dc s + c ds.
       jac->block(row + 1, p, num_sensors, 1) =
-          st.shape_weights.col(j).cwiseProduct(dc_ds.dot(ds) * s + c_scale * ds);
+          st.shape_weights.col(j).cwiseProduct(t.dc_ds.dot(ds) * t.s + t.c_scale * ds);
     }
+  });
+  for (const std::string& f : failure) {
+    if (!f.empty()) return Fail(why, f);
   }
   return true;
 }
@@ -235,6 +259,7 @@ std::string EigenSensitivityOptions::Validate() const {
     return "shape_sigma: must be positive and finite";
   }
   if (extra_modes < 0) return "extra_modes: must be >= 0";
+  if (threads < 1) return "threads: must be >= 1";
   if (!(min_mac >= 0 && min_mac <= 1)) return "min_mac: must be in [0, 1]";
   if (!prior_mean.allFinite()) return "prior_mean: has a NaN or infinite entry";
   if (prior_sigma.hasNaN()) return "prior_sigma: has a NaN entry";
@@ -289,6 +314,7 @@ NonlinearProblem BuildEigenSensitivityProblem(const ParametrisedModel& model,
   c.model = model;
   c.frequency_sigma = options.frequency_sigma;
   c.min_mac = options.min_mac;
+  c.threads = options.threads;
   c.eigen = options.eigen;
 
   NonlinearProblem problem;

@@ -810,7 +810,7 @@ SolverSpec ReadSolver(const Field& sf, const ParametrisedModel& model) {
   if (sf.Has("sensitivity")) {
     const Field tf = sf["sensitivity"];
     tf.ExpectKeys({"frequency_sigma", "shape_sigma", "shape_noise", "shape_scaling",
-                   "use_shapes", "extra_modes", "min_mac", "prior_sigma"});
+                   "use_shapes", "extra_modes", "min_mac", "prior_sigma", "threads"});
     EigenSensitivityOptions& so = spec.sensitivity;
     if (tf.Has("frequency_sigma")) so.frequency_sigma = tf["frequency_sigma"].Positive();
     if (tf.Has("shape_sigma")) so.shape_sigma = tf["shape_sigma"].Positive();
@@ -819,6 +819,7 @@ SolverSpec ReadSolver(const Field& sf, const ParametrisedModel& model) {
     if (tf.Has("use_shapes")) so.use_shapes = tf["use_shapes"].Bool();
     if (tf.Has("extra_modes")) so.extra_modes = tf["extra_modes"].Int();
     if (tf.Has("min_mac")) so.min_mac = tf["min_mac"].NonNegative();
+    if (tf.Has("threads")) so.threads = tf["threads"].Int();
     if (tf.Has("prior_sigma")) {
       so.prior_sigma = Eigen::VectorXd::Zero(model.num_parameters());
       ForEachParameterKey(tf["prior_sigma"], model, [&](const Field& v, int i) {

@@ -85,6 +85,10 @@ struct EigenSensitivityOptions {
   // L: p x n, empty = identity.
   double tikhonov_lambda = 0.0;
   Eigen::MatrixXd tikhonov_operator;
+  // Threads for the Jacobian: the modes of a state get their eigenvector
+  // derivatives (a sparse factorisation each and one solve per parameter) in
+  // parallel. The Jacobian is the same whatever the number (>= 1).
+  int threads = 1;
   // Eigen-solver settings; num_modes is set per state (measured + extra_modes).
   EigenOptions eigen;
 

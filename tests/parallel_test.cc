@@ -1,0 +1,53 @@
+// ParallelFor (parallel.h): every index once, the same results whatever the
+// thread count, and the exception of the lowest failing index.
+#include "femup/parallel.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace femup {
+namespace {
+
+TEST(ParallelFor, RunsEveryIndexOnceWhateverTheThreadCount) {
+  for (int threads : {1, 2, 3, 8, 0}) {
+    std::vector<int> hits(1000, 0);
+    std::vector<double> out(1000, 0.0);
+    ParallelFor(1000, threads, [&](int i) {
+      ++hits[i];
+      out[i] = std::sin(0.01 * i);
+    });
+    for (int i = 0; i < 1000; ++i) {
+      EXPECT_EQ(hits[i], 1) << "threads " << threads << ", index " << i;
+      EXPECT_EQ(out[i], std::sin(0.01 * i));
+    }
+  }
+}
+
+TEST(ParallelFor, NothingToDo) {
+  std::atomic<int> calls{0};
+  ParallelFor(0, 4, [&](int) { ++calls; });
+  ParallelFor(-3, 4, [&](int) { ++calls; });
+  EXPECT_EQ(calls.load(), 0);
+  EXPECT_GE(DefaultThreadCount(), 1);
+}
+
+TEST(ParallelFor, RethrowsTheLowestFailingIndex) {
+  for (int threads : {1, 2, 4}) {
+    try {
+      ParallelFor(200, threads, [](int i) {
+        if (i == 37 || i == 150) throw std::runtime_error("index " + std::to_string(i));
+      });
+      ADD_FAILURE() << "no exception";
+    } catch (const std::runtime_error& e) {
+      EXPECT_EQ(std::string(e.what()), "index 37") << "threads " << threads;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace femup
