@@ -5,6 +5,7 @@
 #include "femup/errors.h"
 #include "femup/problems/correction_system.h"
 #include "femup/problems/eigen_sensitivity.h"
+#include "femup/problems/normal_correction_system.h"
 #include "femup/solvers/identifiability.h"
 #include "femup/solvers/nonlinear_solver.h"
 #include "femup/solvers/uncertainty.h"
@@ -22,13 +23,38 @@ bool ShapesComplete(const std::vector<ModalData>& measured, int num_dofs) {
 
 }  // namespace
 
+bool UsesNormalCorrectionSystem(const Study& study) {
+  return study.system.form == SystemForm::kStacked && study.system.num_fem_modes < 0 &&
+         study.model.num_dofs() > EigenOptions{}.dense_limit;
+}
+
+Modes FemModesFor(const Study& study) {
+  if (UsesNormalCorrectionSystem(study)) return Modes{};
+  const int n = study.model.num_dofs();
+  EigenOptions options;
+  if (study.system.num_fem_modes > 0 && study.system.num_fem_modes < n - 1) {
+    options.num_modes = study.system.num_fem_modes;
+  } else if (n > options.dense_limit) {
+    throw InputError(study.path,
+                     "system.form: the summed form needs every FEM mode, a dense "
+                     "eigen-solve of all " +
+                         std::to_string(n) + " DOFs (the limit is " +
+                         std::to_string(options.dense_limit) +
+                         "); use form: stacked (weighted by M^-1 without the modes) or "
+                         "set system.fem_modes");
+  }
+  return SolveModes(study.model.stiffness(), study.model.mass(), options);
+}
+
 FactorSolve SolveFactors(const Study& study, const SolverSpec& spec,
                          const Modes& fem_modes, const std::vector<ModalData>& measured) {
   FactorSolve out;
   LinearProblem& p = out.problem;
   const int n = study.model.num_parameters();
   if (spec.method == "linear" || ShapesComplete(measured, study.model.num_dofs())) {
-    p = BuildCorrectionSystem(study.model, fem_modes, measured, study.system);
+    p = UsesNormalCorrectionSystem(study)
+            ? BuildNormalCorrectionSystem(study.model, measured)
+            : BuildCorrectionSystem(study.model, fem_modes, measured, study.system);
   } else {
     p.names = study.model.ParameterNames();
     for (const Parameter& q : study.model.parameters())

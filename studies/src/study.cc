@@ -14,6 +14,7 @@
 #include "femup/errors.h"
 #include "femup/matrix_market.h"
 #include "femup/problems/effects.h"
+#include "femup/space_frame.h"
 
 namespace femup {
 namespace {
@@ -360,6 +361,88 @@ Structure ReadMatrixMarketModel(const Field& m) {
   } catch (const InputError& e) {
     m.Fail(e.what());
   }
+}
+
+FrameSection3d ReadTube(const Field& f, const FrameSection3d& defaults) {
+  f.ExpectKeys({"diameter", "wall", "E", "nu", "rho"});
+  const double diameter = f["diameter"].Positive();
+  const double wall = f["wall"].Positive();
+  if (wall > diameter / 2) f["wall"].Fail("must not exceed half the diameter");
+  const double E = f.Has("E") ? f["E"].Positive() : defaults.E;
+  const double nu = f.Has("nu")      ? f["nu"].NonNegative()
+                    : defaults.G > 0 ? defaults.E / (2 * defaults.G) - 1
+                                     : 0.3;
+  const double rho = f.Has("rho") ? f["rho"].Positive() : defaults.rho;
+  if (!(nu < 0.5)) f["nu"].Fail("Poisson's ratio must be below 0.5");
+  return CircularTube(diameter, wall, E, nu, rho);
+}
+
+// A jacket-like space frame (space_frame.h): the model and its factors come
+// from the generator; `structure` gets the description, labels and, for
+// plots, each DOF's height.
+ParametrisedModel ReadSpaceFrame(const Field& m, Structure* structure) {
+  m.ExpectKeys({"type", "levels", "bays_x", "bays_y", "level_height", "bay_width_x",
+                "bay_width_y", "elements_per_member", "blocks_per_level", "bracing",
+                "water_depth", "theory", "legs", "braces", "horizontals"});
+  SpaceFrameSpec spec;
+  if (m.Has("levels")) spec.levels = m["levels"].Int();
+  if (m.Has("bays_x")) spec.bays_x = m["bays_x"].Int();
+  if (m.Has("bays_y")) spec.bays_y = m["bays_y"].Int();
+  if (m.Has("level_height")) spec.level_height = m["level_height"].Positive();
+  if (m.Has("bay_width_x")) spec.bay_width_x = m["bay_width_x"].Positive();
+  if (m.Has("bay_width_y")) spec.bay_width_y = m["bay_width_y"].Positive();
+  if (m.Has("elements_per_member"))
+    spec.elements_per_member = m["elements_per_member"].Int();
+  if (m.Has("blocks_per_level")) spec.blocks_per_level = m["blocks_per_level"].Int();
+  if (m.Has("bracing") && !FaceBracingFromString(m["bracing"].Str(), &spec.bracing))
+    m["bracing"].Fail("expected none, diagonal or x");
+  if (m.Has("water_depth")) spec.water_depth = m["water_depth"].NonNegative();
+  if (m.Has("theory") && !BeamTheoryFromString(m["theory"].Str(), &spec.theory))
+    m["theory"].Fail("expected euler_bernoulli or timoshenko");
+  if (m.Has("legs")) spec.legs = ReadTube(m["legs"], spec.legs);
+  if (m.Has("braces")) spec.braces = ReadTube(m["braces"], spec.braces);
+  if (m.Has("horizontals"))
+    spec.horizontals = ReadTube(m["horizontals"], spec.horizontals);
+  const std::string invalid = spec.Validate();
+  if (!invalid.empty()) {
+    // "bays_x: must be >= 1" -> model.bays_x: must be >= 1;
+    // "legs.Iy: ..." -> model.legs: Iy: ...
+    const std::string field = invalid.substr(0, invalid.find(':'));
+    const std::string key = field.substr(0, field.find('.'));
+    if (!m.Has(key)) m.Fail(invalid);
+    std::string rest = invalid.substr(key.size());
+    while (!rest.empty() && (rest[0] == ':' || rest[0] == '.' || rest[0] == ' '))
+      rest.erase(0, 1);
+    m[key].Fail(rest);
+  }
+  ParametrisedModel model;
+  try {
+    model = BuildSpaceFrame(spec);
+  } catch (const InputError& e) {
+    m.Fail(e.what());
+  }
+  std::ostringstream d;
+  d << "space frame, " << spec.bays_x << " x " << spec.bays_y << " bays, " << spec.levels
+    << " levels of " << spec.level_height << " m, " << ToString(spec.bracing)
+    << " bracing, water " << spec.water_depth << " m";
+  structure->description = d.str();
+  structure->dof_labels = model.dof_labels();
+  const SpaceFrameGeometryData geometry = SpaceFrameGeometry(spec);
+  structure->dof_positions.reserve(model.num_dofs());
+  for (const Eigen::Vector3d& node : geometry.nodes) {
+    for (int k = 0; k < 6; ++k) structure->dof_positions.push_back(node.z());
+  }
+  structure->length = spec.levels * spec.level_height;
+  // Shape plots: the sway (ux) of the corner leg at X = Y = 0, bottom to top.
+  std::vector<std::pair<double, int>> leg;
+  for (std::size_t k = 0; k < geometry.nodes.size(); ++k) {
+    const Eigen::Vector3d& node = geometry.nodes[k];
+    if (std::abs(node.x()) < 1e-9 && std::abs(node.y()) < 1e-9)
+      leg.emplace_back(node.z(), static_cast<int>(6 * k));
+  }
+  std::sort(leg.begin(), leg.end());
+  for (const auto& [z, dof] : leg) structure->plot_dofs.push_back(dof);
+  return model;
 }
 
 ParameterFamily ReadFamily(const Field& f) {
@@ -882,12 +965,24 @@ Study LoadStudy(const std::string& path) {
     study.cantilever = spec;
   } else if (type == "matrix_market") {
     study.structure = ReadMatrixMarketModel(mf);
+  } else if (type == "space_frame") {
+    study.model = ReadSpaceFrame(mf, &study.structure);
   } else {
     mf["type"].Fail("unknown model type '" + type +
-                    "' (expected chain, cantilever or matrix_market)");
+                    "' (expected chain, cantilever, matrix_market or space_frame)");
   }
+  const bool generated = type == "space_frame";  // the generator sets the factors
 
   ParameterPlan plan = PaperParameterPlan();
+  if (generated && top.Has("parameters")) {
+    for (const char* family : {"mass", "stiffness", "added_mass"}) {
+      if (top["parameters"].Has(family)) {
+        top["parameters"][family].Fail(
+            "a space_frame model has its factors by level and block (see "
+            "blocks_per_level); parameters may fix, bound or relate them only");
+      }
+    }
+  }
   if (!top.Has("parameters") &&
       std::none_of(study.structure.elements.begin(), study.structure.elements.end(),
                    [](const ElementMatrices& e) { return e.wet; })) {
@@ -901,10 +996,12 @@ Study LoadStudy(const std::string& path) {
     if (pf.Has("stiffness")) plan.stiffness = ReadFamily(pf["stiffness"]);
     if (pf.Has("added_mass")) plan.added_mass = ReadFamily(pf["added_mass"]);
   }
-  try {
-    study.model = BuildModel(study.structure, plan);
-  } catch (const InputError& e) {
-    (top.Has("parameters") ? top["parameters"] : mf).Fail(e.what());
+  if (!generated) {
+    try {
+      study.model = BuildModel(study.structure, plan);
+    } catch (const InputError& e) {
+      (top.Has("parameters") ? top["parameters"] : mf).Fail(e.what());
+    }
   }
   CheckMassPositiveDefinite(mf, study.model);
 

@@ -1,5 +1,6 @@
 #include "femup/studies/update_study.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <limits>
@@ -104,6 +105,7 @@ UpdateResult RunUpdate(const Study& study) {
   r.model_description = study.structure.description;
   r.num_dofs = study.model.num_dofs();
   r.dof_positions = study.structure.dof_positions;
+  r.plot_dofs = study.structure.plot_dofs;
   r.dof_labels = study.model.dof_labels();
   for (const Parameter& p : study.model.parameters()) {
     Parameter copy = p;
@@ -114,9 +116,11 @@ UpdateResult RunUpdate(const Study& study) {
   r.form = study.system.form;
 
   // Step 1: FEM modes of the nominal model.
-  const Modes fem = SolveModes(study.model.stiffness(), study.model.mass());
-  r.num_fem_modes =
-      study.system.num_fem_modes < 0 ? fem.size() : study.system.num_fem_modes;
+  const Modes fem = FemModesFor(study);
+  r.normal_system = UsesNormalCorrectionSystem(study);
+  r.num_fem_modes = r.normal_system                  ? study.model.num_dofs()
+                    : study.system.num_fem_modes < 0 ? fem.size()
+                                                     : study.system.num_fem_modes;
 
   // Step 2: the factors, by the linear method (Z d = F) or eigen-sensitivity.
   r.sources = PrepareMeasurements(study);
@@ -274,6 +278,7 @@ void WriteUpdateOutputs(const UpdateResult& r, bool plots, OutputDir* out,
                  {"rows", r.problem.num_rows()},
                  {"unknowns", r.problem.num_unknowns()},
                  {"fem_modes", r.num_fem_modes},
+                 {"weighted_by_inverse_mass", r.normal_system},
                  {"unconstrained", IdentifiabilityJson(r.identifiability_unconstrained)},
                  {"solved", IdentifiabilityJson(r.solution.identifiability)}};
   j["rank"] = r.identifiability_unconstrained.rank;
@@ -439,7 +444,13 @@ void WriteUpdateOutputs(const UpdateResult& r, bool plots, OutputDir* out,
         static_cast<int>(std::min<Eigen::Index>(c.measured_shapes.cols(), 4));
     shapes.width_px = 380 * shapes.columns + 100;
     shapes.height_px = 500;
-    const std::vector<int> rows = TransverseRows(r.dof_labels, c.shape_dofs);
+    std::vector<int> rows;
+    for (int dof : r.plot_dofs) {
+      const auto it = std::find(c.shape_dofs.begin(), c.shape_dofs.end(), dof);
+      if (it != c.shape_dofs.end())
+        rows.push_back(static_cast<int>(it - c.shape_dofs.begin()));
+    }
+    if (rows.empty()) rows = TransverseRows(r.dof_labels, c.shape_dofs);
     std::vector<int> dofs;
     for (int i : rows) dofs.push_back(c.shape_dofs[i]);
     const std::vector<double> x = Positions(r, dofs);
@@ -483,9 +494,17 @@ std::string UpdateReport(const UpdateResult& r) {
     << r.num_dofs << " DOFs)\n";
   const Identifiability& u = r.identifiability_unconstrained;
   if (r.problem.num_rows() > 0) {
-    o << "system: " << ToString(r.form) << " form, " << r.problem.num_rows() << " x "
-      << r.problem.num_unknowns() << ", " << r.num_fem_modes << " FEM modes, rank "
-      << u.rank << " of " << r.problem.num_unknowns() << "\n";
+    if (r.normal_system) {
+      o << "system: " << ToString(r.form) << " form weighted by all " << r.num_fem_modes
+        << " FEM modes (M^-1 by a sparse Cholesky factor, no eigenbasis), "
+        << r.problem.data_rows() << " equations compressed to " << r.problem.num_rows()
+        << " x " << r.problem.num_unknowns() << ", rank " << u.rank << " of "
+        << r.problem.num_unknowns() << "\n";
+    } else {
+      o << "system: " << ToString(r.form) << " form, " << r.problem.num_rows() << " x "
+        << r.problem.num_unknowns() << ", " << r.num_fem_modes << " FEM modes, rank "
+        << u.rank << " of " << r.problem.num_unknowns() << "\n";
+    }
   } else {
     o << "system: no Z d = F (incomplete shapes or frequencies only); the sensitivity "
          "Jacobian is analysed below\n";

@@ -31,6 +31,9 @@ struct Structure {
   double length = 0;  // overall length where it applies (m), 0 otherwise
   // Positions along the structure of each DOF (for plots), may be empty.
   std::vector<double> dof_positions;
+  // The DOFs that shape plots draw, in drawing order (e.g. one leg of a space
+  // frame, bottom to top); empty: every transverse (":ux") DOF.
+  std::vector<int> plot_dofs;
   // Index of the element with the given id, or -1.
   int FindElement(int id) const;
 };

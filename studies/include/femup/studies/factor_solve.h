@@ -26,7 +26,23 @@ struct FactorSolve {
   int nonlinear_residuals = 0;  // sensitivity: number of residuals fitted
 };
 
-// Throws InputError for unusable input (e.g. a fixed name that matches nothing).
+// True when the study's linear system is built without the FEM eigenbasis:
+// the stacked form with every FEM mode (system.fem_modes absent) on a model of
+// more than EigenOptions{}.dense_limit DOFs. The weighting by all FEM modes is
+// then M^-1, applied through a sparse Cholesky factor of M
+// (normal_correction_system.h): the same least-squares problem, in O(nnz)
+// memory instead of a dense eigenbasis.
+bool UsesNormalCorrectionSystem(const Study& study);
+
+// The FEM modes of the nominal model that SolveFactors needs: none when
+// UsesNormalCorrectionSystem(study); the lowest system.fem_modes when that is
+// given (by the sparse eigensolver above the dense limit); otherwise every
+// mode (dense). Throws InputError naming "system.form" when the summed form
+// would need every mode of a model above the dense limit.
+Modes FemModesFor(const Study& study);
+
+// `fem_modes`: from FemModesFor(study). Throws InputError for unusable input
+// (e.g. a fixed name that matches nothing).
 FactorSolve SolveFactors(const Study& study, const SolverSpec& spec,
                          const Modes& fem_modes, const std::vector<ModalData>& measured);
 

@@ -56,6 +56,10 @@ struct UpdateResult {
   LinearProblem problem;  // Z, F (fixed values recorded)
   SystemForm form = SystemForm::kStacked;
   int num_fem_modes = 0;
+  // True when Z d = F was weighted by all FEM modes through M^-1 and compressed
+  // to one row per factor (normal_correction_system.h) instead of built from
+  // the eigenbasis: a large model.
+  bool normal_system = false;
   Identifiability identifiability_unconstrained;  // of the full Z, before fixing
   LinearSolution solution;
   std::vector<StateComparison> states;
@@ -63,6 +67,7 @@ struct UpdateResult {
   AddedMassSummary added_mass_summary;
   SparseMatrix added_mass, updated_stiffness, updated_dry_mass;
   std::vector<double> dof_positions;
+  std::vector<int> plot_dofs;  // Structure::plot_dofs
   std::vector<std::string> dof_labels;
 };
 
