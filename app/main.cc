@@ -4,9 +4,11 @@
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 
 #include "femup/errors.h"
 #include "femup/output_dir.h"
+#include "femup/progress.h"
 #include "femup/solvers/nonlinear_solver.h"
 #include "femup/studies/blind_benchmark.h"
 #include "femup/studies/compare_study.h"
@@ -84,6 +86,14 @@ std::string OutputFolder(const Common& c, const femup::Study& study) {
   return "out/" + study.name;
 }
 
+// Reports of long work as a bar on stderr, only when stderr is a terminal and
+// the command is not --quiet.
+std::unique_ptr<femup::ProgressBar> MakeProgressBar(const std::string& label,
+                                                    bool quiet) {
+  return std::make_unique<femup::ProgressBar>(label, &std::cerr,
+                                              !quiet && femup::StderrIsTerminal());
+}
+
 void Finish(femup::OutputDir* dir, const std::vector<std::string>& warnings,
             const Common& c) {
   dir->Commit();
@@ -118,6 +128,11 @@ int main(int argc, char** argv) {
       "noise", "the noise study: Rm of the added-mass factors vs corruption");
   AddCommon(noise, &noise_opts);
   AddSolverOverride(noise, &noise_opts);
+  femup::NoiseRunOptions noise_run;
+  noise_run.threads = 2;
+  noise->add_option("--threads", noise_run.threads,
+                    "draws solved in parallel (default 2); the results are identical "
+                    "for any number");
   CLI::App* modes =
       app.add_subcommand("modes", "modal analysis of the study's nominal model");
   AddCommon(modes, &modes_opts);
@@ -262,7 +277,11 @@ int main(int argc, char** argv) {
         throw femup::InputError("--" + invalid.substr(0, invalid.find(':')),
                                 invalid.substr(invalid.find(':') + 2));
       std::filesystem::create_directories(bench_out);
-      const femup::BenchmarkResult result = femup::RunBenchmark(bench_options, bench_out);
+      femup::BenchmarkResult result;
+      {
+        const auto bar = MakeProgressBar("diagnosing cases", bench_quiet);
+        result = femup::RunBenchmark(bench_options, bench_out, bar->Callback());
+      }
       femup::OutputDir dir(bench_out);
       femup::WriteBenchmarkOutputs(result, !bench_no_plots, &dir, &warnings);
       if (!bench_quiet) std::cout << femup::BenchmarkReport(result);
@@ -297,6 +316,10 @@ int main(int argc, char** argv) {
       return result.solution.summary.usable() ? 0 : 3;
     }
     if (*noise) {
+      const std::string invalid = noise_run.Validate();
+      if (!invalid.empty())
+        throw femup::InputError("--" + invalid.substr(0, invalid.find(':')),
+                                invalid.substr(invalid.find(':') + 2));
       femup::Study study = femup::LoadStudy(noise_opts.study);
       RequireMeasurements(study);
       ApplyOverride(noise_opts, &study);
@@ -305,7 +328,13 @@ int main(int argc, char** argv) {
                                 "noise_study: the study has no noise_study "
                                 "section (levels, draws, seed)");
       }
-      const femup::NoiseStudyResult result = femup::RunNoiseStudy(study);
+      femup::NoiseStudyResult result;
+      {
+        const auto bar = MakeProgressBar("noise draws", noise_opts.quiet);
+        noise_run.progress = bar->Callback();
+        result = femup::RunNoiseStudy(study, noise_run);
+        noise_run.progress = nullptr;  // the bar goes now
+      }
       femup::OutputDir dir(OutputFolder(noise_opts, study));
       femup::WriteNoiseOutputs(result, study.plots && !noise_opts.no_plots, &dir,
                                &warnings);

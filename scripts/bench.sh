@@ -11,12 +11,15 @@
 #   system_peer.md the linear correction-factor system of a 10^5-DOF frame with
 #                 10^3 factors and 10 measured modes, femup against scipy
 #                 (bench/system_peer_compare.cc), with the memory read bound
+#   noise_peer.md the paper's noise study (11 levels x 1000 draws) in femup (1
+#                 and 2 threads) against the same computation in numpy
+#                 (bench/noise_peer_compare.cc), with the Rm averages of both
 # Each benchmark runs 3 repetitions of at least FEMUP_BENCH_MIN_TIME seconds
 # (default 0.2); the tables give the median and the spread. Environment:
 # FEMUP_BENCH_MIN_TIME, FEMUP_PEER_SIZES (default 500x50,2000x200,5000x500),
 # FEMUP_EIGEN_PEER_DOFS (default 1e5; 1e5,1e6 adds the 10^6-DOF frame: minutes and
-# several GB), FEMUP_SYSTEM_PEER_SIZE (default 1e5), FEMUP_BENCH_JOBS (build
-# jobs, default 2).
+# several GB), FEMUP_SYSTEM_PEER_SIZE (default 1e5), FEMUP_NOISE_PEER_DRAWS
+# (default 1000 draws per level), FEMUP_BENCH_JOBS (build jobs, default 2).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=build-bench
@@ -25,11 +28,13 @@ min_time=${FEMUP_BENCH_MIN_TIME:-0.2}
 sizes=${FEMUP_PEER_SIZES:-500x50,2000x200,5000x500}
 eigen_dofs=${FEMUP_EIGEN_PEER_DOFS:-1e5}
 system_size=${FEMUP_SYSTEM_PEER_SIZE:-1e5}
+noise_draws=${FEMUP_NOISE_PEER_DRAWS:-1000}
 
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DFEMUP_BUILD_TESTS=OFF \
   -DFEMUP_BUILD_BENCHMARKS=ON > /dev/null
 cmake --build "$build" --target solvers_bench femup_peer_compare \
-  femup_eigen_peer_compare femup_system_peer_compare -j "${FEMUP_BENCH_JOBS:-2}"
+  femup_eigen_peer_compare femup_system_peer_compare femup_noise_peer_compare \
+  -j "${FEMUP_BENCH_JOBS:-2}"
 
 mkdir -p "$out"
 {
@@ -41,7 +46,8 @@ mkdir -p "$out"
   echo "source: $(git rev-parse --short HEAD 2>/dev/null || echo unknown)$(
     git diff --quiet HEAD 2>/dev/null || echo ' plus uncommitted changes')"
   echo "command: scripts/bench.sh (FEMUP_BENCH_MIN_TIME=$min_time FEMUP_PEER_SIZES=$sizes" \
-    "FEMUP_EIGEN_PEER_DOFS=$eigen_dofs FEMUP_SYSTEM_PEER_SIZE=$system_size)"
+    "FEMUP_EIGEN_PEER_DOFS=$eigen_dofs FEMUP_SYSTEM_PEER_SIZE=$system_size" \
+    "FEMUP_NOISE_PEER_DRAWS=$noise_draws)"
 } > "$out/machine.txt"
 cat "$out/machine.txt"
 
@@ -62,5 +68,7 @@ OMP_NUM_THREADS=1 "$build/bench/femup_eigen_peer_compare" --dofs "$eigen_dofs" \
 echo "== peer comparison (the linear correction-factor system, scipy)"
 OMP_NUM_THREADS=1 "$build/bench/femup_system_peer_compare" --size "$system_size" \
   --markdown "$out/system_peer.md"
+echo "== peer comparison (the paper's noise study in numpy)"
+"$build/bench/femup_noise_peer_compare" --draws "$noise_draws" --markdown "$out/noise_peer.md"
 echo "elapsed (build and runs): ${SECONDS} s" >> "$out/machine.txt"
 echo "results in $out/"

@@ -284,6 +284,26 @@ TEST(CorrectionSystem, CantileverExactFactorsSatisfyBothForms) {
   }
 }
 
+TEST(CorrectionSystem, WithoutRowLabelsTheSameSystem) {
+  const PaperSetup setup;
+  for (SystemForm form : {SystemForm::kStacked, SystemForm::kSummed}) {
+    CorrectionSystemOptions options;
+    options.form = form;
+    const LinearProblem with = BuildCorrectionSystem(setup.s.model, setup.fem,
+                                                     {setup.air, setup.water}, options);
+    options.row_labels = false;
+    const LinearProblem without = BuildCorrectionSystem(
+        setup.s.model, setup.fem, {setup.air, setup.water}, options);
+    EXPECT_EQ(with.A, without.A) << ToString(form);
+    EXPECT_EQ(with.b, without.b);
+    EXPECT_EQ(with.names, without.names);
+    EXPECT_EQ(with.groups, without.groups);
+    EXPECT_EQ(with.row_labels.size(), static_cast<std::size_t>(with.A.rows()));
+    EXPECT_TRUE(without.row_labels.empty());
+    EXPECT_TRUE(without.Validate().empty()) << without.Validate();
+  }
+}
+
 TEST(SystemForm, Names) {
   EXPECT_STREQ(ToString(SystemForm::kStacked), "stacked");
   EXPECT_STREQ(ToString(SystemForm::kSummed), "summed");

@@ -166,6 +166,40 @@ TEST(LstsqSolver, RankDeficientGivesScaledMinimumNorm) {
   EXPECT_NEAR(v[2], 0.0, 1e-10);
 }
 
+TEST(LstsqSolver, WithoutDiagnosticsSameAnswerByQr) {
+  Eigen::MatrixXd a = RandomMatrix(40, 6, 21);
+  a.col(2) *= 1e4;  // unequal column norms
+  const Eigen::VectorXd b = RandomMatrix(40, 1, 22);
+  LinearProblem p = Problem(a, b);
+  p.fixed = {{4, 0.25}};
+  LinearSolverOptions lean;
+  lean.diagnostics = false;
+  const LinearSolution fast = CreateLinearSolver("lstsq", lean)->Solve(p);
+  const LinearSolution full = CreateLinearSolver("lstsq")->Solve(p);
+  EXPECT_EQ(fast.summary.status, SolverStatus::kSolved);
+  EXPECT_NE(fast.summary.message.find("QR"), std::string::npos) << fast.summary.message;
+  EXPECT_LE(MaxRelativeError(fast.x, full.x), 1e-13);
+  EXPECT_EQ(fast.x[4], 0.25);
+  EXPECT_LE((fast.residual - (a * fast.x - b)).norm(), 1e-14 * b.norm());
+  EXPECT_NEAR(fast.summary.cost, full.summary.cost, 1e-12 * full.summary.cost);
+  // No diagnostics: no covariance, no identifiability report.
+  EXPECT_EQ(fast.covariance.size(), 0);
+  EXPECT_EQ(fast.identifiability.rank, 0);  // not analysed
+  EXPECT_EQ(full.identifiability.rank, 5);
+}
+
+TEST(LstsqSolver, WithoutDiagnosticsRankDeficientGoesTheSvdPath) {
+  Eigen::MatrixXd a = RandomMatrix(20, 4, 5);
+  a.col(3) = 2.0 * a.col(0) - a.col(1);  // rank 3
+  const Eigen::VectorXd b = RandomMatrix(20, 1, 6);
+  LinearSolverOptions lean;
+  lean.diagnostics = false;
+  const LinearSolution fast = CreateLinearSolver("lstsq", lean)->Solve(Problem(a, b));
+  const LinearSolution full = CreateLinearSolver("lstsq")->Solve(Problem(a, b));
+  EXPECT_EQ(fast.summary.status, SolverStatus::kMinimumNorm);
+  EXPECT_EQ(fast.x, full.x);  // the very same computation
+}
+
 TEST(LstsqSolver, ZeroColumnIsUnseen) {
   Eigen::MatrixXd a = RandomMatrix(10, 3, 7);
   a.col(1).setZero();

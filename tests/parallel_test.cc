@@ -28,6 +28,28 @@ TEST(ParallelFor, RunsEveryIndexOnceWhateverTheThreadCount) {
   }
 }
 
+TEST(ParallelFor, ReportsProgressAfterEveryIndex) {
+  for (int threads : {1, 2, 3, 8}) {
+    std::vector<int> hits(37, 0);
+    std::atomic<int> reports{0};
+    std::atomic<int> last{0};
+    ParallelFor(
+        37, threads, [&](int i) { hits[static_cast<std::size_t>(i)] += 1; },
+        [&](int done, int total) {
+          EXPECT_EQ(total, 37);
+          EXPECT_GE(done, 1);
+          EXPECT_LE(done, 37);
+          ++reports;
+          int seen = last.load();
+          while (done > seen && !last.compare_exchange_weak(seen, done)) {
+          }
+        });
+    EXPECT_EQ(hits, std::vector<int>(37, 1)) << threads;
+    EXPECT_EQ(reports.load(), 37);
+    EXPECT_EQ(last.load(), 37);
+  }
+}
+
 TEST(ParallelFor, NothingToDo) {
   std::atomic<int> calls{0};
   ParallelFor(0, 4, [&](int) { ++calls; });

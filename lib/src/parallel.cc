@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <atomic>
 #include <exception>
+#include <limits>
 #include <mutex>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -14,38 +16,48 @@ int DefaultThreadCount() {
   return n == 0 ? 1 : static_cast<int>(n);
 }
 
-void ParallelFor(int count, int threads, const std::function<void(int)>& body) {
+void ParallelFor(int count, int threads, const std::function<void(int)>& body,
+                 const ProgressCallback& progress) {
   if (count <= 0) return;
   if (threads < 1) threads = DefaultThreadCount();
-  threads = std::min(threads, count);
-  if (threads == 1) {
-    for (int i = 0; i < count; ++i) body(i);
-    return;
-  }
-  std::atomic<int> next{0};
-  std::atomic<bool> failed{false};
-  std::mutex mutex;
-  int first_failure = count;
+  std::atomic<int> next{0}, done{0};
+  // Lowest failing index so far; indices above it are not started.
+  std::atomic<int> failed{std::numeric_limits<int>::max()};
+  std::mutex error_mutex;
   std::exception_ptr error;
   const auto worker = [&] {
-    for (int i; !failed.load() && (i = next.fetch_add(1)) < count;) {
+    for (int i = next++; i < count; i = next++) {
+      if (i > failed) break;
       try {
         body(i);
       } catch (...) {
-        std::lock_guard<std::mutex> lock(mutex);
-        if (i < first_failure) {
-          first_failure = i;
+        std::lock_guard<std::mutex> lock(error_mutex);
+        if (i < failed) {
+          failed = i;
           error = std::current_exception();
         }
-        failed.store(true);
+        continue;
       }
+      const int finished = ++done;
+      if (progress) progress(finished, count);
     }
   };
-  std::vector<std::thread> pool;
-  pool.reserve(threads - 1);
-  for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
-  worker();
-  for (std::thread& t : pool) t.join();
+  const int pool_size = std::min(threads, count);
+  if (pool_size == 1) {
+    worker();
+  } else {
+    std::vector<std::thread> pool;
+    pool.reserve(static_cast<std::size_t>(pool_size - 1));
+    for (int t = 1; t < pool_size; ++t) {
+      try {
+        pool.emplace_back(worker);
+      } catch (const std::system_error&) {
+        break;  // no more threads to be had: the ones started share the work
+      }
+    }
+    worker();  // the calling thread works too
+    for (std::thread& t : pool) t.join();
+  }
   if (error) std::rethrow_exception(error);
 }
 

@@ -29,25 +29,19 @@ struct ModeBlock {
   Eigen::VectorXd f;
 };
 
+// `bphi` is scratch space (num_dofs), reused across calls.
 ModeBlock BlockFor(const ParametrisedModel& model, const Eigen::MatrixXd& phi_fem,
-                   double lambda, const Eigen::VectorXd& phi, Immersion immersion) {
+                   double lambda, const Eigen::VectorXd& phi, Immersion immersion,
+                   Eigen::VectorXd* bphi) {
   const int nf = static_cast<int>(phi_fem.cols());
   ModeBlock block{Eigen::MatrixXd::Zero(nf, model.num_parameters()), Eigen::VectorXd()};
   for (int k = 0; k < model.num_parameters(); ++k) {
     const Parameter& p = model.parameter(k);
-    const Eigen::VectorXd bphi = p.basis * phi;
-    switch (p.kind) {
-      case ParameterKind::kMass:
-        block.z.col(k) = -lambda * (phi_fem.transpose() * bphi);
-        break;
-      case ParameterKind::kStiffness:
-        block.z.col(k) = phi_fem.transpose() * bphi;
-        break;
-      case ParameterKind::kAddedMass:
-        if (immersion == Immersion::kWet)
-          block.z.col(k) = -lambda * (phi_fem.transpose() * bphi);
-        break;
-    }
+    if (p.kind == ParameterKind::kAddedMass && immersion != Immersion::kWet) continue;
+    bphi->noalias() = p.basis * phi;
+    auto column = block.z.col(k);
+    column.noalias() = phi_fem.transpose() * *bphi;
+    if (p.kind != ParameterKind::kStiffness) column *= -lambda;
   }
   const Eigen::VectorXd r = model.stiffness() * phi - lambda * (model.mass() * phi);
   block.f = -(phi_fem.transpose() * r);
@@ -83,6 +77,7 @@ LinearProblem BuildCorrectionSystem(const ParametrisedModel& model,
   // Stacked blocks for every measured mode, per state.
   std::vector<std::vector<ModeBlock>> blocks(states.size());
   std::vector<std::vector<std::string>> labels(states.size());
+  Eigen::VectorXd bphi(n);
   for (std::size_t s = 0; s < states.size(); ++s) {
     const ModalData& st = states[s];
     const std::string where = "measurements." + st.state;
@@ -91,8 +86,9 @@ LinearProblem BuildCorrectionSystem(const ParametrisedModel& model,
     const Eigen::VectorXd lambdas = st.Eigenvalues();
     for (int j = 0; j < st.num_modes(); ++j) {
       blocks[s].push_back(
-          BlockFor(model, phi_fem, lambdas[j], shapes.col(j), st.immersion));
-      labels[s].push_back(st.state + " mode " + std::to_string(j + 1));
+          BlockFor(model, phi_fem, lambdas[j], shapes.col(j), st.immersion, &bphi));
+      if (options.row_labels)
+        labels[s].push_back(st.state + " mode " + std::to_string(j + 1));
     }
   }
 
@@ -110,7 +106,7 @@ LinearProblem BuildCorrectionSystem(const ParametrisedModel& model,
       for (std::size_t j = 0; j < blocks[s].size(); ++j) {
         problem.A.middleRows(r, nf) = blocks[s][j].z;
         problem.b.segment(r, nf) = blocks[s][j].f;
-        for (int i = 0; i < nf; ++i) {
+        for (int i = 0; options.row_labels && i < nf; ++i) {
           problem.row_labels.push_back(labels[s][j] + " / FEM mode " +
                                        std::to_string(i + 1));
         }
@@ -149,8 +145,10 @@ LinearProblem BuildCorrectionSystem(const ParametrisedModel& model,
       for (int p = 0; p < nw; ++p) {
         problem.A.row(r) = blocks[dry][j].z.row(i) + blocks[wet][p].z.row(i);
         problem.b[r] = blocks[dry][j].f[i] + blocks[wet][p].f[i];
-        problem.row_labels.push_back("FEM mode " + std::to_string(i + 1) + " / " +
-                                     labels[dry][j] + " + " + labels[wet][p]);
+        if (options.row_labels) {
+          problem.row_labels.push_back("FEM mode " + std::to_string(i + 1) + " / " +
+                                       labels[dry][j] + " + " + labels[wet][p]);
+        }
         ++r;
       }
     }

@@ -59,7 +59,12 @@ ReducedProblem Reduce(const LinearProblem& problem, const std::string& solver) {
       if (!problem.groups.empty()) r.groups.push_back(problem.groups[r.free[k]]);
     }
   }
-  r.A = r.weighted.A * r.basis;
+  if (r.has_equalities) {
+    r.A = r.weighted.A * r.basis;
+  } else {  // basis selects columns: gather them (the same numbers, no product)
+    r.A.resize(r.weighted.A.rows(), nf);
+    for (int k = 0; k < nf; ++k) r.A.col(k) = r.weighted.A.col(r.free[k]);
+  }
   r.b = r.weighted.b - r.weighted.A * r.particular;
   return r;
 }

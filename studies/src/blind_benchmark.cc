@@ -1,21 +1,19 @@
 #include "femup/studies/blind_benchmark.h"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <map>
-#include <mutex>
 #include <nlohmann/json.hpp>
 #include <random>
 #include <set>
 #include <sstream>
-#include <thread>
 
 #include "femup/errors.h"
+#include "femup/parallel.h"
 #include "femup/plot.h"
 #include "femup/problems/effect_fit.h"
 #include "femup/studies/diagnose_study.h"
@@ -388,68 +386,65 @@ std::vector<BenchmarkCase> GenerateBenchmark(const BenchmarkOptions& options,
   return out;
 }
 
-BenchmarkResult RunBenchmark(const BenchmarkOptions& options,
-                             const std::string& out_dir) {
+BenchmarkResult RunBenchmark(const BenchmarkOptions& options, const std::string& out_dir,
+                             const ProgressCallback& progress) {
   BenchmarkResult result;
   result.options = options;
   result.cases = GenerateBenchmark(options, out_dir);
-  std::atomic<int> next{0};
-  auto worker = [&]() {
-    for (int i = next++; i < static_cast<int>(result.cases.size()); i = next++) {
-      BenchmarkCase& c = result.cases[i];
-      const auto t0 = std::chrono::steady_clock::now();
-      try {
-        const Study study =
-            LoadStudy((fs::path(out_dir) / "cases" / (c.name + ".yaml")).string());
-        const DiagnosisResult d = RunDiagnosis(study);
-        const DiagnosisCandidate& top = d.candidates.front();
-        c.top = top.label;
-        c.top_kinds = top.kinds;
-        if (d.candidates.size() > 1) c.second_kinds = d.candidates[1].kinds;
-        c.probability = top.probability;
-        c.separated = d.separated;
-        c.indistinguishable = d.indistinguishable;
-        // Location error of each true effect the top class names.
-        for (const auto& e : c.effects) {
-          for (std::size_t k = 0; k < top.kinds.size(); ++k) {
-            if (top.kinds[k] != e.kind) continue;
-            nlohmann::json loc = nlohmann::json::object();
-            const EffectLocation& l = top.locations[k];
-            if (std::isfinite(l.depth)) loc["depth"] = l.depth;
-            if (std::isfinite(l.x)) loc["x"] = l.x;
-            const double err = LocationError(e, loc);
-            if (err >= 0) c.location_error = std::max(c.location_error, err);
-          }
+  // Each case writes only its own slot; a failing case is recorded, not thrown.
+  auto diagnose_case = [&](int i) {
+    BenchmarkCase& c = result.cases[i];
+    const auto t0 = std::chrono::steady_clock::now();
+    try {
+      const Study study =
+          LoadStudy((fs::path(out_dir) / "cases" / (c.name + ".yaml")).string());
+      const DiagnosisResult d = RunDiagnosis(study);
+      const DiagnosisCandidate& top = d.candidates.front();
+      c.top = top.label;
+      c.top_kinds = top.kinds;
+      if (d.candidates.size() > 1) c.second_kinds = d.candidates[1].kinds;
+      c.probability = top.probability;
+      c.separated = d.separated;
+      c.indistinguishable = d.indistinguishable;
+      // Location error of each true effect the top class names.
+      for (const auto& e : c.effects) {
+        for (std::size_t k = 0; k < top.kinds.size(); ++k) {
+          if (top.kinds[k] != e.kind) continue;
+          nlohmann::json loc = nlohmann::json::object();
+          const EffectLocation& l = top.locations[k];
+          if (std::isfinite(l.depth)) loc["depth"] = l.depth;
+          if (std::isfinite(l.x)) loc["x"] = l.x;
+          const double err = LocationError(e, loc);
+          if (err >= 0) c.location_error = std::max(c.location_error, err);
         }
-        auto rms = [](const EffectFitData& data, const std::vector<PredictedState>& p) {
-          double ss = 0;
-          int n = 0;
-          for (std::size_t s = 0; s < data.states.size(); ++s)
-            for (std::size_t k = 0; k < data.states[s].modes.size(); ++k) {
-              const double e =
-                  p[s].modes[k].frequency_hz / data.states[s].modes[k].frequency_hz - 1;
-              ss += e * e;
-              ++n;
-            }
-          return n ? std::sqrt(ss / n) : -1.0;
-        };
-        c.gap_before = rms(d.fitted_data, d.nominal_fitted);
-        c.gap_after = rms(d.fitted_data, top.fitted);
-        if (!d.held_out_data.states.empty()) {
-          c.held_out_before = rms(d.held_out_data, d.nominal_held_out);
-          c.held_out_after = rms(d.held_out_data, top.held_out);
-        }
-      } catch (const std::exception& e) {
-        c.failed = true;
-        c.error = e.what();
       }
-      c.seconds =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      auto rms = [](const EffectFitData& data, const std::vector<PredictedState>& p) {
+        double ss = 0;
+        int n = 0;
+        for (std::size_t s = 0; s < data.states.size(); ++s)
+          for (std::size_t k = 0; k < data.states[s].modes.size(); ++k) {
+            const double e =
+                p[s].modes[k].frequency_hz / data.states[s].modes[k].frequency_hz - 1;
+            ss += e * e;
+            ++n;
+          }
+        return n ? std::sqrt(ss / n) : -1.0;
+      };
+      c.gap_before = rms(d.fitted_data, d.nominal_fitted);
+      c.gap_after = rms(d.fitted_data, top.fitted);
+      if (!d.held_out_data.states.empty()) {
+        c.held_out_before = rms(d.held_out_data, d.nominal_held_out);
+        c.held_out_after = rms(d.held_out_data, top.held_out);
+      }
+    } catch (const std::exception& e) {
+      c.failed = true;
+      c.error = e.what();
     }
+    c.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   };
-  std::vector<std::thread> pool;
-  for (int t = 0; t < options.threads; ++t) pool.emplace_back(worker);
-  for (auto& t : pool) t.join();
+  ParallelFor(static_cast<int>(result.cases.size()), options.threads, diagnose_case,
+              progress);
   return result;
 }
 

@@ -47,14 +47,17 @@ Modes FemModesFor(const Study& study) {
 }
 
 FactorSolve SolveFactors(const Study& study, const SolverSpec& spec,
-                         const Modes& fem_modes, const std::vector<ModalData>& measured) {
+                         const Modes& fem_modes, const std::vector<ModalData>& measured,
+                         const FactorSolveOptions& options) {
   FactorSolve out;
   LinearProblem& p = out.problem;
   const int n = study.model.num_parameters();
   if (spec.method == "linear" || ShapesComplete(measured, study.model.num_dofs())) {
+    CorrectionSystemOptions system = study.system;
+    system.row_labels = study.system.row_labels && options.diagnostics;
     p = UsesNormalCorrectionSystem(study)
             ? BuildNormalCorrectionSystem(study.model, measured)
-            : BuildCorrectionSystem(study.model, fem_modes, measured, study.system);
+            : BuildCorrectionSystem(study.model, fem_modes, measured, system);
   } else {
     p.names = study.model.ParameterNames();
     for (const Parameter& q : study.model.parameters())
@@ -68,7 +71,9 @@ FactorSolve SolveFactors(const Study& study, const SolverSpec& spec,
   p.prior = spec.prior_mean;
 
   if (spec.method == "linear") {
-    out.solution = CreateLinearSolver(spec.name, spec.linear)->Solve(p);
+    LinearSolverOptions linear = spec.linear;
+    linear.diagnostics = spec.linear.diagnostics && options.diagnostics;
+    out.solution = CreateLinearSolver(spec.name, linear)->Solve(p);
     return out;
   }
 

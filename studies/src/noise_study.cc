@@ -10,6 +10,7 @@
 
 #include "femup/errors.h"
 #include "femup/modal.h"
+#include "femup/parallel.h"
 #include "femup/problems/correction_system.h"
 #include "femup/problems/noise.h"
 #include "femup/studies/factor_solve.h"
@@ -46,13 +47,32 @@ RmStatistics Summarise(std::vector<double> v) {
 
 }  // namespace
 
-NoiseStudyResult RunNoiseStudy(const Study& study) {
+std::string NoiseRunOptions::Validate() const {
+  if (threads < 1) return "threads: expected at least 1, got " + std::to_string(threads);
+  return "";
+}
+
+NoiseStudyResult RunNoiseStudy(const Study& study, const NoiseRunOptions& options) {
+  const std::string invalid = options.Validate();
+  if (!invalid.empty()) {
+    throw InputError("noise." + invalid.substr(0, invalid.find(':')),
+                     invalid.substr(invalid.find(':') + 2));
+  }
   if (!study.noise_study) {
     throw InputError(study.path, "noise_study: the study has no noise_study section");
   }
   if (!study.truth)
     throw InputError(study.path, "truth: a noise study needs preset factors");
   const NoiseStudySpec& spec = *study.noise_study;
+  if (spec.levels.empty())
+    throw InputError(study.path, "noise_study.levels: expected at least one level");
+  if (spec.draws < 1 || spec.draws > std::numeric_limits<int>::max() /
+                                         static_cast<int>(spec.levels.size())) {
+    throw InputError(study.path, "noise_study.draws: expected between 1 and " +
+                                     std::to_string(std::numeric_limits<int>::max() /
+                                                    spec.levels.size()) +
+                                     " draws per level");
+  }
   NoiseStudyResult r;
   r.study_name = study.name;
   r.spec = spec;
@@ -71,10 +91,14 @@ NoiseStudyResult RunNoiseStudy(const Study& study) {
     }
   }
 
-  const Modes fem = SolveModes(study.model.stiffness(), study.model.mass());
+  const Modes fem = FemModesFor(study);
   const std::vector<ModalData> clean = MeasuredStates(study);
   const std::vector<SolverSpec> variants =
       spec.compare.empty() ? std::vector<SolverSpec>{study.solver} : spec.compare;
+  // Only the factors and whether they are usable are scored: no row labels,
+  // identifiability analysis or covariance per draw.
+  FactorSolveOptions lean;
+  lean.diagnostics = false;
   r.comparison.resize(variants.size());
   for (std::size_t v = 0; v < variants.size(); ++v)
     r.comparison[v].label = variants[v].label;
@@ -90,38 +114,71 @@ NoiseStudyResult RunNoiseStudy(const Study& study) {
   r.figure_level = spec.levels[figure_index];
   const int np = study.model.num_parameters();
   Eigen::MatrixXd figure_estimates(np, spec.draws);
+  const std::size_t num_levels = spec.levels.size();
+  std::vector<NoiseModel> noise(num_levels);
+  for (std::size_t l = 0; l < num_levels; ++l) {
+    noise[l].level = spec.levels[l];
+    noise[l].shape_level = spec.levels[l] * spec.shape_level_ratio;
+    noise[l].shape_scale = spec.shape_noise == "peak" ? NoiseModel::ShapeScale::kPeak
+                                                      : NoiseModel::ShapeScale::kEntry;
+    noise[l].distribution = spec.distribution;
+  }
 
-  for (std::size_t l = 0; l < spec.levels.size(); ++l) {
-    NoiseModel noise;
-    noise.level = spec.levels[l];
-    noise.shape_level = spec.levels[l] * spec.shape_level_ratio;
-    noise.shape_scale = spec.shape_noise == "peak" ? NoiseModel::ShapeScale::kPeak
-                                                   : NoiseModel::ShapeScale::kEntry;
-    noise.distribution = spec.distribution;
+  // Every (level, draw) is solved into its own slot, in parallel; the slots are
+  // then reduced in level and draw order, so nothing depends on the threads.
+  struct DrawOutcome {
+    std::vector<Eigen::VectorXd> x;  // per variant
+    std::vector<char> ok;            // per variant: usable and finite
+    std::vector<double> seconds;     // per variant: solve time
+  };
+  const int draws = spec.draws;
+  const int total = static_cast<int>(num_levels) * draws;
+  std::vector<DrawOutcome> outcomes(static_cast<std::size_t>(total));
+  ParallelFor(
+      total, options.threads,
+      [&](int task) {
+        const std::size_t l = static_cast<std::size_t>(task / draws);
+        const int draw = task % draws;
+        std::seed_seq seq{static_cast<unsigned long long>(spec.seed & 0xffffffffu),
+                          static_cast<unsigned long long>(spec.seed >> 32),
+                          static_cast<unsigned long long>(l),
+                          static_cast<unsigned long long>(draw)};
+        std::mt19937_64 rng(seq);
+        std::vector<ModalData> noisy;
+        noisy.reserve(clean.size());
+        for (const ModalData& m : clean) noisy.push_back(Corrupt(m, noise[l], &rng));
+        DrawOutcome& out = outcomes[static_cast<std::size_t>(task)];
+        out.x.resize(variants.size());
+        out.ok.resize(variants.size());
+        out.seconds.resize(variants.size());
+        for (std::size_t v = 0; v < variants.size(); ++v) {
+          FactorSolve fs = SolveFactors(study, variants[v], fem, noisy, lean);
+          LinearSolution& sol = fs.solution;
+          out.ok[v] = sol.summary.usable() && sol.x.allFinite();
+          out.seconds[v] = sol.summary.time_seconds;
+          out.x[v] = std::move(sol.x);
+        }
+      },
+      options.progress);
+
+  for (std::size_t l = 0; l < num_levels; ++l) {
     std::vector<std::vector<double>> rm(r.added_mass_indices.size());
     std::vector<std::vector<double>> draw_average(variants.size());
     std::vector<int> usable_by(variants.size(), 0);
     int usable = 0;
-    for (int draw = 0; draw < spec.draws; ++draw) {
-      std::seed_seq seq{static_cast<unsigned long long>(spec.seed & 0xffffffffu),
-                        static_cast<unsigned long long>(spec.seed >> 32),
-                        static_cast<unsigned long long>(l),
-                        static_cast<unsigned long long>(draw)};
-      std::mt19937_64 rng(seq);
-      std::vector<ModalData> noisy;
-      for (const ModalData& m : clean) noisy.push_back(Corrupt(m, noise, &rng));
+    for (int draw = 0; draw < draws; ++draw) {
+      const DrawOutcome& out =
+          outcomes[l * static_cast<std::size_t>(draws) + static_cast<std::size_t>(draw)];
       for (std::size_t v = 0; v < variants.size(); ++v) {
-        const FactorSolve fs = SolveFactors(study, variants[v], fem, noisy);
-        const LinearSolution& sol = fs.solution;
-        r.comparison[v].seconds += sol.summary.time_seconds;
-        const bool ok = sol.summary.usable() && sol.x.allFinite();
+        const Eigen::VectorXd& x = out.x[v];
+        r.comparison[v].seconds += out.seconds[v];
+        const bool ok = out.ok[v] != 0;
         usable_by[v] += ok ? 1 : 0;
         double sum = 0;
         for (std::size_t k = 0; k < r.added_mass_indices.size(); ++k) {
           const int i = r.added_mass_indices[k];
           const double e =
-              ok ? std::abs(sol.x[i] - r.preset[i]) / std::abs(r.preset[i]) * 100.0
-                 : kNaN;
+              ok ? std::abs(x[i] - r.preset[i]) / std::abs(r.preset[i]) * 100.0 : kNaN;
           sum += e;
           if (v == 0) rm[k].push_back(e);
         }
@@ -129,7 +186,7 @@ NoiseStudyResult RunNoiseStudy(const Study& study) {
         if (v != 0) continue;
         usable += ok ? 1 : 0;
         if (l == figure_index) {
-          figure_estimates.col(draw) = ok ? sol.x : Eigen::VectorXd::Constant(np, kNaN);
+          figure_estimates.col(draw) = ok ? x : Eigen::VectorXd::Constant(np, kNaN);
         }
       }
     }

@@ -23,6 +23,9 @@ bool SystemFormFromString(const std::string& text, SystemForm* form);
 struct CorrectionSystemOptions {
   SystemForm form = SystemForm::kStacked;
   int num_fem_modes = -1;  // -1: every FEM mode given; otherwise the first k
+  // false: no row_labels on the problem (repeated builds nobody reads them from,
+  // e.g. a noise study's draws); A, b, names and groups are the same.
+  bool row_labels = true;
 };
 
 // Builds Z and F. `fem_modes` are M-normalised modes of the baseline (K, M);

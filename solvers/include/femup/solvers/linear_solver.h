@@ -43,6 +43,14 @@ struct LinearSolverOptions {
   int max_iterations = 1000;
   double kkt_tolerance = 1e-8;  // relative; answers above it are not "solved"
   double confidence_level = 0.95;
+  // false: the caller needs only x, the residual and the summary (many repeated
+  // solves, e.g. a noise study's draws). lstsq then skips the identifiability
+  // analysis, the covariance and the intervals, and solves a provably
+  // full-column-rank system by Householder QR with column pivoting (on the
+  // column-scaled matrix, no refinement: the answer agrees with the SVD path's
+  // to about cond^2 * machine epsilon); anything else goes the SVD path. Other
+  // solvers ignore it.
+  bool diagnostics = true;
   std::string Validate() const;  // empty when valid, else "<field>: what is wrong"
 };
 

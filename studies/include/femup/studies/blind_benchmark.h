@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "femup/output_dir.h"
+#include "femup/progress.h"
 
 namespace femup {
 
@@ -76,9 +77,11 @@ struct BenchmarkResult {
 std::vector<BenchmarkCase> GenerateBenchmark(const BenchmarkOptions& options,
                                              const std::string& out_dir);
 
-// Diagnoses each generated case from its study file (in parallel) and fills in
-// the outcome.
-BenchmarkResult RunBenchmark(const BenchmarkOptions& options, const std::string& out_dir);
+// Diagnoses each generated case from its study file (options.threads in
+// parallel) and fills in the outcome. `progress`, when set, is called after each
+// case as (cases done, cases), from the worker threads (femup/progress.h).
+BenchmarkResult RunBenchmark(const BenchmarkOptions& options, const std::string& out_dir,
+                             const ProgressCallback& progress = {});
 
 // scores.json, scores.md, results.jsonl and, when `plots`, accuracy.png and
 // calibration.png.

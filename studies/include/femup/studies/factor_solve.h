@@ -41,9 +41,18 @@ bool UsesNormalCorrectionSystem(const Study& study);
 // would need every mode of a model above the dense limit.
 Modes FemModesFor(const Study& study);
 
+struct FactorSolveOptions {
+  // false: the caller reads only solution.x and solution.summary, many times over
+  // (a noise study's draws): the problem gets no row labels and linear solvers
+  // run with LinearSolverOptions::diagnostics = false (lstsq: no identifiability
+  // analysis, no covariance; QR when the rank is provably full).
+  bool diagnostics = true;
+};
+
 // `fem_modes`: from FemModesFor(study). Throws InputError for unusable input
 // (e.g. a fixed name that matches nothing).
 FactorSolve SolveFactors(const Study& study, const SolverSpec& spec,
-                         const Modes& fem_modes, const std::vector<ModalData>& measured);
+                         const Modes& fem_modes, const std::vector<ModalData>& measured,
+                         const FactorSolveOptions& options = {});
 
 }  // namespace femup

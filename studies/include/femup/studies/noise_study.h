@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "femup/output_dir.h"
+#include "femup/progress.h"
 #include "femup/studies/study.h"
 
 namespace femup {
@@ -41,10 +42,23 @@ struct NoiseStudyResult {
   std::vector<SolverScores> comparison;
 };
 
-// Runs the study described by study.noise_study (throws InputError if absent).
-// Draw d at level l uses a generator seeded with (seed, l, d): results do not
-// depend on the order of evaluation.
-NoiseStudyResult RunNoiseStudy(const Study& study);
+// How to run a noise study; the results do not depend on any of it.
+struct NoiseRunOptions {
+  // Draws solved in parallel (std::threads). Every draw has its own generator
+  // and its own result slot, reduced in draw order: the results are
+  // bit-identical for any thread count (solve times aside).
+  int threads = 1;
+  // Called after each draw as (draws done, levels x draws), from the worker
+  // threads; empty: no reports. See femup/progress.h.
+  ProgressCallback progress;
+  std::string Validate() const;  // "" or "<field>: what is wrong"
+};
+
+// Runs the study described by study.noise_study (throws InputError if absent,
+// and InputError "noise.threads" for invalid options). Draw d at level l uses a
+// generator seeded with (seed, l, d): results do not depend on the order of
+// evaluation.
+NoiseStudyResult RunNoiseStudy(const Study& study, const NoiseRunOptions& options = {});
 
 void WriteNoiseOutputs(const NoiseStudyResult& result, bool plots, OutputDir* out,
                        std::vector<std::string>* warnings);
