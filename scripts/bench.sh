@@ -30,8 +30,12 @@ eigen_dofs=${FEMUP_EIGEN_PEER_DOFS:-1e5}
 system_size=${FEMUP_SYSTEM_PEER_SIZE:-1e5}
 noise_draws=${FEMUP_NOISE_PEER_DRAWS:-1000}
 
+# The compiler flags of the CI's Release build, so that a compiler cache (ccache,
+# used when installed) serves this build from that one.
+launcher=()
+if command -v ccache > /dev/null; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DFEMUP_BUILD_TESTS=OFF \
-  -DFEMUP_BUILD_BENCHMARKS=ON > /dev/null
+  -DFEMUP_BUILD_BENCHMARKS=ON -DCMAKE_CXX_FLAGS="-Werror" "${launcher[@]}" > /dev/null
 cmake --build "$build" --target solvers_bench femup_peer_compare \
   femup_eigen_peer_compare femup_system_peer_compare femup_noise_peer_compare \
   -j "${FEMUP_BENCH_JOBS:-2}"

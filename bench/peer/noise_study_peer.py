@@ -84,8 +84,9 @@ def draw_r(rng, distribution, shape):
     return rng.uniform(-1.0, 1.0, shape)
 
 
-def run_loop(study, k, m, basis, states):
-    """Steps 1-6, a Python loop over draws."""
+def setup(study, k, m, states):
+    """Step 1 and what both variants need: the FEM modes, the parameter kinds, the
+    fixed and free factors, the preset added-mass factors, the dry and wet states."""
     nf = study["fem_modes"]
     _, phi_fem = scipy.linalg.eigh(k, m)
     phi_fem = phi_fem[:, :nf]
@@ -98,6 +99,14 @@ def run_loop(study, k, m, basis, states):
     preset = np.asarray(study["preset"])
     added = np.asarray(study["added_mass_indices"], dtype=int)
     dry, wet = (0, 1) if not states[0]["wet"] else (1, 0)
+    return (phi_fem, kinds, is_stiffness, is_added, fixed, fixed_values, free, preset, added,
+            dry, wet)
+
+
+def run_loop(study, k, m, basis, states):
+    """Steps 1-6, a Python loop over draws."""
+    (phi_fem, kinds, is_stiffness, is_added, fixed, fixed_values, free, preset, added, dry,
+     wet) = setup(study, k, m, states)
 
     def blocks(lam, phi, wet_state):
         bphi = basis @ phi                                  # (p, n, modes)
@@ -142,18 +151,8 @@ def run_loop(study, k, m, basis, states):
 
 def run_vectorised(study, k, m, basis, states):
     """Steps 1-6 with the draws of a level batched; lstsq in a loop."""
-    nf = study["fem_modes"]
-    _, phi_fem = scipy.linalg.eigh(k, m)
-    phi_fem = phi_fem[:, :nf]
-    kinds = study["kinds"]
-    is_stiffness = np.array([kd == "stiffness" for kd in kinds])
-    is_added = np.array([kd == "added_mass" for kd in kinds])
-    fixed = np.array(sorted(int(i) for i in study["fixed"]), dtype=int)
-    fixed_values = np.array([study["fixed"][str(i)] for i in fixed])
-    free = np.setdiff1d(np.arange(len(kinds)), fixed)
-    preset = np.asarray(study["preset"])
-    added = np.asarray(study["added_mass_indices"], dtype=int)
-    dry, wet = (0, 1) if not states[0]["wet"] else (1, 0)
+    (phi_fem, kinds, is_stiffness, is_added, fixed, fixed_values, free, preset, added, dry,
+     wet) = setup(study, k, m, states)
     draws = study["draws"]
     # Phi' B_k for every parameter: (p, nf, n), then Phi' B_k phi is one matmul.
     proj_basis = np.einsum("ni,pnm->pim", phi_fem, basis)
