@@ -89,8 +89,8 @@ Eigen::MatrixXd ModalData::FullShapes(int num_dofs, const std::string& where) co
   if (!IsComplete(num_dofs)) {
     std::ostringstream msg;
     msg << "shapes are given at " << shapes.rows() << " of the model's " << num_dofs
-        << " DOFs; the linear method needs every DOF (mode-shape expansion from sensors "
-           "is not available yet)";
+        << " DOFs; the linear method needs every DOF: expand them (expansion: {method: "
+           "serep | lsq | dynamic} on the measurement) or use method: sensitivity";
     throw InputError(where + ".shapes", msg.str());
   }
   if (sensor_dofs.empty()) return shapes;
