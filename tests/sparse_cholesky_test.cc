@@ -114,6 +114,34 @@ TEST_P(SparseCholeskyOrdering, SparseHalfSolveEqualsTheDenseOne) {
             1e-10 * reference.cwiseAbs().maxCoeff());
 }
 
+TEST_P(SparseCholeskyOrdering, SharedPatternHalfSolveEqualsOneByOne) {
+  const SparseMatrix a = Grid(15, 10, 0.02);
+  SparseCholeskyOptions options;
+  options.ordering = GetParam();
+  const SparseCholesky chol(a, options);
+  const SparseMatrix pattern = SparseColumns(static_cast<int>(a.rows()), 20, 4, 13);
+  std::vector<SparseMatrix> b(3, pattern);
+  std::mt19937_64 rng(21);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  for (SparseMatrix& bj : b) {
+    for (Eigen::Index k = 0; k < bj.nonZeros(); ++k) bj.valuePtr()[k] = normal(rng);
+  }
+  b[1].valuePtr()[0] = 0.0;  // an explicit zero keeps its place in the pattern
+  const std::vector<SparseMatrix> w = chol.HalfSolve(b);
+  ASSERT_EQ(w.size(), b.size());
+  for (std::size_t j = 0; j < b.size(); ++j) {
+    const Eigen::MatrixXd one = Eigen::MatrixXd(chol.HalfSolve(b[j]));
+    EXPECT_LT((Eigen::MatrixXd(w[j]) - one).cwiseAbs().maxCoeff(),
+              1e-13 * one.cwiseAbs().maxCoeff())
+        << j;
+    EXPECT_EQ(w[j].nonZeros(), w[0].nonZeros());
+  }
+  EXPECT_TRUE(chol.HalfSolve(std::vector<SparseMatrix>{}).empty());
+  std::vector<SparseMatrix> mixed = {
+      pattern, SparseColumns(static_cast<int>(a.rows()), 20, 4, 14)};
+  EXPECT_THROW(chol.HalfSolve(mixed), InputError);
+}
+
 INSTANTIATE_TEST_SUITE_P(All, SparseCholeskyOrdering,
                          ::testing::Values(Ordering::kAuto, Ordering::kAmd,
                                            Ordering::kNestedDissection));

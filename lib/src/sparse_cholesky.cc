@@ -175,6 +175,100 @@ Eigen::MatrixXd SparseCholesky::Solve(const Eigen::MatrixXd& b) const {
   return x;
 }
 
+std::vector<SparseMatrix> SparseCholesky::HalfSolve(
+    const std::vector<SparseMatrix>& b) const {
+  const Impl& m = *impl_;
+  const int n = m.n();
+  const std::size_t count = b.size();
+  if (count == 0) return {};
+  const SparseMatrix& first = b.front();
+  const auto same_pattern = [&first](const SparseMatrix& a) {
+    return a.rows() == first.rows() && a.cols() == first.cols() && a.isCompressed() &&
+           std::equal(a.outerIndexPtr(), a.outerIndexPtr() + a.cols() + 1,
+                      first.outerIndexPtr()) &&
+           std::equal(a.innerIndexPtr(), a.innerIndexPtr() + a.nonZeros(),
+                      first.innerIndexPtr());
+  };
+  for (const SparseMatrix& a : b) {
+    if (a.rows() != size() || !same_pattern(a)) {
+      throw InputError("SparseCholesky::HalfSolve",
+                       "the right-hand sides must be compressed, have " +
+                           std::to_string(size()) + " rows and share one pattern");
+    }
+  }
+  std::vector<SparseMatrix> out(count, SparseMatrix(n, first.cols()));
+  if (n == 0 || first.cols() == 0) return out;
+  // The common pattern, rows permuted (P B).
+  std::vector<int> rows(first.innerIndexPtr(), first.innerIndexPtr() + first.nonZeros());
+  for (int& r : rows) r = m.inverse[r];
+  std::vector<int> outer(first.outerIndexPtr(), first.outerIndexPtr() + first.cols() + 1);
+  cs_di l{};
+  l.nzmax = m.lp()[n];
+  l.m = n;
+  l.n = n;
+  l.p = m.lp();
+  l.i = m.li();
+  l.x = m.lx();
+  l.nz = -1;
+  cs_di pattern{};
+  pattern.nzmax = static_cast<int>(rows.size());
+  pattern.m = n;
+  pattern.n = static_cast<int>(first.cols());
+  pattern.p = outer.data();
+  pattern.i = rows.data();
+  pattern.x = nullptr;
+  pattern.nz = -1;
+
+  // x: n x count, row-major, so that the count values of one row sit together.
+  std::vector<double> x(static_cast<std::size_t>(n) * count, 0.0);
+  std::vector<int> out_outer(first.cols() + 1, 0);
+  std::vector<int> out_inner;
+  std::vector<std::vector<double>> out_values(count);
+  std::vector<int> column;
+  const int* lp = m.lp();
+  const int* li = m.li();
+  const double* lx = m.lx();
+  for (int k = 0; k < pattern.n; ++k) {
+    const int top = cs_di_reach(&l, &pattern, k, m.xi.data(), nullptr);
+    for (int p = top; p < n; ++p) {
+      std::fill_n(x.data() + static_cast<std::size_t>(m.xi[p]) * count, count, 0.0);
+    }
+    for (int p = outer[k]; p < outer[k + 1]; ++p) {
+      double* row = x.data() + static_cast<std::size_t>(rows[p]) * count;
+      for (std::size_t j = 0; j < count; ++j) row[j] = b[j].valuePtr()[p];
+    }
+    // Forward substitution in the reach's topological order (L's diagonal
+    // entry first in each column).
+    for (int p = top; p < n; ++p) {
+      const int c = m.xi[p];
+      double* xc = x.data() + static_cast<std::size_t>(c) * count;
+      const double diagonal = lx[lp[c]];
+      for (std::size_t j = 0; j < count; ++j) xc[j] /= diagonal;
+      for (int q = lp[c] + 1; q < lp[c + 1]; ++q) {
+        double* xr = x.data() + static_cast<std::size_t>(li[q]) * count;
+        const double v = lx[q];
+        for (std::size_t j = 0; j < count; ++j) xr[j] -= v * xc[j];
+      }
+    }
+    column.assign(m.xi.begin() + top, m.xi.begin() + n);
+    std::sort(column.begin(), column.end());
+    for (int r : column) {
+      out_inner.push_back(r);
+      const double* xr = x.data() + static_cast<std::size_t>(r) * count;
+      for (std::size_t j = 0; j < count; ++j) out_values[j].push_back(xr[j]);
+    }
+    out_outer[k + 1] = static_cast<int>(out_inner.size());
+  }
+  for (std::size_t j = 0; j < count; ++j) {
+    SparseMatrix& w = out[j];
+    w.resizeNonZeros(static_cast<Eigen::Index>(out_inner.size()));
+    std::copy(out_outer.begin(), out_outer.end(), w.outerIndexPtr());
+    std::copy(out_inner.begin(), out_inner.end(), w.innerIndexPtr());
+    std::copy(out_values[j].begin(), out_values[j].end(), w.valuePtr());
+  }
+  return out;
+}
+
 SparseMatrix SparseCholesky::HalfSolve(const SparseMatrix& b) const {
   const Impl& m = *impl_;
   const int n = m.n();

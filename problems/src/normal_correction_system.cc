@@ -73,47 +73,50 @@ LinearProblem BuildNormalCorrectionSystem(const ParametrisedModel& model,
         }
       }
     }
+    // Z_j for every mode of the state, column k = c_k B_k phi_j on the support
+    // of B_k: one sparsity pattern for all of them (the columns whose factor
+    // enters the state), so that one sparse half solve serves them all.
+    std::vector<int> outer(p + 1, 0);
+    std::vector<int> inner;
+    for (int k = 0; k < p; ++k) {
+      const bool enters =
+          model.parameter(k).kind != ParameterKind::kAddedMass || wet;  // else c_k = 0
+      if (enters) inner.insert(inner.end(), support[k].begin(), support[k].end());
+      outer[k + 1] = static_cast<int>(inner.size());
+    }
+    std::vector<SparseMatrix> z(m, SparseMatrix(dofs, p));
+    for (int j = 0; j < m; ++j) {
+      const double lambda = lambdas[j];
+      SparseMatrix& zj = z[j];
+      zj.resizeNonZeros(static_cast<Eigen::Index>(inner.size()));
+      std::copy(outer.begin(), outer.end(), zj.outerIndexPtr());
+      std::copy(inner.begin(), inner.end(), zj.innerIndexPtr());
+      for (int k = 0; k < p; ++k) {
+        const double factor =
+            model.parameter(k).kind == ParameterKind::kStiffness ? 1.0 : -lambda;
+        for (int q = outer[k]; q < outer[k + 1]; ++q) {
+          zj.valuePtr()[q] = factor * products[k](q - outer[k], j);
+        }
+      }
+      nnz_z += zj.nonZeros();
+    }
+    // With P M P' = L L': Z' M^-1 Z = W' W for W = L^-1 P Z, whose columns are
+    // sparse (only the elimination-tree ancestors of each basis's DOFs).
+    auto t_phase = std::chrono::steady_clock::now();
+    const std::vector<SparseMatrix> w = chol.HalfSolve(z);
+    seconds_half_solve += Since(t_phase);
     for (int j = 0; j < m; ++j) {
       ++modes;
       const Eigen::VectorXd phi = shapes.col(j);
       const double lambda = lambdas[j];
-      // Z_j (sparse: each basis acts on its own DOFs), column k = c_k B_k phi_j.
-      std::vector<Eigen::Triplet<double>> t;
-      for (int k = 0; k < p; ++k) {
-        double factor = 0;
-        switch (model.parameter(k).kind) {
-          case ParameterKind::kStiffness:
-            factor = 1.0;
-            break;
-          case ParameterKind::kMass:
-            factor = -lambda;
-            break;
-          case ParameterKind::kAddedMass:
-            factor = wet ? -lambda : 0.0;
-            break;
-        }
-        if (factor == 0.0) continue;
-        for (std::size_t a = 0; a < support[k].size(); ++a) {
-          const double v = factor * products[k](static_cast<Eigen::Index>(a), j);
-          if (v != 0.0) t.emplace_back(support[k][a], k, v);
-        }
-      }
-      SparseMatrix z(dofs, p);
-      z.setFromTriplets(t.begin(), t.end());
-      nnz_z += z.nonZeros();
-      // With P M P' = L L': Z' M^-1 Z = W' W for W = L^-1 P Z, whose columns are
-      // sparse (only the elimination-tree ancestors of each basis's DOFs).
-      auto t_phase = std::chrono::steady_clock::now();
-      const SparseMatrix w = chol.HalfSolve(z);
-      seconds_half_solve += Since(t_phase);
-      nnz_w += w.nonZeros();
+      nnz_w += w[j].nonZeros();
       const Eigen::VectorXd f =
           -(model.stiffness() * phi - lambda * (model.mass() * phi));
       const Eigen::VectorXd y = chol.HalfSolve(Eigen::MatrixXd(f));
       f2 += y.squaredNorm();
-      h += w.transpose() * y;
+      h += w[j].transpose() * y;
       t_phase = std::chrono::steady_clock::now();
-      AddGram(w, &g);
+      AddGram(w[j], &g);
       seconds_gram += Since(t_phase);
     }
   }

@@ -61,6 +61,12 @@ class SparseCholesky {
   // L reachable from each column's pattern. Not thread-safe on one object
   // (the solve marks the factor's column pointers while it runs).
   SparseMatrix HalfSolve(const SparseMatrix& b) const;
+  // W_j = L^-1 P B_j for several right-hand sides B_j that share one sparsity
+  // pattern (the same outer and inner index arrays; values may differ, zeros
+  // included): each column's reach in L is found once for all of them and L is
+  // read once per column for all of them. The W_j share one pattern too.
+  // Throws InputError when the B_j differ in size or pattern.
+  std::vector<SparseMatrix> HalfSolve(const std::vector<SparseMatrix>& b) const;
 
  private:
   struct Impl;
