@@ -36,6 +36,20 @@ cholmod_sparse ViewLower(SparseMatrix& lower) {
   return a;
 }
 
+// A CXSparse view (no copy) of compressed columns: rows x cols, column
+// pointers p (cols + 1), row indices i, values x (may be null for a pattern).
+cs_di CsView(int rows, int cols, int* p, int* i, double* x) {
+  cs_di a{};
+  a.nzmax = p[cols];
+  a.m = rows;
+  a.n = cols;
+  a.p = p;
+  a.i = i;
+  a.x = x;
+  a.nz = -1;  // compressed columns
+  return a;
+}
+
 }  // namespace
 
 struct SparseCholesky::Impl {
@@ -202,22 +216,9 @@ std::vector<SparseMatrix> SparseCholesky::HalfSolve(
   std::vector<int> rows(first.innerIndexPtr(), first.innerIndexPtr() + first.nonZeros());
   for (int& r : rows) r = m.inverse[r];
   std::vector<int> outer(first.outerIndexPtr(), first.outerIndexPtr() + first.cols() + 1);
-  cs_di l{};
-  l.nzmax = m.lp()[n];
-  l.m = n;
-  l.n = n;
-  l.p = m.lp();
-  l.i = m.li();
-  l.x = m.lx();
-  l.nz = -1;
-  cs_di pattern{};
-  pattern.nzmax = static_cast<int>(rows.size());
-  pattern.m = n;
-  pattern.n = static_cast<int>(first.cols());
-  pattern.p = outer.data();
-  pattern.i = rows.data();
-  pattern.x = nullptr;
-  pattern.nz = -1;
+  cs_di l = CsView(n, n, m.lp(), m.li(), m.lx());
+  cs_di pattern =
+      CsView(n, static_cast<int>(first.cols()), outer.data(), rows.data(), nullptr);
 
   // x: n x count, row-major, so that the count values of one row sit together.
   std::vector<double> x(static_cast<std::size_t>(n) * count, 0.0);
@@ -285,22 +286,9 @@ SparseMatrix SparseCholesky::HalfSolve(const SparseMatrix& b) const {
   for (Eigen::Index k = 0; k < pb.nonZeros(); ++k) {
     pb.innerIndexPtr()[k] = m.inverse[pb.innerIndexPtr()[k]];
   }
-  cs_di l{};
-  l.nzmax = m.lp()[n];
-  l.m = n;
-  l.n = n;
-  l.p = m.lp();
-  l.i = m.li();
-  l.x = m.lx();
-  l.nz = -1;
-  cs_di rhs{};
-  rhs.nzmax = static_cast<int>(pb.nonZeros());
-  rhs.m = n;
-  rhs.n = static_cast<int>(pb.cols());
-  rhs.p = pb.outerIndexPtr();
-  rhs.i = pb.innerIndexPtr();
-  rhs.x = pb.valuePtr();
-  rhs.nz = -1;
+  cs_di l = CsView(n, n, m.lp(), m.li(), m.lx());
+  cs_di rhs = CsView(n, static_cast<int>(pb.cols()), pb.outerIndexPtr(),
+                     pb.innerIndexPtr(), pb.valuePtr());
 
   std::vector<int> outer(b.cols() + 1, 0);
   std::vector<int> inner;
