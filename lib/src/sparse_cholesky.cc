@@ -7,7 +7,6 @@
 #include <chrono>
 #include <cmath>
 #include <numeric>
-#include <utility>
 
 #include "femup/errors.h"
 
@@ -60,7 +59,6 @@ struct SparseCholesky::Impl {
   SparseCholeskyInfo info;
   // Work space of the sparse half-solve.
   mutable std::vector<int> xi;
-  mutable std::vector<double> x;
 
   ~Impl() {
     if (factor != nullptr) cholmod_free_factor(&factor, &common);
@@ -158,7 +156,6 @@ SparseCholesky::SparseCholesky(const SparseMatrix& a,
   }
   m.info.nnz_l = m.lp()[n];
   m.xi.assign(2 * static_cast<std::size_t>(n), 0);
-  m.x.assign(n, 0.0);
 }
 
 SparseCholesky::~SparseCholesky() = default;
@@ -271,45 +268,9 @@ std::vector<SparseMatrix> SparseCholesky::HalfSolve(
 }
 
 SparseMatrix SparseCholesky::HalfSolve(const SparseMatrix& b) const {
-  const Impl& m = *impl_;
-  const int n = m.n();
-  if (b.rows() != size()) {
-    throw InputError("SparseCholesky::HalfSolve",
-                     "the right-hand side has " + std::to_string(b.rows()) +
-                         " rows, expected " + std::to_string(size()));
-  }
-  SparseMatrix out(n, b.cols());
-  if (n == 0 || b.cols() == 0) return out;
-  // P B in compressed columns (row indices permuted; cs_spsolve needs no order).
-  SparseMatrix pb = b;
-  pb.makeCompressed();
-  for (Eigen::Index k = 0; k < pb.nonZeros(); ++k) {
-    pb.innerIndexPtr()[k] = m.inverse[pb.innerIndexPtr()[k]];
-  }
-  cs_di l = CsView(n, n, m.lp(), m.li(), m.lx());
-  cs_di rhs = CsView(n, static_cast<int>(pb.cols()), pb.outerIndexPtr(),
-                     pb.innerIndexPtr(), pb.valuePtr());
-
-  std::vector<int> outer(b.cols() + 1, 0);
-  std::vector<int> inner;
-  std::vector<double> values;
-  std::vector<std::pair<int, double>> column;
-  for (int k = 0; k < rhs.n; ++k) {
-    const int top = cs_di_spsolve(&l, &rhs, k, m.xi.data(), m.x.data(), nullptr, 1);
-    column.clear();
-    for (int p = top; p < n; ++p) column.emplace_back(m.xi[p], m.x[m.xi[p]]);
-    std::sort(column.begin(), column.end());
-    for (const auto& [row, value] : column) {
-      inner.push_back(row);
-      values.push_back(value);
-    }
-    outer[k + 1] = static_cast<int>(inner.size());
-  }
-  out.resizeNonZeros(static_cast<Eigen::Index>(inner.size()));
-  std::copy(outer.begin(), outer.end(), out.outerIndexPtr());
-  std::copy(inner.begin(), inner.end(), out.innerIndexPtr());
-  std::copy(values.begin(), values.end(), out.valuePtr());
-  return out;
+  SparseMatrix compressed = b;
+  compressed.makeCompressed();
+  return HalfSolve(std::vector<SparseMatrix>{compressed}).front();
 }
 
 }  // namespace femup

@@ -17,13 +17,9 @@ double Since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// g += W' W for sparse W (columns sorted). Rows of W that many columns share
-// (the separators at the top of the elimination tree) go through a dense
-// rank-k update; the others through the sparse product.
+// g += W' W for sparse W, by Eigen's sparse product.
 void AddGram(const SparseMatrix& w, Eigen::MatrixXd* g) {
-  const SparseMatrix wt = w.transpose();  // row-wise access
-  const SparseMatrix prod = wt * w;
-  *g += Eigen::MatrixXd(prod);
+  *g += Eigen::MatrixXd(SparseMatrix(w.transpose()) * w);
 }
 
 }  // namespace
@@ -48,6 +44,16 @@ LinearProblem BuildNormalCorrectionSystem(const ParametrisedModel& model,
   int modes = 0;
   long long nnz_z = 0, nnz_w = 0;
   double seconds_half_solve = 0, seconds_gram = 0;
+  // The DOFs each basis acts on (its nonzero columns; symmetric, so rows too),
+  // the same for every state.
+  std::vector<std::vector<int>> support(p);
+  for (int k = 0; k < p; ++k) {
+    const SparseMatrix& basis = model.parameter(k).basis;
+    for (Eigen::Index r = 0; r < basis.outerSize(); ++r) {
+      if (SparseMatrix::InnerIterator(basis, r))
+        support[k].push_back(static_cast<int>(r));
+    }
+  }
   for (const ModalData& st : states) {
     const std::string where = "measurements." + st.state;
     st.Validate(dofs, where);
@@ -55,20 +61,21 @@ LinearProblem BuildNormalCorrectionSystem(const ParametrisedModel& model,
     const Eigen::VectorXd lambdas = st.Eigenvalues();
     const bool wet = st.immersion == Immersion::kWet;
     const int m = st.num_modes();
-    // B_k Phi on the support of each basis, for all modes of the state at once:
-    // row r of B_k Phi is sum over column r of B_k (symmetric) of B_k(c, r) Phi(c, :).
-    std::vector<std::vector<int>> support(p);
+    // Added-mass factors enter wet states only (c_k = 0 in dry ones).
+    const auto enters = [&](int k) {
+      return model.parameter(k).kind != ParameterKind::kAddedMass || wet;
+    };
+    // B_k Phi on the support of each basis that enters the state, for all its
+    // modes at once: row r of B_k Phi is sum over column r of B_k (symmetric)
+    // of B_k(c, r) Phi(c, :).
     std::vector<Eigen::MatrixXd> products(p);
     for (int k = 0; k < p; ++k) {
+      if (!enters(k)) continue;
       const SparseMatrix& basis = model.parameter(k).basis;
-      std::vector<int>& rows = support[k];
-      for (Eigen::Index r = 0; r < basis.outerSize(); ++r) {
-        if (SparseMatrix::InnerIterator(basis, r)) rows.push_back(static_cast<int>(r));
-      }
       Eigen::MatrixXd& y = products[k];
-      y = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(rows.size()), m);
-      for (std::size_t a = 0; a < rows.size(); ++a) {
-        for (SparseMatrix::InnerIterator it(basis, rows[a]); it; ++it) {
+      y = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(support[k].size()), m);
+      for (std::size_t a = 0; a < support[k].size(); ++a) {
+        for (SparseMatrix::InnerIterator it(basis, support[k][a]); it; ++it) {
           y.row(static_cast<Eigen::Index>(a)) += it.value() * shapes.row(it.row());
         }
       }
@@ -79,9 +86,7 @@ LinearProblem BuildNormalCorrectionSystem(const ParametrisedModel& model,
     std::vector<int> outer(p + 1, 0);
     std::vector<int> inner;
     for (int k = 0; k < p; ++k) {
-      const bool enters =
-          model.parameter(k).kind != ParameterKind::kAddedMass || wet;  // else c_k = 0
-      if (enters) inner.insert(inner.end(), support[k].begin(), support[k].end());
+      if (enters(k)) inner.insert(inner.end(), support[k].begin(), support[k].end());
       outer[k + 1] = static_cast<int>(inner.size());
     }
     std::vector<SparseMatrix> z(m, SparseMatrix(dofs, p));
@@ -105,16 +110,15 @@ LinearProblem BuildNormalCorrectionSystem(const ParametrisedModel& model,
     auto t_phase = std::chrono::steady_clock::now();
     const std::vector<SparseMatrix> w = chol.HalfSolve(z);
     seconds_half_solve += Since(t_phase);
+    // F_j = -(K phi_j - lambda_j M phi_j), all modes at once, and L^-1 P F.
+    const Eigen::MatrixXd f =
+        -(model.stiffness() * shapes - (model.mass() * shapes) * lambdas.asDiagonal());
+    const Eigen::MatrixXd y = chol.HalfSolve(f);
+    f2 += y.squaredNorm();
     for (int j = 0; j < m; ++j) {
       ++modes;
-      const Eigen::VectorXd phi = shapes.col(j);
-      const double lambda = lambdas[j];
       nnz_w += w[j].nonZeros();
-      const Eigen::VectorXd f =
-          -(model.stiffness() * phi - lambda * (model.mass() * phi));
-      const Eigen::VectorXd y = chol.HalfSolve(Eigen::MatrixXd(f));
-      f2 += y.squaredNorm();
-      h += w[j].transpose() * y;
+      h += w[j].transpose() * y.col(j);
       t_phase = std::chrono::steady_clock::now();
       AddGram(w[j], &g);
       seconds_gram += Since(t_phase);

@@ -35,13 +35,14 @@ Modes FemModesFor(const Study& study) {
   if (study.system.num_fem_modes > 0 && study.system.num_fem_modes < n - 1) {
     options.num_modes = study.system.num_fem_modes;
   } else if (n > options.dense_limit) {
+    const bool summed = study.system.form == SystemForm::kSummed;
     throw InputError(study.path,
-                     "system.form: the summed form needs every FEM mode, a dense "
-                     "eigen-solve of all " +
-                         std::to_string(n) + " DOFs (the limit is " +
-                         std::to_string(options.dense_limit) +
-                         "); use form: stacked (weighted by M^-1 without the modes) or "
-                         "set system.fem_modes");
+                     std::string(summed ? "system.form: the summed form"
+                                        : "system.fem_modes: this many FEM modes") +
+                         " needs a dense eigen-solve of all " + std::to_string(n) +
+                         " DOFs (the limit is " + std::to_string(options.dense_limit) +
+                         "); use form: stacked without fem_modes (weighted by M^-1 "
+                         "without the modes) or fewer system.fem_modes");
   }
   return SolveModes(study.model.stiffness(), study.model.mass(), options);
 }

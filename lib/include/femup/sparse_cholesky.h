@@ -1,8 +1,8 @@
 // A sparse Cholesky factorisation P A P' = L L' of a symmetric positive
 // definite matrix (CHOLMOD, fill-reducing ordering by nested dissection or
 // AMD), with the half solve W = L^-1 P B for a SPARSE right-hand side B whose
-// cost is that of the nonzeros it creates (CXSparse's cs_spsolve: only the
-// columns of L reachable from B's pattern are touched), not that of n.
+// cost is that of the columns of L reachable from B's pattern (found by
+// CXSparse's cs_reach), not that of n.
 //
 // Its use: weighted inner products B' A^-1 C = (L^-1 P B)' (L^-1 P C) of
 // columns with small support, as the "all FEM modes" weighting M^-1 of the
@@ -58,8 +58,9 @@ class SparseCholesky {
   // y = L^-1 P b for dense b (columns): then b' A^-1 c = y_b' y_c.
   Eigen::MatrixXd HalfSolve(const Eigen::MatrixXd& b) const;
   // W = L^-1 P B for sparse B, column by column, touching only the columns of
-  // L reachable from each column's pattern. Not thread-safe on one object
-  // (the solve marks the factor's column pointers while it runs).
+  // L reachable from each column's pattern (the several-right-hand-side solve
+  // below with one of them). Not thread-safe on one object (the solve marks
+  // the factor's column pointers while it runs, and shares a work space).
   SparseMatrix HalfSolve(const SparseMatrix& b) const;
   // W_j = L^-1 P B_j for several right-hand sides B_j that share one sparsity
   // pattern (the same outer and inner index arrays; values may differ, zeros
