@@ -5,8 +5,10 @@
 #include "femup/measurement.h"
 #include "femup/modal.h"
 #include "femup/problems/correction_system.h"
+#include "femup/problems/noise.h"
 #include "femup/problems/paper_chain.h"
 #include "femup/solvers/linear_solver.h"
+#include "femup/solvers/lstsq.h"
 
 namespace {
 
@@ -28,5 +30,64 @@ void BM_AssembleAndSolve(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_AssembleAndSolve)->Arg(0)->Arg(1)->ArgName("summed");
+
+// The phases of one draw of the paper's noise study (summed form, mass[4]
+// fixed, 2 + 2 modes corrupted at 5 %), each on its own: what
+// RunNoiseStudy's per-draw cost is made of.
+struct NoiseDraw {
+  femup::PaperChainScenario s = femup::PaperChain(3);
+  femup::Modes fem = femup::SolveModes(s.model.stiffness(), s.model.mass());
+  std::vector<femup::ModalData> clean = {
+      femup::PredictModes(s.model, s.preset, femup::Immersion::kDry, 2, "air"),
+      femup::PredictModes(s.model, s.preset, femup::Immersion::kWet, 2, "water")};
+  femup::NoiseModel noise;
+  femup::CorrectionSystemOptions options;
+  NoiseDraw() {
+    noise.level = 0.05;
+    options.form = femup::SystemForm::kSummed;
+    options.row_labels = false;
+  }
+};
+
+void BM_NoiseDrawCorrupt(benchmark::State& state) {
+  NoiseDraw d;
+  std::vector<femup::ModalData> noisy = d.clean;
+  std::uint64_t draw = 0;
+  for (auto _ : state) {
+    femup::CounterRng rng(1, 0, draw++);
+    for (std::size_t i = 0; i < noisy.size(); ++i)
+      femup::Corrupt(d.clean[i], d.noise, &rng, &noisy[i]);
+    benchmark::DoNotOptimize(noisy[0].shapes.data());
+  }
+}
+BENCHMARK(BM_NoiseDrawCorrupt);
+
+void BM_NoiseDrawFill(benchmark::State& state) {
+  NoiseDraw d;
+  const femup::PreparedCorrectionSystem system(d.s.model, d.fem, d.options);
+  femup::PreparedCorrectionSystem::Workspace work;
+  Eigen::MatrixXd a;
+  Eigen::VectorXd b;
+  for (auto _ : state) {
+    system.Fill(d.clean, &work, &a, &b);
+    benchmark::DoNotOptimize(a.data());
+  }
+}
+BENCHMARK(BM_NoiseDrawFill);
+
+void BM_NoiseDrawLeastSquares(benchmark::State& state) {
+  NoiseDraw d;
+  const femup::PreparedCorrectionSystem system(d.s.model, d.fem, d.options);
+  femup::PreparedCorrectionSystem::Workspace work;
+  Eigen::MatrixXd a;
+  Eigen::VectorXd b, z;
+  system.Fill(d.clean, &work, &a, &b);
+  const Eigen::MatrixXd a_free = a.leftCols(12);  // any 12 columns: full rank
+  femup::FullRankLeastSquares qr(1e-12, true);
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(qr.Solve(a_free, b, &z));
+  }
+}
+BENCHMARK(BM_NoiseDrawLeastSquares);
 
 }  // namespace

@@ -474,3 +474,86 @@ TEST(AnalyseIdentifiability, BadInputThrows) {
 
 }  // namespace
 }  // namespace femup
+
+namespace femup {
+namespace {
+
+// FullRankLeastSquares (lstsq.h): the least-squares answer of a full-rank
+// problem, on its loop path (<= 32 columns) and on Eigen's QR (more), against
+// the normal equations in long double; and every case it must hand back.
+TEST(FullRankLeastSquares, MatchesLongDoubleNormalEquationsOnBothPaths) {
+  for (const auto& [rows, cols] : {std::pair<int, int>{20, 12}, {33, 32}, {90, 40}}) {
+    Eigen::MatrixXd a = RandomMatrix(rows, cols, 20261124u + rows);
+    // Columns of very different sizes: the scaling must not change the answer.
+    for (int j = 0; j < cols; ++j) a.col(j) *= std::pow(10.0, (j % 7) - 3);
+    const Eigen::VectorXd b = RandomMatrix(rows, 1, 7u + rows).col(0);
+    const Eigen::VectorXd expected = NormalEquations(a, b);
+    FullRankLeastSquares solver(1e-10, true);
+    Eigen::VectorXd z;
+    ASSERT_TRUE(solver.Solve(a, b, &z)) << rows << " x " << cols;
+    ASSERT_EQ(z.size(), cols);
+    for (int j = 0; j < cols; ++j)
+      EXPECT_NEAR(z[j], expected[j], 1e-10 * std::abs(expected[j])) << j;
+    // Again with the same work space: the same answer.
+    Eigen::VectorXd again;
+    ASSERT_TRUE(solver.Solve(a, b, &again));
+    EXPECT_EQ(again, z);
+  }
+}
+
+TEST(FullRankLeastSquares, ReachesNistLongleyCertifiedDigits) {
+  // Longley: unscaled condition number about 5e7; certified to 15 digits.
+  const NistLinearDataset d =
+      ReadNistLinear(std::string(FEMUP_TEST_DATA_DIR) + "/nist/linear/Longley.dat");
+  const LinearProblem p = d.Problem();
+  FullRankLeastSquares solver(1e-10, true);
+  Eigen::VectorXd z;
+  ASSERT_TRUE(solver.Solve(p.A, p.b, &z));
+  double lre = 15;
+  for (int j = 0; j < d.num_parameters(); ++j)
+    lre = std::min(lre, LogRelativeError(static_cast<long double>(z[j]), d.certified[j]));
+  EXPECT_GE(lre, 8.0);
+  RecordProperty("Longley_digits", std::to_string(lre));
+}
+
+TEST(FullRankLeastSquares, HandsBackWhatItCannotProveFullRank) {
+  const Eigen::MatrixXd a = RandomMatrix(10, 4, 3u);
+  const Eigen::VectorXd b = RandomMatrix(10, 1, 4u).col(0);
+  FullRankLeastSquares solver(1e-10, true);
+  Eigen::VectorXd z;
+  Eigen::MatrixXd repeated = a;
+  repeated.col(3) = repeated.col(1);  // rank 3
+  EXPECT_FALSE(solver.Solve(repeated, b, &z));
+  Eigen::MatrixXd zero = a;
+  zero.col(2).setZero();
+  EXPECT_FALSE(solver.Solve(zero, b, &z));
+  EXPECT_FALSE(solver.Solve(a.topRows(3), b.head(3), &z));  // fewer rows than columns
+  EXPECT_FALSE(solver.Solve(a, b.head(9), &z));             // sizes disagree
+  // Nearly dependent (a small step out of the span of the others): s_min /
+  // s_max about 1e-12, below the tolerance 1e-10.
+  Eigen::MatrixXd near = a;
+  near.col(3) = a.col(1) + 1e-12 * RandomMatrix(10, 1, 99u).col(0);
+  EXPECT_FALSE(solver.Solve(near, b, &z));
+  // The same matrix passes a tolerance it meets (the proof allows for up to
+  // k ||R||_F ||R^-1||_F / cond, here within 1e2).
+  FullRankLeastSquares loose(1e-16, true);
+  EXPECT_TRUE(loose.Solve(near, b, &z));
+}
+
+// The no-diagnostics lstsq goes through it and agrees with the SVD path.
+TEST(FullRankLeastSquares, IsLstsqWithoutDiagnostics) {
+  LinearProblem p;
+  p.A = RandomMatrix(20, 12, 11u);
+  p.b = RandomMatrix(20, 1, 12u).col(0);
+  LinearSolverOptions lean;
+  lean.diagnostics = false;
+  const LinearSolution fast = CreateLinearSolver("lstsq", lean)->Solve(p);
+  const LinearSolution full = CreateLinearSolver("lstsq")->Solve(p);
+  EXPECT_NE(fast.summary.message.find("Householder QR"), std::string::npos)
+      << fast.summary.message;
+  for (int j = 0; j < 12; ++j)
+    EXPECT_NEAR(fast.x[j], full.x[j], 1e-12 * (1 + std::abs(full.x[j]))) << j;
+}
+
+}  // namespace
+}  // namespace femup

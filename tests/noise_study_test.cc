@@ -96,7 +96,9 @@ TEST(NoiseStudyThreads, SolverComparisonIsIdenticalAcrossThreads) {
   ExpectIdentical(a, b);
 }
 
-TEST(NoiseStudyThreads, ReportsProgressOfEveryDraw) {
+// Progress comes per chunk of draws (at least one report per level here), and
+// the last report counts every draw.
+TEST(NoiseStudyThreads, ReportsProgressUpToEveryDraw) {
   Study study = LoadStudy(Example("paper_chain_noise.yaml"));
   study.noise_study->draws = 5;
   study.noise_study->levels = {0.0, 0.01};
@@ -111,7 +113,8 @@ TEST(NoiseStudyThreads, ReportsProgressOfEveryDraw) {
     }
   };
   RunNoiseStudy(study, options);
-  EXPECT_EQ(calls.load(), 10);
+  EXPECT_GE(calls.load(), 2);
+  EXPECT_LE(calls.load(), 10);
   EXPECT_EQ(largest.load(), 10);
   EXPECT_EQ(bad_total.load(), 0);
 }

@@ -212,6 +212,52 @@ TEST(Corrupt, NonPositiveEigenvalueThrows) {
   EXPECT_THROW(Corrupt(clean, noise, &rng), InputError);
 }
 
+// The counter-based generator of the noise study: the same statistics, and
+// the same numbers whether corrupting into a new object, into reused storage
+// or in place.
+TEST(Corrupt, CounterGeneratorStatisticsAndInPlace) {
+  const double level = 0.05;
+  const ModalData clean = Synthetic(20000, 2);
+  for (NoiseDistribution dist :
+       {NoiseDistribution::kGaussian, NoiseDistribution::kUniform}) {
+    NoiseModel noise;
+    noise.level = level;
+    noise.distribution = dist;
+    CounterRng rng(2014, 1, 2);
+    const ModalData out = Corrupt(clean, noise, &rng);
+    const double expected_std =
+        dist == NoiseDistribution::kGaussian ? 1.0 : 1.0 / std::sqrt(3.0);
+    for (const auto& draws :
+         {EigenvalueDraws(clean, out, level), ShapeDraws(clean, out, level)}) {
+      double mean = 0, std_dev = 0;
+      MeanAndStd(draws, &mean, &std_dev);
+      EXPECT_NEAR(mean, 0.0, 0.05 * expected_std) << ToString(dist);
+      EXPECT_NEAR(std_dev, expected_std, 0.05 * expected_std) << ToString(dist);
+    }
+    CounterRng again(2014, 1, 2);
+    ModalData reused = Synthetic(3, 1);  // other sizes: resized
+    Corrupt(clean, noise, &again, &reused);
+    EXPECT_EQ(reused.frequencies_hz, out.frequencies_hz);
+    EXPECT_EQ(reused.shapes, out.shapes);
+    EXPECT_EQ(reused.state, out.state);
+    CounterRng third(2014, 1, 2);
+    ModalData in_place = clean;
+    Corrupt(in_place, noise, &third, &in_place);
+    EXPECT_EQ(in_place.frequencies_hz, out.frequencies_hz);
+    EXPECT_EQ(in_place.shapes, out.shapes);
+  }
+  // Peak-scaled shape noise in place: the peak is the clean one.
+  NoiseModel peak;
+  peak.level = 0.02;
+  peak.shape_scale = NoiseModel::ShapeScale::kPeak;
+  CounterRng a(5, 0, 0), b(5, 0, 0);
+  const ModalData small = Synthetic(2, 6);
+  const ModalData copy = Corrupt(small, peak, &a);
+  ModalData in_place = small;
+  Corrupt(in_place, peak, &b, &in_place);
+  EXPECT_EQ(in_place.shapes, copy.shapes);
+}
+
 TEST(NoiseDistribution, Names) {
   EXPECT_STREQ(ToString(NoiseDistribution::kGaussian), "gaussian");
   EXPECT_STREQ(ToString(NoiseDistribution::kUniform), "uniform");

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <stdexcept>
@@ -69,6 +70,37 @@ TEST(ParallelFor, RethrowsTheLowestFailingIndex) {
       EXPECT_EQ(std::string(e.what()), "index 37") << "threads " << threads;
     }
   }
+}
+
+// ParallelForWorkers: worker ids in range, never two indices of one worker at
+// once (each worker's flag is set for the duration of its body), every index once.
+TEST(ParallelForWorkers, WorkersNeverOverlap) {
+  for (int threads : {1, 2, 4}) {
+    const int count = 500;
+    const int workers = ParallelWorkers(count, threads);
+    EXPECT_EQ(workers, std::min(threads, count));
+    std::vector<std::atomic<int>> busy(static_cast<std::size_t>(workers));
+    for (auto& b : busy) b = 0;
+    std::vector<int> hits(count, 0);
+    std::atomic<int> overlaps{0}, out_of_range{0};
+    ParallelForWorkers(count, threads, [&](int i, int worker) {
+      if (worker < 0 || worker >= workers) {
+        ++out_of_range;
+        return;
+      }
+      if (busy[static_cast<std::size_t>(worker)].exchange(1) != 0) ++overlaps;
+      double x = 0;
+      for (int k = 0; k < 2000; ++k) x += std::sin(k + i);
+      hits[i] += x > 1e9 ? 2 : 1;
+      busy[static_cast<std::size_t>(worker)] = 0;
+    });
+    EXPECT_EQ(overlaps.load(), 0) << threads;
+    EXPECT_EQ(out_of_range.load(), 0) << threads;
+    for (int i = 0; i < count; ++i) EXPECT_EQ(hits[i], 1) << i;
+  }
+  EXPECT_EQ(ParallelWorkers(0, 4), 0);
+  EXPECT_EQ(ParallelWorkers(3, 8), 3);
+  EXPECT_GE(ParallelWorkers(100, 0), 1);  // 0: the hardware's count
 }
 
 }  // namespace

@@ -16,20 +16,33 @@ int DefaultThreadCount() {
   return n == 0 ? 1 : static_cast<int>(n);
 }
 
+int ParallelWorkers(int count, int threads) {
+  if (count <= 0) return 0;
+  if (threads < 1) threads = DefaultThreadCount();
+  return std::min(threads, count);
+}
+
 void ParallelFor(int count, int threads, const std::function<void(int)>& body,
                  const ProgressCallback& progress) {
+  ParallelForWorkers(
+      count, threads, [&body](int i, int /*worker*/) { body(i); }, progress);
+}
+
+void ParallelForWorkers(int count, int threads,
+                        const std::function<void(int index, int worker)>& body,
+                        const ProgressCallback& progress) {
   if (count <= 0) return;
-  if (threads < 1) threads = DefaultThreadCount();
+  const int pool_size = ParallelWorkers(count, threads);
   std::atomic<int> next{0}, done{0};
   // Lowest failing index so far; indices above it are not started.
   std::atomic<int> failed{std::numeric_limits<int>::max()};
   std::mutex error_mutex;
   std::exception_ptr error;
-  const auto worker = [&] {
+  const auto worker = [&](int id) {
     for (int i = next++; i < count; i = next++) {
       if (i > failed) break;
       try {
-        body(i);
+        body(i, id);
       } catch (...) {
         std::lock_guard<std::mutex> lock(error_mutex);
         if (i < failed) {
@@ -42,20 +55,19 @@ void ParallelFor(int count, int threads, const std::function<void(int)>& body,
       if (progress) progress(finished, count);
     }
   };
-  const int pool_size = std::min(threads, count);
   if (pool_size == 1) {
-    worker();
+    worker(0);
   } else {
     std::vector<std::thread> pool;
     pool.reserve(static_cast<std::size_t>(pool_size - 1));
     for (int t = 1; t < pool_size; ++t) {
       try {
-        pool.emplace_back(worker);
+        pool.emplace_back(worker, t);
       } catch (const std::system_error&) {
         break;  // no more threads to be had: the ones started share the work
       }
     }
-    worker();  // the calling thread works too
+    worker(0);  // the calling thread works too
     for (std::thread& t : pool) t.join();
   }
   if (error) std::rethrow_exception(error);

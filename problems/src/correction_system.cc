@@ -1,5 +1,7 @@
 #include "femup/problems/correction_system.h"
 
+#include <algorithm>
+#include <cmath>
 #include <sstream>
 
 #include "femup/errors.h"
@@ -21,39 +23,10 @@ bool SystemFormFromString(const std::string& text, SystemForm* form) {
   return true;
 }
 
-namespace {
-
-// The stacked rows of one measured mode: Nf x (num_parameters) block and its F.
-struct ModeBlock {
-  Eigen::MatrixXd z;
-  Eigen::VectorXd f;
-};
-
-// `bphi` is scratch space (num_dofs), reused across calls.
-ModeBlock BlockFor(const ParametrisedModel& model, const Eigen::MatrixXd& phi_fem,
-                   double lambda, const Eigen::VectorXd& phi, Immersion immersion,
-                   Eigen::VectorXd* bphi) {
-  const int nf = static_cast<int>(phi_fem.cols());
-  ModeBlock block{Eigen::MatrixXd::Zero(nf, model.num_parameters()), Eigen::VectorXd()};
-  for (int k = 0; k < model.num_parameters(); ++k) {
-    const Parameter& p = model.parameter(k);
-    if (p.kind == ParameterKind::kAddedMass && immersion != Immersion::kWet) continue;
-    bphi->noalias() = p.basis * phi;
-    auto column = block.z.col(k);
-    column.noalias() = phi_fem.transpose() * *bphi;
-    if (p.kind != ParameterKind::kStiffness) column *= -lambda;
-  }
-  const Eigen::VectorXd r = model.stiffness() * phi - lambda * (model.mass() * phi);
-  block.f = -(phi_fem.transpose() * r);
-  return block;
-}
-
-}  // namespace
-
-LinearProblem BuildCorrectionSystem(const ParametrisedModel& model,
-                                    const Modes& fem_modes,
-                                    const std::vector<ModalData>& states,
-                                    const CorrectionSystemOptions& options) {
+PreparedCorrectionSystem::PreparedCorrectionSystem(const ParametrisedModel& model,
+                                                   const Modes& fem_modes,
+                                                   const CorrectionSystemOptions& options)
+    : model_(&model), options_(options) {
   const int n = model.num_dofs();
   if (fem_modes.shapes.rows() != n) {
     std::ostringstream msg;
@@ -64,62 +37,53 @@ LinearProblem BuildCorrectionSystem(const ParametrisedModel& model,
   if (model.num_parameters() == 0) {
     throw InputError("parameters", "the model has no correction factor to identify");
   }
-  int nf = options.num_fem_modes < 0 ? fem_modes.size() : options.num_fem_modes;
-  if (nf < 1 || nf > fem_modes.size()) {
+  nf_ = options.num_fem_modes < 0 ? fem_modes.size() : options.num_fem_modes;
+  if (nf_ < 1 || nf_ > fem_modes.size()) {
     std::ostringstream msg;
     msg << "asks for " << options.num_fem_modes << " FEM modes; between 1 and "
         << fem_modes.size() << " are available";
     throw InputError("fem_modes", msg.str());
   }
-  if (states.empty()) throw InputError("measurements", "no measured state is given");
-  const Eigen::MatrixXd phi_fem = fem_modes.shapes.leftCols(nf);
-
-  // Stacked blocks for every measured mode, per state.
-  std::vector<std::vector<ModeBlock>> blocks(states.size());
-  std::vector<std::vector<std::string>> labels(states.size());
-  Eigen::VectorXd bphi(n);
-  for (std::size_t s = 0; s < states.size(); ++s) {
-    const ModalData& st = states[s];
-    const std::string where = "measurements." + st.state;
-    st.Validate(n, where);
-    const Eigen::MatrixXd shapes = st.FullShapes(n, where);
-    const Eigen::VectorXd lambdas = st.Eigenvalues();
-    for (int j = 0; j < st.num_modes(); ++j) {
-      blocks[s].push_back(
-          BlockFor(model, phi_fem, lambdas[j], shapes.col(j), st.immersion, &bphi));
-      if (options.row_labels)
-        labels[s].push_back(st.state + " mode " + std::to_string(j + 1));
-    }
-  }
-
-  LinearProblem problem;
-  problem.names = model.ParameterNames();
-  for (const auto& p : model.parameters()) problem.groups.push_back(ToString(p.kind));
-
-  if (options.form == SystemForm::kStacked) {
-    int rows = 0;
-    for (const auto& b : blocks) rows += static_cast<int>(b.size()) * nf;
-    problem.A.resize(rows, model.num_parameters());
-    problem.b.resize(rows);
-    int r = 0;
-    for (std::size_t s = 0; s < blocks.size(); ++s) {
-      for (std::size_t j = 0; j < blocks[s].size(); ++j) {
-        problem.A.middleRows(r, nf) = blocks[s][j].z;
-        problem.b.segment(r, nf) = blocks[s][j].f;
-        for (int i = 0; options.row_labels && i < nf; ++i) {
-          problem.row_labels.push_back(labels[s][j] + " / FEM mode " +
-                                       std::to_string(i + 1));
+  const auto phi = fem_modes.shapes.leftCols(nf_);
+  // K and M are symmetric: Phi' K = (K Phi)'.
+  phi_t_k_ = (model.stiffness() * phi).transpose();
+  phi_t_m_ = (model.mass() * phi).transpose();
+  std::vector<int> local(static_cast<std::size_t>(n), -1);
+  projections_.reserve(static_cast<std::size_t>(model.num_parameters()));
+  for (const Parameter& p : model.parameters()) {
+    Projection q;
+    q.kind = p.kind;
+    const SparseMatrix& basis = p.basis;
+    for (int c = 0; c < basis.outerSize(); ++c) {
+      for (SparseMatrix::InnerIterator it(basis, c); it; ++it) {
+        if (local[it.row()] < 0) {
+          local[it.row()] = 0;
+          q.support.push_back(static_cast<int>(it.row()));
         }
-        r += nf;
       }
     }
-    return problem;
+    std::sort(q.support.begin(), q.support.end());
+    for (std::size_t i = 0; i < q.support.size(); ++i)
+      local[q.support[i]] = static_cast<int>(i);
+    // Column c of B (symmetric) has its rows in the support: Phi' B e_c =
+    // sum over its entries of value * Phi(row, :)'.
+    q.phi_t_b = Eigen::MatrixXd::Zero(nf_, static_cast<Eigen::Index>(q.support.size()));
+    for (int c : q.support) {
+      auto column = q.phi_t_b.col(local[c]);
+      for (SparseMatrix::InnerIterator it(basis, c); it; ++it)
+        column.noalias() += it.value() * phi.row(it.row()).transpose();
+    }
+    for (int d : q.support) local[d] = -1;
+    projections_.push_back(std::move(q));
   }
+}
 
-  // Summed form: exactly one dry and one wet state.
-  int dry = -1, wet = -1;
+void PreparedCorrectionSystem::SummedStates(const std::vector<ModalData>& states,
+                                            int* dry, int* wet) const {
+  *dry = -1;
+  *wet = -1;
   for (std::size_t s = 0; s < states.size(); ++s) {
-    int& slot = states[s].immersion == Immersion::kWet ? wet : dry;
+    int& slot = states[s].immersion == Immersion::kWet ? *wet : *dry;
     if (slot >= 0) {
       throw InputError("form",
                        "the summed form pairs one dry state with one wet state; "
@@ -129,31 +93,153 @@ LinearProblem BuildCorrectionSystem(const ParametrisedModel& model,
     }
     slot = static_cast<int>(s);
   }
-  if (dry < 0 || wet < 0) {
+  if (*dry < 0 || *wet < 0) {
     throw InputError("form",
                      "the summed form needs both a dry (air) and a wet (water) "
                      "state (use form: stacked)");
   }
-  const int na = static_cast<int>(blocks[dry].size());
-  const int nw = static_cast<int>(blocks[wet].size());
-  const int rows = nf * na * nw;
-  problem.A.resize(rows, model.num_parameters());
-  problem.b.resize(rows);
-  int r = 0;
-  for (int i = 0; i < nf; ++i) {
-    for (int j = 0; j < na; ++j) {
-      for (int p = 0; p < nw; ++p) {
-        problem.A.row(r) = blocks[dry][j].z.row(i) + blocks[wet][p].z.row(i);
-        problem.b[r] = blocks[dry][j].f[i] + blocks[wet][p].f[i];
-        if (options.row_labels) {
-          problem.row_labels.push_back("FEM mode " + std::to_string(i + 1) + " / " +
-                                       labels[dry][j] + " + " + labels[wet][p]);
+}
+
+void PreparedCorrectionSystem::Fill(const std::vector<ModalData>& states, Workspace* work,
+                                    Eigen::MatrixXd* a, Eigen::VectorXd* b) const {
+  const int n = model_->num_dofs();
+  const int np = model_->num_parameters();
+  if (states.empty()) throw InputError("measurements", "no measured state is given");
+  int dry = -1, wet = -1;
+  if (options_.form == SystemForm::kSummed) SummedStates(states, &dry, &wet);
+
+  // Stacked blocks for every measured mode, per state:
+  // Z_j column k = Phi' B_k phi_j (times -lambda_j for mass and added mass;
+  // added mass only in wet states), F_j = -Phi' (K phi_j - lambda_j M phi_j).
+  work->z.resize(states.size());
+  work->f.resize(states.size());
+  work->where.resize(states.size());
+  for (std::size_t s = 0; s < states.size(); ++s) {
+    const ModalData& st = states[s];
+    // "measurements.<state>", rebuilt only when the state's name changes.
+    static const std::string kPrefix = "measurements.";
+    std::string& where = work->where[s];
+    if (where.size() != kPrefix.size() + st.state.size() ||
+        where.compare(kPrefix.size(), std::string::npos, st.state) != 0) {
+      where = kPrefix + st.state;
+    }
+    st.Validate(n, where);
+    const bool direct = st.sensor_dofs.empty() && st.shapes.rows() == n;
+    if (!direct) work->shapes = st.FullShapes(n, where);
+    const Eigen::MatrixXd& shapes = direct ? st.shapes : work->shapes;
+    const int modes = st.num_modes();
+    work->z[s].resize(static_cast<std::size_t>(modes));
+    work->f[s].resize(static_cast<std::size_t>(modes));
+    for (int j = 0; j < modes; ++j) {
+      const double lambda = std::pow(2 * M_PI * st.frequencies_hz[j], 2);
+      const auto phi = shapes.col(j);
+      Eigen::MatrixXd& z = work->z[s][static_cast<std::size_t>(j)];
+      z.setZero(nf_, np);
+      for (int k = 0; k < np; ++k) {
+        const Projection& q = projections_[static_cast<std::size_t>(k)];
+        if (q.kind == ParameterKind::kAddedMass && st.immersion != Immersion::kWet)
+          continue;
+        // Plain loops: the supports are a few DOFs, the columns a few FEM
+        // modes, too small for Eigen's product kernels to pay off.
+        double* column = z.col(k).data();
+        const double* p = q.phi_t_b.data();
+        const double sign = q.kind == ParameterKind::kStiffness ? 1.0 : -lambda;
+        for (std::size_t i = 0; i < q.support.size(); ++i, p += nf_) {
+          const double w = sign * phi[q.support[i]];
+          for (int r = 0; r < nf_; ++r) column[r] += p[r] * w;
         }
-        ++r;
+      }
+      // F_j = lambda_j (Phi' M) phi_j - (Phi' K) phi_j, from the products of
+      // the whole state below.
+      Eigen::VectorXd& f = work->f[s][static_cast<std::size_t>(j)];
+      f.resize(nf_);
+    }
+    work->k_shapes.noalias() = phi_t_k_ * shapes;
+    work->m_shapes.noalias() = phi_t_m_ * shapes;
+    for (int j = 0; j < modes; ++j) {
+      const double lambda = std::pow(2 * M_PI * st.frequencies_hz[j], 2);
+      work->f[s][static_cast<std::size_t>(j)] =
+          lambda * work->m_shapes.col(j) - work->k_shapes.col(j);
+    }
+  }
+
+  if (options_.form == SystemForm::kStacked) {
+    int rows = 0;
+    for (const auto& z : work->z) rows += static_cast<int>(z.size()) * nf_;
+    if (a->rows() != rows || a->cols() != np) a->resize(rows, np);
+    if (b->size() != rows) b->resize(rows);
+    int r = 0;
+    for (std::size_t s = 0; s < states.size(); ++s) {
+      for (std::size_t j = 0; j < work->z[s].size(); ++j) {
+        a->middleRows(r, nf_) = work->z[s][j];
+        b->segment(r, nf_) = work->f[s][j];
+        r += nf_;
+      }
+    }
+    return;
+  }
+
+  // Summed form: one row per (FEM mode i, air mode j, water mode p).
+  const auto& zd = work->z[static_cast<std::size_t>(dry)];
+  const auto& zw = work->z[static_cast<std::size_t>(wet)];
+  const auto& fd = work->f[static_cast<std::size_t>(dry)];
+  const auto& fw = work->f[static_cast<std::size_t>(wet)];
+  const int rows = nf_ * static_cast<int>(zd.size() * zw.size());
+  if (a->rows() != rows || a->cols() != np) a->resize(rows, np);
+  if (b->size() != rows) b->resize(rows);
+  // Column by column (the storage order of a).
+  for (int k = 0; k <= np; ++k) {
+    double* out = k < np ? a->col(k).data() : b->data();
+    for (int i = 0; i < nf_; ++i) {
+      for (std::size_t j = 0; j < zd.size(); ++j) {
+        const double dry_part = k < np ? zd[j](i, k) : fd[j][i];
+        for (std::size_t p = 0; p < zw.size(); ++p)
+          *out++ = dry_part + (k < np ? zw[p](i, k) : fw[p][i]);
+      }
+    }
+  }
+}
+
+LinearProblem PreparedCorrectionSystem::Build(
+    const std::vector<ModalData>& states) const {
+  LinearProblem problem;
+  Workspace work;
+  Fill(states, &work, &problem.A, &problem.b);
+  problem.names = model_->ParameterNames();
+  for (const auto& p : model_->parameters()) problem.groups.push_back(ToString(p.kind));
+  if (!options_.row_labels) return problem;
+  std::vector<std::vector<std::string>> labels(states.size());
+  for (std::size_t s = 0; s < states.size(); ++s) {
+    for (int j = 0; j < states[s].num_modes(); ++j)
+      labels[s].push_back(states[s].state + " mode " + std::to_string(j + 1));
+  }
+  if (options_.form == SystemForm::kStacked) {
+    for (std::size_t s = 0; s < states.size(); ++s) {
+      for (const std::string& mode : labels[s]) {
+        for (int i = 0; i < nf_; ++i)
+          problem.row_labels.push_back(mode + " / FEM mode " + std::to_string(i + 1));
+      }
+    }
+    return problem;
+  }
+  int dry = -1, wet = -1;
+  SummedStates(states, &dry, &wet);
+  for (int i = 0; i < nf_; ++i) {
+    for (const std::string& air : labels[static_cast<std::size_t>(dry)]) {
+      for (const std::string& water : labels[static_cast<std::size_t>(wet)]) {
+        problem.row_labels.push_back("FEM mode " + std::to_string(i + 1) + " / " + air +
+                                     " + " + water);
       }
     }
   }
   return problem;
+}
+
+LinearProblem BuildCorrectionSystem(const ParametrisedModel& model,
+                                    const Modes& fem_modes,
+                                    const std::vector<ModalData>& states,
+                                    const CorrectionSystemOptions& options) {
+  return PreparedCorrectionSystem(model, fem_modes, options).Build(states);
 }
 
 }  // namespace femup

@@ -29,16 +29,16 @@ std::string NoiseModel::Validate() const {
   return "";
 }
 
-ModalData Corrupt(const ModalData& data, const NoiseModel& noise, std::mt19937_64* rng) {
+namespace {
+
+// `draw()` gives the next r of the noise model's distribution.
+template <typename Draw>
+void CorruptWith(const ModalData& data, const NoiseModel& noise, Draw draw,
+                 ModalData* result) {
   const std::string invalid = noise.Validate();
   if (!invalid.empty()) throw InputError("noise", invalid);
-  std::normal_distribution<double> gauss(0.0, 1.0);
-  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
-  auto draw = [&]() {
-    return noise.distribution == NoiseDistribution::kGaussian ? gauss(*rng)
-                                                              : uniform(*rng);
-  };
-  ModalData out = data;
+  *result = data;
+  ModalData& out = *result;
   if (noise.eigenvalues) {
     for (Eigen::Index j = 0; j < out.frequencies_hz.size(); ++j) {
       const double factor = 1.0 + noise.level * draw();
@@ -52,7 +52,7 @@ ModalData Corrupt(const ModalData& data, const NoiseModel& noise, std::mt19937_6
   if (noise.shapes) {
     const double shape_level = noise.shape_level < 0 ? noise.level : noise.shape_level;
     for (Eigen::Index j = 0; j < out.shapes.cols(); ++j) {
-      const double peak = data.shapes.col(j).cwiseAbs().maxCoeff();
+      const double peak = out.shapes.col(j).cwiseAbs().maxCoeff();  // before noise
       for (Eigen::Index i = 0; i < out.shapes.rows(); ++i) {
         if (noise.shape_scale == NoiseModel::ShapeScale::kPeak) {
           out.shapes(i, j) += shape_level * peak * draw();
@@ -62,7 +62,31 @@ ModalData Corrupt(const ModalData& data, const NoiseModel& noise, std::mt19937_6
       }
     }
   }
+}
+
+}  // namespace
+
+ModalData Corrupt(const ModalData& data, const NoiseModel& noise, std::mt19937_64* rng) {
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  const bool gaussian = noise.distribution == NoiseDistribution::kGaussian;
+  ModalData out;
+  CorruptWith(
+      data, noise, [&] { return gaussian ? gauss(*rng) : uniform(*rng); }, &out);
   return out;
+}
+
+ModalData Corrupt(const ModalData& data, const NoiseModel& noise, CounterRng* rng) {
+  ModalData out;
+  Corrupt(data, noise, rng, &out);
+  return out;
+}
+
+void Corrupt(const ModalData& data, const NoiseModel& noise, CounterRng* rng,
+             ModalData* out) {
+  const bool gaussian = noise.distribution == NoiseDistribution::kGaussian;
+  CorruptWith(
+      data, noise, [&] { return gaussian ? rng->Gaussian() : rng->Symmetric(); }, out);
 }
 
 }  // namespace femup

@@ -3,6 +3,7 @@
 #include <Eigen/QR>
 #include <Eigen/SVD>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "linear_common.h"
@@ -46,38 +47,6 @@ Eigen::VectorXd Refine(const Eigen::MatrixXd& a, const Eigen::VectorXd& b,
   return z;
 }
 
-// Without diagnostics: the least-squares answer by column-pivoted Householder
-// QR of the column-scaled A when A is of full column rank by the SVD path's own
-// rule, which the QR proves with norms of R: s_max <= ||R||_F and
-// s_min >= 1 / ||R^-1||_F, so tol * ||R||_F * ||R^-1||_F < 1 gives
-// s_min > tol * s_max. Returns false (nothing done) when that cannot be shown;
-// the SVD path then decides.
-bool SolveFullRankByQr(const internal::ReducedProblem& r, double tolerance,
-                       bool scale_columns, Eigen::VectorXd* z) {
-  const Eigen::Index k = r.A.cols();
-  if (k == 0 || r.A.rows() < k) return false;
-  Eigen::VectorXd scale = Eigen::VectorXd::Ones(k);
-  if (scale_columns) {
-    scale = r.A.colwise().norm().transpose();
-    for (Eigen::Index j = 0; j < k; ++j) {
-      if (scale[j] == 0) return false;
-    }
-  }
-  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(r.A *
-                                                       scale.cwiseInverse().asDiagonal());
-  const Eigen::MatrixXd upper =
-      qr.matrixR().topLeftCorner(k, k).triangularView<Eigen::Upper>();
-  for (Eigen::Index j = 0; j < k; ++j) {
-    if (!(std::abs(upper(j, j)) > 0)) return false;
-  }
-  const Eigen::MatrixXd r_inverse =
-      upper.triangularView<Eigen::Upper>().solve(Eigen::MatrixXd::Identity(k, k));
-  const double r_norm = upper.norm();
-  if (!(tolerance * r_norm * r_inverse.norm() < 1.0)) return false;
-  *z = qr.solve(r.b).cwiseQuotient(scale);
-  return z->allFinite();
-}
-
 }  // namespace
 
 LinearSolution LstsqSolver::Solve(const LinearProblem& problem) const {
@@ -87,8 +56,8 @@ LinearSolution LstsqSolver::Solve(const LinearProblem& problem) const {
 
   if (!options_.diagnostics) {
     Eigen::VectorXd z;
-    if (SolveFullRankByQr(r, options_.relative_rank_tolerance, options_.scale_columns,
-                          &z)) {
+    FullRankLeastSquares qr(options_.relative_rank_tolerance, options_.scale_columns);
+    if (qr.Solve(r.A, r.b, &z)) {
       LinearSolution solution;
       solution.x = r.ToX(z);
       solution.residual = problem.A * solution.x - problem.b;
@@ -96,9 +65,8 @@ LinearSolution LstsqSolver::Solve(const LinearProblem& problem) const {
       solution.summary.cost = 0.5 * weighted_residual.squaredNorm();
       solution.summary.iterations = 1;
       solution.summary.status = SolverStatus::kSolved;
-      solution.summary.message =
-          "least squares by column-pivoted QR: full column rank (" + std::to_string(k) +
-          " free unknowns); diagnostics off";
+      solution.summary.message = "least squares by Householder QR: full column rank (" +
+                                 std::to_string(k) + " free unknowns); diagnostics off";
       solution.summary.warnings = r.warnings;
       solution.summary.time_seconds = clock.Seconds();
       return solution;
@@ -169,6 +137,96 @@ LinearSolution LstsqSolver::Solve(const LinearProblem& problem) const {
                                    r.warnings.end());
   solution.summary.time_seconds = clock.Seconds();
   return solution;
+}
+
+void FullRankLeastSquares::FactoriseByLoops(Eigen::Index k) {
+  const Eigen::Index m = scaled_.rows();
+  double* q = scaled_.data();
+  double* c = rhs_.data();
+  // Column-major: column j starts at q + j * m.
+  auto apply = [m](const double* v, double tau, Eigen::Index j0, double* col) {
+    // col(j0:m) -= tau * v * (v' col(j0:m)), v = [1; v(1:)]
+    double s = col[j0];
+    for (Eigen::Index i = j0 + 1; i < m; ++i) s += v[i] * col[i];
+    s *= tau;
+    col[j0] -= s;
+    for (Eigen::Index i = j0 + 1; i < m; ++i) col[i] -= s * v[i];
+  };
+  for (Eigen::Index j = 0; j < k; ++j) {
+    double* x = q + j * m;
+    const double alpha = x[j];
+    double tail = 0;
+    for (Eigen::Index i = j + 1; i < m; ++i) tail += x[i] * x[i];
+    if (tail <= std::numeric_limits<double>::min()) continue;  // nothing to reflect
+    const double beta = -std::copysign(std::sqrt(alpha * alpha + tail), alpha);
+    const double tau = (beta - alpha) / beta;
+    const double inv = 1.0 / (alpha - beta);
+    for (Eigen::Index i = j + 1; i < m; ++i) x[i] *= inv;
+    x[j] = beta;
+    for (Eigen::Index jj = j + 1; jj < k; ++jj) apply(x, tau, j, q + jj * m);
+    apply(x, tau, j, c);
+  }
+}
+
+bool FullRankLeastSquares::Solve(const Eigen::MatrixXd& a, const Eigen::VectorXd& b,
+                                 Eigen::VectorXd* z) {
+  const Eigen::Index k = a.cols();
+  if (k == 0 || a.rows() < k || b.size() != a.rows()) return false;
+  scale_.setOnes(k);
+  if (scale_columns_) {
+    for (Eigen::Index j = 0; j < k; ++j) {
+      scale_[j] = a.col(j).norm();
+      if (scale_[j] == 0) return false;
+    }
+  }
+  scaled_.noalias() = a * scale_.cwiseInverse().asDiagonal();
+  rhs_ = b;
+  const bool loops = k <= kLoopColumns;
+  if (loops) {
+    FactoriseByLoops(k);
+  } else {
+    qr_.compute(scaled_);
+    qr_.householderQ().setLength(k).adjoint().applyThisOnTheLeft(rhs_, workspace_);
+  }
+  const Eigen::MatrixXd& factor = loops ? scaled_ : qr_.matrixQR();
+  const auto upper = factor.topLeftCorner(k, k);
+  double r_norm2 = 0;
+  for (Eigen::Index j = 0; j < k; ++j) {
+    if (!(std::abs(upper(j, j)) > 0)) return false;
+    r_norm2 += upper.col(j).head(j + 1).squaredNorm();
+  }
+  // First a cheap bound on ||R^-1||_F (Higham, Accuracy and Stability of
+  // Numerical Algorithms, 2nd ed., section 8.3): |R^-1| <= M(R)^-1 entrywise,
+  // M(R) the comparison matrix (|r_ii| on the diagonal, -|r_ij| above), so
+  // ||R^-1||_inf <= ||M(R)^-1 e||_inf, ||R^-1||_1 <= ||M(R)^-T e||_inf, and
+  // ||R^-1||_F <= sqrt(k ||R^-1||_1 ||R^-1||_inf). Two triangular solves with
+  // one right-hand side each; when the bound proves the rank the exact norm
+  // would too. Otherwise (the bound can be pessimistic) ||R^-1||_F itself.
+  bound_.resize(k);
+  for (Eigen::Index i = k - 1; i >= 0; --i) {  // M(R) y = e, backwards
+    double sum = 1.0;
+    for (Eigen::Index l = i + 1; l < k; ++l) sum += std::abs(upper(i, l)) * bound_[l];
+    bound_[i] = sum / std::abs(upper(i, i));
+  }
+  const double norm_inf = bound_.maxCoeff();
+  for (Eigen::Index i = 0; i < k; ++i) {  // M(R)' y = e, forwards
+    double sum = 1.0;
+    for (Eigen::Index l = 0; l < i; ++l) sum += std::abs(upper(l, i)) * bound_[l];
+    bound_[i] = sum / std::abs(upper(i, i));
+  }
+  const double norm_1 = bound_.maxCoeff();
+  double r_inverse_norm2 = static_cast<double>(k) * norm_1 * norm_inf;
+  if (!(tolerance_ * std::sqrt(r_norm2 * r_inverse_norm2) < 1.0)) {
+    r_inverse_.setIdentity(k, k);
+    upper.triangularView<Eigen::Upper>().solveInPlace(r_inverse_);
+    r_inverse_norm2 = r_inverse_.squaredNorm();
+    if (!(tolerance_ * std::sqrt(r_norm2 * r_inverse_norm2) < 1.0)) return false;
+  }
+  // z = D^-1 R^-1 (Q' b)(1:k)
+  upper.triangularView<Eigen::Upper>().solveInPlace(rhs_.head(k));
+  z->resize(k);
+  *z = rhs_.head(k).cwiseQuotient(scale_);
+  return z->allFinite();
 }
 
 }  // namespace femup

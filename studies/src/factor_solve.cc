@@ -1,6 +1,8 @@
 #include "femup/studies/factor_solve.h"
 
 #include <algorithm>
+#include <chrono>
+#include <limits>
 
 #include "femup/errors.h"
 #include "femup/problems/correction_system.h"
@@ -122,6 +124,67 @@ FactorSolve SolveFactors(const Study& study, const SolverSpec& spec,
         AnalyseIdentifiability(j, names, groups, spec.linear.relative_rank_tolerance);
   }
   SetIntervals(0.0, &s);  // known noise: normal quantile
+  return out;
+}
+
+PreparedFactorSolve::PreparedFactorSolve(const Study& study, const SolverSpec& spec,
+                                         const Modes& fem_modes)
+    : study_(&study), spec_(&spec), fem_modes_(&fem_modes) {
+  const bool eligible = spec.method == "linear" && spec.name == "lstsq" &&
+                        !UsesNormalCorrectionSystem(study) &&
+                        study.equality_matrix.size() == 0;
+  if (!eligible) return;
+  CorrectionSystemOptions system = study.system;
+  system.row_labels = false;
+  system_ = std::make_unique<PreparedCorrectionSystem>(study.model, fem_modes, system);
+  LinearProblem names;  // resolves the fixed names as SolveFactors does
+  names.names = study.model.ParameterNames();
+  for (const auto& [name, value] : study.fixed) names.Fix(name, value);
+  names.A.resize(0, static_cast<Eigen::Index>(names.names.size()));
+  free_ = names.FreeUnknowns();
+  particular_ = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(names.names.size()));
+  for (const auto& [i, value] : names.fixed) particular_[i] = value;
+  fixed_ = names.fixed;
+}
+
+PreparedFactorSolve::Outcome PreparedFactorSolve::Solve(
+    const std::vector<ModalData>& measured, Workspace* work,
+    Eigen::Ref<Eigen::VectorXd> x) const {
+  Outcome out;
+  if (system_) {
+    const auto start = std::chrono::steady_clock::now();
+    system_->Fill(measured, &work->system, &work->a, &work->b);
+    // As lstsq's reduction: the free columns gathered, the fixed ones moved
+    // to the right-hand side.
+    const Eigen::Index nfree = static_cast<Eigen::Index>(free_.size());
+    work->a_free.resize(work->a.rows(), nfree);
+    for (Eigen::Index k = 0; k < nfree; ++k) work->a_free.col(k) = work->a.col(free_[k]);
+    work->b_free = work->b;
+    for (const auto& [i, value] : fixed_) work->b_free -= value * work->a.col(i);
+    if (!work->qr) {
+      work->qr = std::make_unique<FullRankLeastSquares>(
+          spec_->linear.relative_rank_tolerance, spec_->linear.scale_columns);
+    }
+    if (x.size() == particular_.size() &&
+        work->qr->Solve(work->a_free, work->b_free, &work->z)) {
+      x = particular_;
+      for (Eigen::Index k = 0; k < nfree; ++k) x[free_[k]] = work->z[k];
+      out.usable = true;
+      out.seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      return out;
+    }
+  }
+  FactorSolveOptions lean;
+  lean.diagnostics = false;
+  const FactorSolve fs = SolveFactors(*study_, *spec_, *fem_modes_, measured, lean);
+  out.seconds = fs.solution.summary.time_seconds;
+  if (fs.solution.x.size() == x.size()) {
+    x = fs.solution.x;
+    out.usable = fs.solution.summary.usable() && fs.solution.x.allFinite();
+  } else {
+    x.setConstant(std::numeric_limits<double>::quiet_NaN());
+  }
   return out;
 }
 

@@ -1,9 +1,11 @@
 #include "femup/studies/noise_study.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <iomanip>
 #include <limits>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <random>
 #include <sstream>
@@ -33,12 +35,16 @@ RmStatistics Summarise(std::vector<double> v) {
   double ss = 0;
   for (double x : v) ss += (x - s.mean) * (x - s.mean);
   s.std_dev = v.size() > 1 ? std::sqrt(ss / (v.size() - 1)) : 0.0;
-  std::sort(v.begin(), v.end());
+  // Linear interpolation between the order statistics around q (n - 1):
+  // selection, not a full sort.
   auto quantile = [&](double q) {
     const double pos = q * (v.size() - 1);
     const std::size_t lo = static_cast<std::size_t>(std::floor(pos));
-    const std::size_t hi = std::min(lo + 1, v.size() - 1);
-    return v[lo] + (pos - lo) * (v[hi] - v[lo]);
+    std::nth_element(v.begin(), v.begin() + lo, v.end());
+    const double low = v[lo];
+    const double high =
+        lo + 1 < v.size() ? *std::min_element(v.begin() + lo + 1, v.end()) : low;
+    return low + (pos - lo) * (high - low);
   };
   s.median = quantile(0.5);
   s.p90 = quantile(0.9);
@@ -96,9 +102,11 @@ NoiseStudyResult RunNoiseStudy(const Study& study, const NoiseRunOptions& option
   const std::vector<SolverSpec> variants =
       spec.compare.empty() ? std::vector<SolverSpec>{study.solver} : spec.compare;
   // Only the factors and whether they are usable are scored: no row labels,
-  // identifiability analysis or covariance per draw.
-  FactorSolveOptions lean;
-  lean.diagnostics = false;
+  // identifiability analysis or covariance per draw, and what does not change
+  // between draws is prepared once per solver.
+  std::vector<std::unique_ptr<PreparedFactorSolve>> prepared;
+  for (const SolverSpec& v : variants)
+    prepared.push_back(std::make_unique<PreparedFactorSolve>(study, v, fem));
   r.comparison.resize(variants.size());
   for (std::size_t v = 0; v < variants.size(); ++v)
     r.comparison[v].label = variants[v].label;
@@ -126,68 +134,95 @@ NoiseStudyResult RunNoiseStudy(const Study& study, const NoiseRunOptions& option
 
   // Every (level, draw) is solved into its own slot, in parallel; the slots are
   // then reduced in level and draw order, so nothing depends on the threads.
-  struct DrawOutcome {
-    std::vector<Eigen::VectorXd> x;  // per variant
-    std::vector<char> ok;            // per variant: usable and finite
-    std::vector<double> seconds;     // per variant: solve time
-  };
+  // A slot keeps only what the statistics read (Rm of each added-mass factor;
+  // the whole estimate at the figure level): large fresh arrays cost page
+  // faults, which on a virtual machine are a large part of a short study.
   const int draws = spec.draws;
   const int total = static_cast<int>(num_levels) * draws;
-  std::vector<DrawOutcome> outcomes(static_cast<std::size_t>(total));
-  ParallelFor(
-      total, options.threads,
-      [&](int task) {
-        const std::size_t l = static_cast<std::size_t>(task / draws);
-        const int draw = task % draws;
-        std::seed_seq seq{static_cast<unsigned long long>(spec.seed & 0xffffffffu),
-                          static_cast<unsigned long long>(spec.seed >> 32),
-                          static_cast<unsigned long long>(l),
-                          static_cast<unsigned long long>(draw)};
-        std::mt19937_64 rng(seq);
-        std::vector<ModalData> noisy;
-        noisy.reserve(clean.size());
-        for (const ModalData& m : clean) noisy.push_back(Corrupt(m, noise[l], &rng));
-        DrawOutcome& out = outcomes[static_cast<std::size_t>(task)];
-        out.x.resize(variants.size());
-        out.ok.resize(variants.size());
-        out.seconds.resize(variants.size());
-        for (std::size_t v = 0; v < variants.size(); ++v) {
-          FactorSolve fs = SolveFactors(study, variants[v], fem, noisy, lean);
-          LinearSolution& sol = fs.solution;
-          out.ok[v] = sol.summary.usable() && sol.x.allFinite();
-          out.seconds[v] = sol.summary.time_seconds;
-          out.x[v] = std::move(sol.x);
+  const std::size_t nv = variants.size();
+  const std::size_t na = r.added_mass_indices.size();
+  // Per variant and level: Rm (%) of every added-mass factor (rows) in every
+  // draw (columns); NaN when, and only when, the draw is not usable.
+  std::vector<std::vector<Eigen::MatrixXd>> rm_draws(
+      nv, std::vector<Eigen::MatrixXd>(num_levels));
+  for (auto& by_level : rm_draws) {
+    for (Eigen::MatrixXd& m : by_level) m.resize(static_cast<Eigen::Index>(na), draws);
+  }
+  // Draws go to the workers in chunks of a level (fewer hand-outs, and no two
+  // threads writing next to each other on every draw).
+  constexpr int kChunk = 32;
+  const int chunks_per_level = (draws + kChunk - 1) / kChunk;
+  const int chunks = static_cast<int>(num_levels) * chunks_per_level;
+  // Work space per worker thread: the corrupted modes, each solver's scratch
+  // and estimate, and its solve time.
+  struct WorkerSpace {
+    std::vector<ModalData> noisy;
+    std::vector<PreparedFactorSolve::Workspace> solvers;
+    Eigen::VectorXd x;
+    std::vector<double> seconds;  // per variant
+  };
+  std::vector<WorkerSpace> work(
+      static_cast<std::size_t>(ParallelWorkers(chunks, options.threads)));
+  for (WorkerSpace& w : work) {
+    w.noisy = clean;
+    w.solvers.resize(nv);
+    w.x.resize(np);
+    w.seconds.assign(nv, 0.0);
+  }
+  std::atomic<int> drawn{0};
+  ParallelForWorkers(chunks, options.threads, [&](int chunk, int worker) {
+    const std::size_t l = static_cast<std::size_t>(chunk / chunks_per_level);
+    const int first = (chunk % chunks_per_level) * kChunk;
+    const int last = std::min(draws, first + kChunk);
+    WorkerSpace& w = work[static_cast<std::size_t>(worker)];
+    for (int draw = first; draw < last; ++draw) {
+      CounterRng rng(static_cast<std::uint64_t>(spec.seed), l,
+                     static_cast<std::uint64_t>(draw));
+      for (std::size_t s = 0; s < clean.size(); ++s)
+        Corrupt(clean[s], noise[l], &rng, &w.noisy[s]);
+      for (std::size_t v = 0; v < nv; ++v) {
+        const PreparedFactorSolve::Outcome solved =
+            prepared[v]->Solve(w.noisy, &w.solvers[v], w.x);
+        w.seconds[v] += solved.seconds;
+        for (std::size_t k = 0; k < na; ++k) {
+          const int i = r.added_mass_indices[k];
+          rm_draws[v][l](static_cast<Eigen::Index>(k), draw) =
+              solved.usable
+                  ? std::abs(w.x[i] - r.preset[i]) / std::abs(r.preset[i]) * 100.0
+                  : kNaN;
         }
-      },
-      options.progress);
+        if (v == 0 && l == figure_index) {
+          if (solved.usable) {
+            figure_estimates.col(draw) = w.x;
+          } else {
+            figure_estimates.col(draw).setConstant(kNaN);
+          }
+        }
+      }
+    }
+    if (options.progress) options.progress(drawn += last - first, total);
+  });
+  for (const WorkerSpace& w : work) {
+    for (std::size_t v = 0; v < nv; ++v) r.comparison[v].seconds += w.seconds[v];
+  }
 
   for (std::size_t l = 0; l < num_levels; ++l) {
-    std::vector<std::vector<double>> rm(r.added_mass_indices.size());
+    std::vector<std::vector<double>> rm(na);
     std::vector<std::vector<double>> draw_average(variants.size());
     std::vector<int> usable_by(variants.size(), 0);
     int usable = 0;
     for (int draw = 0; draw < draws; ++draw) {
-      const DrawOutcome& out =
-          outcomes[l * static_cast<std::size_t>(draws) + static_cast<std::size_t>(draw)];
       for (std::size_t v = 0; v < variants.size(); ++v) {
-        const Eigen::VectorXd& x = out.x[v];
-        r.comparison[v].seconds += out.seconds[v];
-        const bool ok = out.ok[v] != 0;
+        const bool ok = std::isfinite(rm_draws[v][l](0, draw));
         usable_by[v] += ok ? 1 : 0;
         double sum = 0;
-        for (std::size_t k = 0; k < r.added_mass_indices.size(); ++k) {
-          const int i = r.added_mass_indices[k];
-          const double e =
-              ok ? std::abs(x[i] - r.preset[i]) / std::abs(r.preset[i]) * 100.0 : kNaN;
+        for (std::size_t k = 0; k < na; ++k) {
+          const double e = rm_draws[v][l](static_cast<Eigen::Index>(k), draw);
           sum += e;
           if (v == 0) rm[k].push_back(e);
         }
-        draw_average[v].push_back(sum / r.added_mass_indices.size());
-        if (v != 0) continue;
-        usable += ok ? 1 : 0;
-        if (l == figure_index) {
-          figure_estimates.col(draw) = ok ? x : Eigen::VectorXd::Constant(np, kNaN);
-        }
+        draw_average[v].push_back(sum / na);
+        if (v == 0) usable += ok ? 1 : 0;
       }
     }
     for (std::size_t v = 0; v < variants.size(); ++v) {

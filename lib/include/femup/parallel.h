@@ -29,4 +29,14 @@ int DefaultThreadCount();
 void ParallelFor(int count, int threads, const std::function<void(int)>& body,
                  const ProgressCallback& progress = {});
 
+// The same, with body(index, worker): worker in [0, ParallelWorkers(count,
+// threads)) names the thread running it, and no two calls with the same worker
+// run at once, so per-worker work space (a solver's scratch) needs no lock.
+// Which worker takes which index varies between runs: the results must not
+// depend on it.
+int ParallelWorkers(int count, int threads);
+void ParallelForWorkers(int count, int threads,
+                        const std::function<void(int index, int worker)>& body,
+                        const ProgressCallback& progress = {});
+
 }  // namespace femup

@@ -28,6 +28,53 @@ struct CorrectionSystemOptions {
   bool row_labels = true;
 };
 
+// The correction system of one model and FEM basis, prepared for many sets of
+// measured modes (a noise study's draws): what does not depend on the measured
+// modes is computed once (Phi' B_k on the support of each basis, Phi' K and
+// Phi' M), so a set of modes costs O(modes x (FEM modes x (DOFs + basis
+// supports))). BuildCorrectionSystem is Build on a fresh one. Holds a
+// reference to the model, which must outlive it. Fill and Build are const and
+// may run concurrently with their own work space.
+class PreparedCorrectionSystem {
+ public:
+  // Throws InputError as BuildCorrectionSystem for the model, the FEM modes
+  // and options.num_fem_modes.
+  PreparedCorrectionSystem(const ParametrisedModel& model, const Modes& fem_modes,
+                           const CorrectionSystemOptions& options);
+
+  // Scratch for Fill (per mode blocks); reuse it between calls to allocate
+  // nothing once sizes have settled.
+  struct Workspace {
+    std::vector<std::vector<Eigen::MatrixXd>> z;  // per state, per mode: nf x p
+    std::vector<std::vector<Eigen::VectorXd>> f;
+    Eigen::MatrixXd shapes;              // a state's shapes on every DOF (sensor layouts)
+    std::vector<std::string> where;      // "measurements.<state>", per state
+    Eigen::MatrixXd k_shapes, m_shapes;  // Phi' K and Phi' M times a state's shapes
+  };
+
+  // Z into *a and F into *b for `states` (resized only when their size
+  // changes). Throws InputError as BuildCorrectionSystem.
+  void Fill(const std::vector<ModalData>& states, Workspace* work, Eigen::MatrixXd* a,
+            Eigen::VectorXd* b) const;
+  // The whole problem: Fill plus names, groups and (options.row_labels) labels.
+  LinearProblem Build(const std::vector<ModalData>& states) const;
+
+ private:
+  struct Projection {
+    std::vector<int> support;  // DOFs the basis touches
+    Eigen::MatrixXd phi_t_b;   // nf x |support|: Phi(support, :)' B(support, support)
+    ParameterKind kind;
+  };
+  // The rows of the summed form: one dry and one wet state (indices).
+  void SummedStates(const std::vector<ModalData>& states, int* dry, int* wet) const;
+
+  const ParametrisedModel* model_;
+  CorrectionSystemOptions options_;
+  int nf_ = 0;
+  Eigen::MatrixXd phi_t_k_, phi_t_m_;  // nf x n: Phi' K, Phi' M
+  std::vector<Projection> projections_;
+};
+
 // Builds Z and F. `fem_modes` are M-normalised modes of the baseline (K, M);
 // `states` hold measured modes with shapes on every model DOF (dry states see
 // M~dry, wet states M~wet). Added-mass columns are zero in dry rows.

@@ -8,6 +8,7 @@
 #include <random>
 #include <string>
 
+#include "femup/counter_rng.h"
 #include "femup/measurement.h"
 
 namespace femup {
@@ -37,5 +38,11 @@ struct NoiseModel {
 // entries (column-major), so a given generator state gives one result. Throws
 // InputError if a corrupted eigenvalue would be <= 0.
 ModalData Corrupt(const ModalData& data, const NoiseModel& noise, std::mt19937_64* rng);
+// The same with a counter-based generator (one per draw of a parallel study).
+ModalData Corrupt(const ModalData& data, const NoiseModel& noise, CounterRng* rng);
+// The same into *out, reusing its storage (a draw loop's buffer; out may be
+// &data).
+void Corrupt(const ModalData& data, const NoiseModel& noise, CounterRng* rng,
+             ModalData* out);
 
 }  // namespace femup

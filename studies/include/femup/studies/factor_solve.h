@@ -5,12 +5,15 @@
 // pipelines both go through here, so every solver is reachable from both.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "femup/measurement.h"
 #include "femup/modal.h"
+#include "femup/problems/correction_system.h"
 #include "femup/problems/linear_problem.h"
 #include "femup/solvers/linear_solver.h"
+#include "femup/solvers/lstsq.h"
 #include "femup/studies/study.h"
 
 namespace femup {
@@ -54,5 +57,49 @@ struct FactorSolveOptions {
 FactorSolve SolveFactors(const Study& study, const SolverSpec& spec,
                          const Modes& fem_modes, const std::vector<ModalData>& measured,
                          const FactorSolveOptions& options = {});
+
+// SolveFactors for many sets of measured modes of one study and solver, with
+// diagnostics off (a noise study's draws), when only x and whether it is usable
+// are read. The lstsq solver on the linear method's Z d = F (fixed values, no
+// equalities, not the normal system) is prepared once: Phi' B_k and the like
+// by PreparedCorrectionSystem, the free columns and fixed values resolved, and
+// each set solved by FullRankLeastSquares in per-worker work space, with no
+// allocation once sizes have settled. Every other case, and a set whose full
+// column rank cannot be proved, goes through SolveFactors: the answers are
+// lstsq's either way. Holds references to the study and the FEM modes.
+class PreparedFactorSolve {
+ public:
+  // Throws InputError as SolveFactors would for the study's set-up (a fixed
+  // name that matches nothing, FEM modes that do not fit the model).
+  PreparedFactorSolve(const Study& study, const SolverSpec& spec, const Modes& fem_modes);
+
+  // One per thread; reused between calls.
+  struct Workspace {
+    PreparedCorrectionSystem::Workspace system;
+    Eigen::MatrixXd a, a_free;
+    Eigen::VectorXd b, b_free, z;
+    std::unique_ptr<FullRankLeastSquares> qr;
+  };
+  struct Outcome {
+    bool usable = false;  // solved (usable summary) and finite
+    double seconds = 0;   // build and solve
+  };
+  // The factors into x (sized to the model's parameters; NaN when the solver
+  // returned none).
+  Outcome Solve(const std::vector<ModalData>& measured, Workspace* work,
+                Eigen::Ref<Eigen::VectorXd> x) const;
+
+  // True when sets are solved on the prepared path (before any fallback).
+  bool prepared() const { return system_ != nullptr; }
+
+ private:
+  const Study* study_;
+  const SolverSpec* spec_;
+  const Modes* fem_modes_;
+  std::unique_ptr<PreparedCorrectionSystem> system_;
+  std::vector<int> free_;                      // free unknowns, ascending
+  Eigen::VectorXd particular_;                 // fixed values, zero elsewhere
+  std::vector<std::pair<int, double>> fixed_;  // (index, value)
+};
 
 }  // namespace femup

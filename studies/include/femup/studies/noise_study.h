@@ -48,16 +48,16 @@ struct NoiseRunOptions {
   // and its own result slot, reduced in draw order: the results are
   // bit-identical for any thread count (solve times aside).
   int threads = 1;
-  // Called after each draw as (draws done, levels x draws), from the worker
-  // threads; empty: no reports. See femup/progress.h.
+  // Called after each chunk of draws as (draws done, levels x draws), from the
+  // worker threads; empty: no reports. See femup/progress.h.
   ProgressCallback progress;
   std::string Validate() const;  // "" or "<field>: what is wrong"
 };
 
 // Runs the study described by study.noise_study (throws InputError if absent,
-// and InputError "noise.threads" for invalid options). Draw d at level l uses a
-// generator seeded with (seed, l, d): results do not depend on the order of
-// evaluation.
+// and InputError "noise.threads" for invalid options). Draw d at level l uses
+// its own counter-based generator, CounterRng(seed, l, d): results do not
+// depend on the order of evaluation.
 NoiseStudyResult RunNoiseStudy(const Study& study, const NoiseRunOptions& options = {});
 
 void WriteNoiseOutputs(const NoiseStudyResult& result, bool plots, OutputDir* out,
