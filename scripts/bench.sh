@@ -13,7 +13,8 @@
 #                 (bench/system_peer_compare.cc), with the memory read bound
 #   noise_peer.md the paper's noise study (11 levels x 1000 draws) in femup (1
 #                 and 2 threads) against the same computation in numpy
-#                 (bench/noise_peer_compare.cc), with the Rm averages of both
+#                 (bench/noise_peer_compare.cc), 5 interleaved rounds, with the
+#                 Rm averages of both
 # Each benchmark runs 3 repetitions of at least FEMUP_BENCH_MIN_TIME seconds
 # (default 0.2); the tables give the median and the spread. Environment:
 # FEMUP_BENCH_MIN_TIME, FEMUP_PEER_SIZES (default 500x50,2000x200,5000x500),
@@ -73,6 +74,7 @@ echo "== peer comparison (the linear correction-factor system, scipy)"
 OMP_NUM_THREADS=1 "$build/bench/femup_system_peer_compare" --size "$system_size" \
   --markdown "$out/system_peer.md"
 echo "== peer comparison (the paper's noise study in numpy)"
-"$build/bench/femup_noise_peer_compare" --draws "$noise_draws" --markdown "$out/noise_peer.md"
+"$build/bench/femup_noise_peer_compare" --draws "$noise_draws" --repeat 5 --rounds 5 \
+  --markdown "$out/noise_peer.md"
 echo "elapsed (build and runs): ${SECONDS} s" >> "$out/machine.txt"
 echo "results in $out/"

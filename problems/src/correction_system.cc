@@ -187,17 +187,24 @@ void PreparedCorrectionSystem::Fill(const std::vector<ModalData>& states, Worksp
   const int rows = nf_ * static_cast<int>(zd.size() * zw.size());
   if (a->rows() != rows || a->cols() != np) a->resize(rows, np);
   if (b->size() != rows) b->resize(rows);
-  // Column by column (the storage order of a).
-  for (int k = 0; k <= np; ++k) {
-    double* out = k < np ? a->col(k).data() : b->data();
+  // Column by column (the storage order of a); the blocks are column-major
+  // nf x p, so entry (i, k) of every block is at k * nf + i.
+  auto sum_rows = [&](auto dry_entry, auto wet_entry, double* out) {
     for (int i = 0; i < nf_; ++i) {
       for (std::size_t j = 0; j < zd.size(); ++j) {
-        const double dry_part = k < np ? zd[j](i, k) : fd[j][i];
-        for (std::size_t p = 0; p < zw.size(); ++p)
-          *out++ = dry_part + (k < np ? zw[p](i, k) : fw[p][i]);
+        const double dry_part = dry_entry(j, i);
+        for (std::size_t p = 0; p < zw.size(); ++p) *out++ = dry_part + wet_entry(p, i);
       }
     }
+  };
+  for (int k = 0; k < np; ++k) {
+    const Eigen::Index offset = static_cast<Eigen::Index>(k) * nf_;
+    sum_rows([&](std::size_t j, int i) { return zd[j].data()[offset + i]; },
+             [&](std::size_t p, int i) { return zw[p].data()[offset + i]; },
+             a->col(k).data());
   }
+  sum_rows([&](std::size_t j, int i) { return fd[j][i]; },
+           [&](std::size_t p, int i) { return fw[p][i]; }, b->data());
 }
 
 LinearProblem PreparedCorrectionSystem::Build(

@@ -202,17 +202,21 @@ bool FullRankLeastSquares::Solve(const Eigen::MatrixXd& a, const Eigen::VectorXd
   // ||R^-1||_F <= sqrt(k ||R^-1||_1 ||R^-1||_inf). Two triangular solves with
   // one right-hand side each; when the bound proves the rank the exact norm
   // would too. Otherwise (the bound can be pessimistic) ||R^-1||_F itself.
-  bound_.resize(k);
-  for (Eigen::Index i = k - 1; i >= 0; --i) {  // M(R) y = e, backwards
-    double sum = 1.0;
-    for (Eigen::Index l = i + 1; l < k; ++l) sum += std::abs(upper(i, l)) * bound_[l];
-    bound_[i] = sum / std::abs(upper(i, i));
+  // Both solves in column (axpy) form: independent updates, no chain of
+  // dependent sums.
+  bound_.setOnes(k);
+  for (Eigen::Index l = k - 1; l >= 0; --l) {  // M(R) y = e, backwards
+    bound_[l] /= std::abs(upper(l, l));
+    const double y = bound_[l];
+    const double* column = upper.data() + l * upper.outerStride();
+    for (Eigen::Index i = 0; i < l; ++i) bound_[i] += std::abs(column[i]) * y;
   }
   const double norm_inf = bound_.maxCoeff();
-  for (Eigen::Index i = 0; i < k; ++i) {  // M(R)' y = e, forwards
-    double sum = 1.0;
-    for (Eigen::Index l = 0; l < i; ++l) sum += std::abs(upper(l, i)) * bound_[l];
-    bound_[i] = sum / std::abs(upper(i, i));
+  bound_.setOnes(k);
+  for (Eigen::Index l = 0; l < k; ++l) {  // M(R)' y = e, forwards
+    bound_[l] /= std::abs(upper(l, l));
+    const double y = bound_[l];
+    for (Eigen::Index i = l + 1; i < k; ++i) bound_[i] += std::abs(upper(l, i)) * y;
   }
   const double norm_1 = bound_.maxCoeff();
   double r_inverse_norm2 = static_cast<double>(k) * norm_1 * norm_inf;
