@@ -7,9 +7,9 @@
 #include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
-#include <random>
 #include <sstream>
 
+#include "femup/counter_rng.h"
 #include "femup/errors.h"
 #include "femup/modal.h"
 #include "femup/parallel.h"
@@ -266,7 +266,10 @@ void WriteNoiseOutputs(const NoiseStudyResult& r, bool plots, OutputDir* out,
                        "independent draw per entry"},
                       {"distribution", ToString(r.spec.distribution)},
                       {"draws_per_level", r.spec.draws},
-                      {"seed", r.spec.seed}};
+                      {"seed", r.spec.seed},
+                      {"generator",
+                       "Philox4x64-10 (Random123), one stream per (seed, level, draw); "
+                       "normal draws by the polar method"}};
   j["levels"] = r.spec.levels;
   j["usable_draws"] = r.usable_draws;
   j["rm_average_percent"] = nlohmann::json::array();

@@ -17,6 +17,8 @@ sed 's/draws: 1000/draws: 60/' "$ROOT/examples/paper_chain_noise.yaml" > short.y
 strip() { python3 -c "import json,sys; j=json.load(open(sys.argv[1])); [c.pop('seconds') for c in j['comparison']]; print(json.dumps(j, sort_keys=True))" "$1"; }
 [ "$(strip one/noise.json)" = "$(strip two/noise.json)" ] || fail "--threads 1 and 2 differ"
 [ "$(json two/noise.json "j['noise_model']['draws_per_level']")" = 60 ] || fail "short study"
+[ "$(json two/noise.json "'Philox4x64' in j['noise_model']['generator']")" = True ] \
+  || fail "the generator is not named"
 grep -q "mean Rm" two.stdout || fail "no report on stdout"
 [ ! -s two.stderr ] || fail "stderr is not a terminal, yet got: $(cat -A two.stderr | head -3)"
 
