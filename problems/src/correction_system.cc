@@ -130,7 +130,10 @@ void PreparedCorrectionSystem::Fill(const std::vector<ModalData>& states, Worksp
     const int modes = st.num_modes();
     work->z[s].resize(static_cast<std::size_t>(modes));
     work->f[s].resize(static_cast<std::size_t>(modes));
+    work->k_shapes.noalias() = phi_t_k_ * shapes;
+    work->m_shapes.noalias() = phi_t_m_ * shapes;
     for (int j = 0; j < modes; ++j) {
+      // lambda = (2 pi f)^2, as ModalData::Eigenvalues (without its vector).
       const double lambda = std::pow(2 * M_PI * st.frequencies_hz[j], 2);
       const auto phi = shapes.col(j);
       Eigen::MatrixXd& z = work->z[s][static_cast<std::size_t>(j)];
@@ -149,15 +152,6 @@ void PreparedCorrectionSystem::Fill(const std::vector<ModalData>& states, Worksp
           for (int r = 0; r < nf_; ++r) column[r] += p[r] * w;
         }
       }
-      // F_j = lambda_j (Phi' M) phi_j - (Phi' K) phi_j, from the products of
-      // the whole state below.
-      Eigen::VectorXd& f = work->f[s][static_cast<std::size_t>(j)];
-      f.resize(nf_);
-    }
-    work->k_shapes.noalias() = phi_t_k_ * shapes;
-    work->m_shapes.noalias() = phi_t_m_ * shapes;
-    for (int j = 0; j < modes; ++j) {
-      const double lambda = std::pow(2 * M_PI * st.frequencies_hz[j], 2);
       work->f[s][static_cast<std::size_t>(j)] =
           lambda * work->m_shapes.col(j) - work->k_shapes.col(j);
     }

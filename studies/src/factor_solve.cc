@@ -142,8 +142,6 @@ PreparedFactorSolve::PreparedFactorSolve(const Study& study, const SolverSpec& s
   for (const auto& [name, value] : study.fixed) names.Fix(name, value);
   names.A.resize(0, static_cast<Eigen::Index>(names.names.size()));
   free_ = names.FreeUnknowns();
-  particular_ = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(names.names.size()));
-  for (const auto& [i, value] : names.fixed) particular_[i] = value;
   fixed_ = names.fixed;
 }
 
@@ -165,9 +163,9 @@ PreparedFactorSolve::Outcome PreparedFactorSolve::Solve(
       work->qr = std::make_unique<FullRankLeastSquares>(
           spec_->linear.relative_rank_tolerance, spec_->linear.scale_columns);
     }
-    if (x.size() == particular_.size() &&
+    if (x.size() == study_->model.num_parameters() &&
         work->qr->Solve(work->a_free, work->b_free, &work->z)) {
-      x = particular_;
+      for (const auto& [i, value] : fixed_) x[i] = value;
       for (Eigen::Index k = 0; k < nfree; ++k) x[free_[k]] = work->z[k];
       out.usable = true;
       out.seconds =

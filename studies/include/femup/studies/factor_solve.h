@@ -98,7 +98,6 @@ class PreparedFactorSolve {
   const Modes* fem_modes_;
   std::unique_ptr<PreparedCorrectionSystem> system_;
   std::vector<int> free_;                      // free unknowns, ascending
-  Eigen::VectorXd particular_;                 // fixed values, zero elsewhere
   std::vector<std::pair<int, double>> fixed_;  // (index, value)
 };
 
