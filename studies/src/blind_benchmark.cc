@@ -97,6 +97,9 @@ struct Generated {
   nlohmann::json truth_json;
 };
 
+// The range of the largest frequency shift for sizes: absolute.
+constexpr double kAbsoluteShiftMin = 0.005, kAbsoluteShiftMax = 0.2;
+
 Generated GenerateCase(const BenchmarkOptions& opt, int index) {
   std::mt19937_64 rng(opt.seed * 1000003ULL +
                       static_cast<unsigned long long>(index) * 7919ULL +
@@ -209,7 +212,9 @@ Generated GenerateCase(const BenchmarkOptions& opt, int index) {
     }
     // Size: the largest frequency shift on the measured modes, in noise units.
     const double target =
-        (u(rng) < 0.8 ? log_uniform(5, 50) : log_uniform(1, 5)) * c.frequency_noise;
+        opt.sizes == "absolute"
+            ? log_uniform(kAbsoluteShiftMin, kAbsoluteShiftMax)
+            : (u(rng) < 0.8 ? log_uniform(5, 50) : log_uniform(1, 5)) * c.frequency_noise;
     Eigen::VectorXd f0, f1;
     Eigen::MatrixXd sh;
     TruthModes(fine, {}, c.modes, &f0, &sh);
@@ -361,6 +366,8 @@ std::string BenchmarkOptions::Validate() const {
   if (threads < 1) return "threads: expected at least 1";
   if (diagnosis_elements < 10) return "diagnosis_elements: expected at least 10";
   if (refinement < 1) return "refinement: expected at least 1";
+  if (sizes != "noise" && sizes != "absolute")
+    return "sizes: expected noise or absolute, not '" + sizes + "'";
   return "";
 }
 
@@ -562,6 +569,7 @@ void WriteBenchmarkOutputs(const BenchmarkResult& r, bool plots, OutputDir* out,
   j["suite"] = r.options.suite;
   j["cases"] = r.options.cases;
   j["seed"] = r.options.seed;
+  j["sizes"] = r.options.sizes;
   j["failed"] = s.failed;
   j["top1"] = s.overall.Json();
   j["top1_single_effect"] = s.single_effect.Json();
@@ -664,7 +672,10 @@ std::string BenchmarkReport(const BenchmarkResult& r) {
   const Scores s = Score(r);
   std::ostringstream o;
   o << "# femup benchmark: " << r.options.suite << " suite, " << r.options.cases
-    << " cases, seed " << r.options.seed << "\n\n";
+    << " cases, seed " << r.options.seed << ", effect sizes "
+    << (r.options.sizes == "absolute" ? "absolute (largest frequency shift 0.5-20 %)"
+                                      : "in noise units (1-50 sigma)")
+    << "\n\n";
   o << "| score | value |\n|---|---|\n";
   o << "| top-1 kind, all cases | " << Pct(s.overall) << " |\n";
   o << "| top-1, one effect | " << Pct(s.single_effect) << " |\n";

@@ -8,6 +8,9 @@
 #  2. femup benchmark --suite single --cases 3 --seed 5: exit 0, scores.json
 #     has top1 and calibration, cases/ and truth/ hold one file per case, and no
 #     case's study file gives its truth away (its effect kinds, its description).
+#     With --sizes absolute (mixed, 3 cases): every true effect's largest
+#     frequency shift is at most 20 % (the range's top), and an unknown
+#     --sizes exits 1 naming it before any case is written.
 #  3. Bad input: an unknown effect among the candidates and a chain model exit 1
 #     with a message naming the problem, and leave no diagnosis.json behind.
 source "$(dirname "$0")/lib.sh"
@@ -50,6 +53,34 @@ for name in sorted(os.listdir(os.path.join(d, "truth"))):
         assert e["description"] not in case, (name, e["description"])
 print("benchmark cases: no truth in the study files")
 PY
+
+# 2b. Absolute effect sizes: every true effect's largest frequency shift is at
+#     most 20 % whatever the case's noise (at least 0.5 % unless even the
+#     family's largest strength cannot reach the drawn size).
+"$FEMUP" benchmark --suite mixed --cases 3 --seed 7 --sizes absolute --no-plots \
+  -o bench_abs -q > bench_abs.txt 2>&1 \
+  || fail "benchmark --sizes absolute exit $?: $(cat bench_abs.txt)"
+[ "$(json bench_abs/scores.json "j['sizes']")" = absolute ] \
+  || fail "scores.json sizes: $(json bench_abs/scores.json "j.get('sizes')")"
+python3 - bench_abs <<'PY' || fail "absolute sizes out of range"
+import json, os, sys
+d = sys.argv[1]
+count = 0
+for name in sorted(os.listdir(os.path.join(d, "truth"))):
+    truth = json.load(open(os.path.join(d, "truth", name)))
+    for e in truth["effects"]:
+        shift = e["shift_in_noise"] * truth["noise"]["frequency"]
+        assert 0 < shift <= 0.2 * (1 + 1e-6), (name, e["kind"], shift)
+        count += 1
+print("absolute sizes: %d effects within (0, 20 %%]" % count)
+PY
+set +e
+"$FEMUP" benchmark --suite single --cases 1 --sizes huge -o bench_bad 2> err0.txt
+rc=$?
+set -e
+[ "$rc" = 1 ] || fail "--sizes huge: exit $rc"
+grep -q -- "--sizes" err0.txt && grep -q "huge" err0.txt || fail "message: $(cat err0.txt)"
+[ ! -e bench_bad/scores.json ] || fail "--sizes huge: scores.json written"
 
 # 3. Bad input: nothing is written.
 { sed -e '/^diagnosis:/,$d' "$ROOT/examples/diagnosis/added_mass.yaml"

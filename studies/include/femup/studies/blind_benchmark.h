@@ -15,8 +15,14 @@
 //   "mixed":  everything mixed: none / one / two effects, noise 0.1-1 % and
 //             1-5 %, 2-4 modes, 5 or 10 sensors, a third without shapes.
 // Effect sizes are set by the largest relative frequency shift they cause on the
-// measured modes, in multiples of the frequency noise: log-uniform in [5, 50]
-// for four cases in five and [1, 5] (at the noise level) for the rest.
+// measured modes (`sizes`):
+//   "noise"    (default): in multiples of the case's frequency noise,
+//              log-uniform in [5, 50] for four cases in five and [1, 5] (at the
+//              noise level) for the rest, whatever the noise;
+//   "absolute": a physical size independent of the measurement, log-uniform in
+//              [0.5 %, 20 %], so that an effect is at the noise level only
+//              where the noise is high (0.5-5 sigma at 1 % frequency noise,
+//              5-200 sigma at 0.1 %).
 #pragma once
 
 #include <string>
@@ -34,6 +40,7 @@ struct BenchmarkOptions {
   int threads = 2;  // cases diagnosed in parallel
   int diagnosis_elements = 20;
   int refinement = 3;            // truth mesh = refinement x diagnosis mesh
+  std::string sizes = "noise";   // "noise" or "absolute" (above)
   std::string Validate() const;  // "" or "<field>: what is wrong"
 };
 
