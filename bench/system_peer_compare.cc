@@ -394,9 +394,8 @@ int main(int argc, char** argv) {
        << Format("%.1f", f["nnz_w"].get<double>() / f["nnz_z"].get<double>())
        << "x), half solves " << Format("%.2f", f["half_solve_time"].get<double>())
        << " s, G = sum W_j' W_j " << Format("%.2f", f["gram_time"].get<double>())
-       << " s, eigen-decomposition of G "
-       << Format("%.2f", f["compress_time"].get<double>()) << " s, "
-       << f["dropped"].get<int>() << " directions dropped.";
+       << " s, pivoted LDL' of G " << Format("%.2f", f["compress_time"].get<double>())
+       << " s, " << f["dropped"].get<int>() << " directions dropped.";
     if (peer.error.empty()) {
       md << " Largest difference between the two answers: "
          << Format("%.1e", MaxAbsDifference(f["x"], peer.json["x"])) << ".";

@@ -418,6 +418,57 @@ TEST(AnalyseIdentifiability, CommonScalingOnTwoGroups) {
   EXPECT_FALSE(id.warnings.empty());
 }
 
+// The overload that reuses the caller's column-scaled SVD (as LstsqSolver does)
+// reports what the one that factorises itself does, on the common-scaling
+// example above with a zero column added.
+TEST(AnalyseIdentifiability, FromTheCallersSvdSameAnalysis) {
+  Eigen::MatrixXd a(5, 4);
+  // clang-format off
+  a << -2.0,  2.0, 1.0, 0.0,
+       -1.0,  1.0, 0.0, 0.0,
+        3.0, -3.0, 2.0, 0.0,
+        0.5, -0.5, 1.0, 0.0,
+        1.0, -1.0, 4.0, 0.0;
+  // clang-format on
+  const std::vector<std::string> names = {"mass[1]", "stiffness[1]", "added_mass[1]",
+                                          "mass[2]"};
+  const std::vector<std::string> groups = {"mass", "stiffness", "added_mass", "mass"};
+  for (const bool scale_columns : {true, false}) {
+    const Eigen::VectorXd scale = IdentifiabilityScale(a, scale_columns);
+    for (int j = 0; j < 3; ++j)
+      EXPECT_DOUBLE_EQ(scale[j], scale_columns ? a.col(j).norm() : 1.0);
+    EXPECT_EQ(scale[3], 1.0);  // a zero column keeps scale 1
+    const Eigen::BDCSVD<Eigen::MatrixXd> svd(a * scale.cwiseInverse().asDiagonal(),
+                                             Eigen::ComputeThinU | Eigen::ComputeThinV);
+    const Identifiability own =
+        AnalyseIdentifiability(a, names, groups, 1e-10, scale_columns);
+    const Identifiability given =
+        AnalyseIdentifiability(a, svd, names, groups, 1e-10, scale_columns);
+    EXPECT_EQ(given.rank, 2);
+    EXPECT_EQ(given.rank, own.rank);
+    EXPECT_LE((given.singular_values - own.singular_values).cwiseAbs().maxCoeff(), 1e-14);
+    EXPECT_EQ(given.unseen, own.unseen);
+    EXPECT_EQ(given.warnings.size(), own.warnings.size());
+    ASSERT_EQ(given.null_directions.size(), own.null_directions.size());
+    // The null space is two-dimensional (the common scaling and the zero
+    // column): compare the spans, not the basis vectors.
+    const Eigen::Index dims = static_cast<Eigen::Index>(own.null_directions.size());
+    Eigen::MatrixXd p_own(4, dims), p_given(4, dims);
+    for (Eigen::Index q = 0; q < dims; ++q) {
+      p_own.col(q) = own.null_directions[static_cast<std::size_t>(q)].coefficients;
+      p_given.col(q) = given.null_directions[static_cast<std::size_t>(q)].coefficients;
+    }
+    const Eigen::MatrixXd projector =
+        p_own * p_own.completeOrthogonalDecomposition().pseudoInverse();
+    EXPECT_LE((projector * p_given - p_given).norm(), 1e-12);
+  }
+  // An SVD without V, or of another width, is refused by name.
+  const Eigen::BDCSVD<Eigen::MatrixXd> values_only(a);
+  EXPECT_THROW(AnalyseIdentifiability(a, values_only, names, groups, 1e-10), InputError);
+  const Eigen::BDCSVD<Eigen::MatrixXd> narrow(a.leftCols(3), Eigen::ComputeThinV);
+  EXPECT_THROW(AnalyseIdentifiability(a, narrow, names, groups, 1e-10), InputError);
+}
+
 TEST(AnalyseIdentifiability, OppositeSignsAreNotCommonScaling) {
   Eigen::MatrixXd a(3, 2);
   a << 1.0, 1.0, 2.0, 2.0, -1.0, -1.0;  // only m + s is seen: null (1, -1)

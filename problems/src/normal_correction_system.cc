@@ -1,6 +1,6 @@
 #include "femup/problems/normal_correction_system.h"
 
-#include <Eigen/Eigenvalues>
+#include <Eigen/Cholesky>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -127,30 +127,33 @@ LinearProblem BuildNormalCorrectionSystem(const ParametrisedModel& model,
   g = 0.5 * (g + g.transpose()).eval();
   const double assembly = Since(t0);
 
-  // Column-scaled eigen-decomposition: D G D = V S V', A = S^1/2 V' D^-1.
+  // Column-scaled square root by pivoted LDL' (stable on a semidefinite G):
+  // D G D = P' L S L' P, A = S^1/2 L' P D^-1, and b with A' b = h:
+  // S^1/2 b = L^-1 P D h. Pivots at or below p eps max are dropped (zero rows).
   const auto t1 = std::chrono::steady_clock::now();
   Eigen::VectorXd d(p);
   for (int k = 0; k < p; ++k) d[k] = g(k, k) > 0 ? 1.0 / std::sqrt(g(k, k)) : 1.0;
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(d.asDiagonal() * g *
-                                                           d.asDiagonal());
-  const Eigen::VectorXd& s = eig.eigenvalues();  // ascending
-  const double smax = s.size() > 0 ? std::max(s[s.size() - 1], 0.0) : 0.0;
+  const Eigen::LDLT<Eigen::MatrixXd> ldlt(d.asDiagonal() * g * d.asDiagonal());
+  const Eigen::VectorXd& s = ldlt.vectorD();
+  const double smax = s.size() > 0 ? std::max(s.maxCoeff(), 0.0) : 0.0;
   const double threshold = p * std::numeric_limits<double>::epsilon() * smax;
   LinearProblem problem;
-  problem.A = Eigen::MatrixXd::Zero(p, p);
+  Eigen::MatrixXd pd = d.cwiseInverse().asDiagonal();
+  pd = ldlt.transpositionsP() * pd;
+  problem.A = ldlt.matrixU() * pd;
+  Eigen::VectorXd y = ldlt.transpositionsP() * (d.asDiagonal() * h);
+  ldlt.matrixL().solveInPlace(y);
   problem.b = Eigen::VectorXd::Zero(p);
-  const Eigen::VectorXd hs = eig.eigenvectors().transpose() * (d.asDiagonal() * h);
   int dropped = 0;
   for (int i = 0; i < p; ++i) {
-    const int row = p - 1 - i;  // largest first
     if (!(s[i] > threshold)) {
       ++dropped;
+      problem.A.row(i).setZero();
       continue;
     }
     const double root = std::sqrt(s[i]);
-    problem.A.row(row) =
-        root * eig.eigenvectors().col(i).transpose() * d.cwiseInverse().asDiagonal();
-    problem.b[row] = hs[i] / root;
+    problem.A.row(i) *= root;
+    problem.b[i] = y[i] / root;
   }
   problem.source_rows = dofs * modes;
   problem.residual_offset = std::max(0.0, f2 - problem.b.squaredNorm());

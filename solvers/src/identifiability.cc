@@ -86,32 +86,34 @@ NullDirection Describe(Eigen::VectorXd v, double sigma,
 
 }  // namespace
 
-Identifiability AnalyseIdentifiability(const Eigen::MatrixXd& a,
-                                       const std::vector<std::string>& names,
-                                       const std::vector<std::string>& groups,
-                                       double relative_tolerance, bool scale_columns) {
+namespace {
+
+void CheckInput(const Eigen::MatrixXd& a, double relative_tolerance) {
   if (a.cols() == 0) throw InputError("identifiability", "the matrix has no column");
   if (!a.allFinite())
     throw InputError("identifiability", "the matrix has a NaN or Inf entry");
   if (!(relative_tolerance > 0) || !(relative_tolerance < 1)) {
     throw InputError("identifiability", "relative tolerance must be in (0, 1)");
   }
+}
+
+// The analysis from the column-scaled SVD (singular values, all of V).
+Identifiability FromScaledSvd(const Eigen::MatrixXd& a, const Eigen::VectorXd& s,
+                              const Eigen::MatrixXd& v,
+                              const std::vector<std::string>& names,
+                              const std::vector<std::string>& groups,
+                              double relative_tolerance, bool scale_columns) {
   const Eigen::Index n = a.cols();
   Identifiability out;
-  Eigen::VectorXd scale = a.colwise().norm().transpose();
   for (Eigen::Index j = 0; j < n; ++j) {
-    if (scale[j] == 0) {
+    if (a.col(j).squaredNorm() == 0) {
       out.unseen.push_back(NameOf(names, static_cast<int>(j)));
       out.warnings.push_back(NameOf(names, static_cast<int>(j)) +
                              " appears in no equation (its column is zero): no "
                              "measurement is sensitive to it");
-      scale[j] = 1.0;
     }
   }
-  if (!scale_columns) scale.setOnes();
-  const Eigen::MatrixXd as = a * scale.cwiseInverse().asDiagonal();
-  Eigen::BDCSVD<Eigen::MatrixXd> svd(as, Eigen::ComputeFullV);
-  const Eigen::VectorXd s = svd.singularValues();
+  const Eigen::VectorXd scale = IdentifiabilityScale(a, scale_columns);
   // Singular values of an m < n matrix: pad with zeros to n.
   out.singular_values = Eigen::VectorXd::Zero(n);
   out.singular_values.head(s.size()) = s;
@@ -134,7 +136,6 @@ Identifiability AnalyseIdentifiability(const Eigen::MatrixXd& a,
     out.condition_number_unscaled =
         raw_min > 0 ? raw[0] / raw_min : std::numeric_limits<double>::infinity();
   }
-  const Eigen::MatrixXd& v = svd.matrixV();
   for (Eigen::Index k = out.rank; k < n; ++k) {
     // Back to the unknowns' own units: x = S^-1 x_scaled.
     const Eigen::VectorXd dir = scale.cwiseInverse().asDiagonal() * v.col(k);
@@ -154,6 +155,46 @@ Identifiability AnalyseIdentifiability(const Eigen::MatrixXd& a,
     out.warnings.push_back(w.str());
   }
   return out;
+}
+
+}  // namespace
+
+Eigen::VectorXd IdentifiabilityScale(const Eigen::MatrixXd& a, bool scale_columns) {
+  Eigen::VectorXd scale = Eigen::VectorXd::Ones(a.cols());
+  if (!scale_columns) return scale;
+  for (Eigen::Index j = 0; j < a.cols(); ++j) {
+    const double norm = a.col(j).norm();
+    if (norm > 0) scale[j] = norm;
+  }
+  return scale;
+}
+
+Identifiability AnalyseIdentifiability(const Eigen::MatrixXd& a,
+                                       const std::vector<std::string>& names,
+                                       const std::vector<std::string>& groups,
+                                       double relative_tolerance, bool scale_columns) {
+  CheckInput(a, relative_tolerance);
+  const Eigen::VectorXd scale = IdentifiabilityScale(a, scale_columns);
+  const Eigen::BDCSVD<Eigen::MatrixXd> svd(a * scale.cwiseInverse().asDiagonal(),
+                                           Eigen::ComputeFullV);
+  return FromScaledSvd(a, svd.singularValues(), svd.matrixV(), names, groups,
+                       relative_tolerance, scale_columns);
+}
+
+Identifiability AnalyseIdentifiability(const Eigen::MatrixXd& a,
+                                       const Eigen::BDCSVD<Eigen::MatrixXd>& scaled_svd,
+                                       const std::vector<std::string>& names,
+                                       const std::vector<std::string>& groups,
+                                       double relative_tolerance, bool scale_columns) {
+  CheckInput(a, relative_tolerance);
+  if (!scaled_svd.computeV() || scaled_svd.matrixV().rows() != a.cols() ||
+      scaled_svd.matrixV().cols() != a.cols()) {
+    throw InputError("identifiability",
+                     "the SVD given does not hold all of V for the matrix's " +
+                         std::to_string(a.cols()) + " columns");
+  }
+  return FromScaledSvd(a, scaled_svd.singularValues(), scaled_svd.matrixV(), names,
+                       groups, relative_tolerance, scale_columns);
 }
 
 }  // namespace femup

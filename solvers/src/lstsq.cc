@@ -74,18 +74,22 @@ LinearSolution LstsqSolver::Solve(const LinearProblem& problem) const {
   }
 
   LinearSolution solution;
-  solution.identifiability = AnalyseIdentifiability(
-      r.A, r.names, r.groups, options_.relative_rank_tolerance, options_.scale_columns);
-
-  Eigen::VectorXd scale = Eigen::VectorXd::Ones(k);
-  if (options_.scale_columns) {
-    scale = r.A.colwise().norm().transpose();
-    for (int j = 0; j < k; ++j) {
-      if (scale[j] == 0) scale[j] = 1.0;
-    }
+  // One column-scaled SVD for the solve and, when it holds all of V (at least
+  // as many rows as columns), for the identifiability analysis too.
+  if (k == 0 || !r.A.allFinite()) {  // the analysis's own error, before any SVD
+    AnalyseIdentifiability(r.A, r.names, r.groups, options_.relative_rank_tolerance,
+                           options_.scale_columns);
   }
+  const Eigen::VectorXd scale = IdentifiabilityScale(r.A, options_.scale_columns);
   const Eigen::MatrixXd as = r.A * scale.cwiseInverse().asDiagonal();
-  Eigen::BDCSVD<Eigen::MatrixXd> svd(as, Eigen::ComputeThinU | Eigen::ComputeThinV);
+  const Eigen::BDCSVD<Eigen::MatrixXd> svd(as, Eigen::ComputeThinU | Eigen::ComputeThinV);
+  solution.identifiability =
+      r.A.rows() >= k ? AnalyseIdentifiability(r.A, svd, r.names, r.groups,
+                                               options_.relative_rank_tolerance,
+                                               options_.scale_columns)
+                      : AnalyseIdentifiability(r.A, r.names, r.groups,
+                                               options_.relative_rank_tolerance,
+                                               options_.scale_columns);
   const Eigen::VectorXd& s = svd.singularValues();
   const double threshold =
       s.size() > 0 ? options_.relative_rank_tolerance * s.maxCoeff() : 0.0;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/SVD>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,22 @@ struct Identifiability {
 // used to recognise the common scaling of K and M. `relative_tolerance` times the largest
 // singular value is the rank threshold.
 Identifiability AnalyseIdentifiability(const Eigen::MatrixXd& a,
+                                       const std::vector<std::string>& names,
+                                       const std::vector<std::string>& groups,
+                                       double relative_tolerance,
+                                       bool scale_columns = true);
+
+// The column scaling of that analysis: the column norms of A (1 for a zero
+// column), or ones when `scale_columns` is false.
+Eigen::VectorXd IdentifiabilityScale(const Eigen::MatrixXd& a, bool scale_columns);
+
+// The same analysis from the caller's SVD of A * diag(scale)^-1, scale =
+// IdentifiabilityScale(a, scale_columns), for A with at least as many rows as
+// columns (then a thin V is all of V): the least-squares solver factorises
+// once for both. Throws InputError as above, and when `scaled_svd` does not
+// hold V of A's column count.
+Identifiability AnalyseIdentifiability(const Eigen::MatrixXd& a,
+                                       const Eigen::BDCSVD<Eigen::MatrixXd>& scaled_svd,
                                        const std::vector<std::string>& names,
                                        const std::vector<std::string>& groups,
                                        double relative_tolerance,
