@@ -76,7 +76,9 @@ LinearSolution LstsqSolver::Solve(const LinearProblem& problem) const {
   LinearSolution solution;
   // One column-scaled SVD for the solve and, when it holds all of V (at least
   // as many rows as columns), for the identifiability analysis too.
-  if (k == 0 || !r.A.allFinite()) {  // the analysis's own error, before any SVD
+  // No free unknown or a non-finite entry: the analysis throws its own
+  // InputError, before any SVD.
+  if (k == 0 || !r.A.allFinite()) {
     AnalyseIdentifiability(r.A, r.names, r.groups, options_.relative_rank_tolerance,
                            options_.scale_columns);
   }

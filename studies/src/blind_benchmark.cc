@@ -210,7 +210,8 @@ Generated GenerateCase(const BenchmarkOptions& opt, int index) {
       e.a = u(rng) < 0.5 ? -1.0 : 1.0;
       d << "Young's modulus " << (e.a > 0 ? "higher" : "lower") << " than modelled";
     }
-    // Size: the largest frequency shift on the measured modes, in noise units.
+    // Size: the largest frequency shift on the measured modes, in units of the
+    // case's frequency noise or in absolute terms (`sizes`).
     const double target =
         opt.sizes == "absolute"
             ? log_uniform(kAbsoluteShiftMin, kAbsoluteShiftMax)
@@ -673,8 +674,10 @@ std::string BenchmarkReport(const BenchmarkResult& r) {
   std::ostringstream o;
   o << "# femup benchmark: " << r.options.suite << " suite, " << r.options.cases
     << " cases, seed " << r.options.seed << ", effect sizes "
-    << (r.options.sizes == "absolute" ? "absolute (largest frequency shift 0.5-20 %)"
-                                      : "in noise units (1-50 sigma)")
+    << (r.options.sizes == "absolute"
+            ? "absolute (largest frequency shift " + Num(100 * kAbsoluteShiftMin) + "-" +
+                  Num(100 * kAbsoluteShiftMax) + " %)"
+            : std::string("in noise units (1-50 sigma)"))
     << "\n\n";
   o << "| score | value |\n|---|---|\n";
   o << "| top-1 kind, all cases | " << Pct(s.overall) << " |\n";
