@@ -162,6 +162,9 @@ int main(int argc, char** argv) {
   bench->add_option("--sizes", bench_options.sizes,
                     "effect sizes: noise (largest frequency shift 1-50 x the case's "
                     "frequency noise, the default) or absolute (0.5-20 %)");
+  bench->add_option("--evidence", bench_options.evidence,
+                    "each class's evidence in the diagnosis: laplace (the default) or "
+                    "sampled (importance sampling)");
   bench->add_option("-o,--out", bench_out, "output folder (default out/benchmark)");
   bench->add_flag("--no-plots", bench_no_plots, "write JSON and tables only");
   bench->add_flag("-q,--quiet", bench_quiet, "print nothing but errors and warnings");

@@ -278,6 +278,50 @@ TEST(Diagnosis, RejectsAHeldOutModeNumberOutOfRange) {
   ExpectInputError([&] { RunDiagnosis(study); }, {"diagnosis.held_out", "test"});
 }
 
+TEST(Diagnosis, RejectsAnUnknownEvidenceMethodAndTooFewDraws) {
+  testing::ScratchDir dir;
+  const std::string a = WriteStudy(dir, std::string(kStudy) + "  evidence: nested\n");
+  ExpectInputError([&] { LoadStudy(a); }, {a, "diagnosis.evidence", "nested", "sampled"});
+  const std::string b = WriteStudy(dir, std::string(kStudy) + "  evidence_samples: 10\n");
+  ExpectInputError([&] { LoadStudy(b); }, {b, "diagnosis.evidence_samples", "100"});
+}
+
+// With `evidence: sampled` the sampled evidence replaces Laplace's where its
+// standard error is small, and only there; with `laplace` (the default) every
+// score is Laplace's. On the
+// attached-mass example (a point mass between nodes: one clear optimum in x)
+// both agree to within the sampling error plus what Laplace's Gaussian misses,
+// and name the same kind.
+TEST(Diagnosis, SampledEvidenceReplacesLaplaceWhereItConverged) {
+  Study study = Example("attached_mass");
+  EXPECT_EQ(study.diagnosis->evidence, "laplace");  // the default
+  study.diagnosis->evidence = "sampled";
+  const DiagnosisResult sampled = RunDiagnosis(study);
+  study.diagnosis->evidence = "laplace";
+  const DiagnosisResult laplace = RunDiagnosis(study);
+  EXPECT_EQ(Top(sampled).label, "attached_mass") << sampled.verdict;
+  EXPECT_EQ(Top(laplace).label, "attached_mass") << laplace.verdict;
+  int used = 0;
+  for (const auto& c : sampled.candidates) {
+    if (c.evidence_method == "sampled") {
+      ++used;
+      EXPECT_LE(c.evidence_standard_error, 0.2) << c.label;
+      EXPECT_GT(c.evidence_draws, 0) << c.label;
+    } else {
+      EXPECT_EQ(c.score, c.laplace_score) << c.label;
+    }
+  }
+  EXPECT_GE(used, 1);
+  const DiagnosisCandidate& top = Top(sampled);
+  EXPECT_EQ(top.evidence_method, "sampled");
+  EXPECT_NEAR(top.score, top.laplace_score, 0.5);
+  for (const auto& c : laplace.candidates) {
+    EXPECT_EQ(c.evidence_method, "laplace") << c.label;
+    EXPECT_EQ(c.evidence_draws, 0) << c.label;
+    EXPECT_EQ(c.score, c.laplace_score) << c.label;
+  }
+}
+
 TEST(Diagnosis, RejectsAChainModel) {
   testing::ScratchDir dir;
   const std::string path = WriteStudy(dir, R"(name: chain

@@ -153,6 +153,34 @@ TEST(SampledEvidence, PartsGiveThePredictiveDensityOfHeldOutData) {
               1e-12);
 }
 
+TEST(SampledEvidence, AdaptiveStagesRecoverFromAPoorStart) {
+  // The component is off by 5 standard deviations of a narrow likelihood and
+  // too wide: with one stage most draws are wasted; with three, the later
+  // stages draw from the posterior's moments and the estimate tightens.
+  const Gaussian g = Correlated();
+  const MisfitFunction misfit = [&](const Eigen::VectorXd& x, Eigen::VectorXd* chi2) {
+    chi2->resize(1);
+    (*chi2)[0] = g.Chi2(x);
+    return true;
+  };
+  const Eigen::Vector2d lo(-3, -4), hi(3, 2);
+  const EvidenceComponent off{g.a + Eigen::Vector2d(1.0, 0.0),
+                              Eigen::Matrix2d::Identity() * 0.25};
+  SampledEvidenceOptions one;
+  one.stages = 1;
+  SampledEvidenceOptions three;
+  three.stages = 3;
+  const SampledLogEvidence e1 =
+      LogEvidenceFromSamples(SampleEvidence(misfit, 1, lo, hi, {off}, one), {true});
+  const SampledLogEvidence e3 =
+      LogEvidenceFromSamples(SampleEvidence(misfit, 1, lo, hi, {off}, three), {true});
+  const double exact = g.LogEvidence(36.0, 1.0);
+  EXPECT_GT(e3.effective_samples, 3 * e1.effective_samples) << e1.effective_samples;
+  // Measured: 10 effective draws of 2000 with one stage, 156 with three.
+  EXPECT_LT(e3.log_standard_error, 0.1);
+  EXPECT_NEAR(e3.log_evidence, exact, std::max(0.02, 4 * e3.log_standard_error));
+}
+
 TEST(SampledEvidence, SameDrawsForTheSameSeedAndStream) {
   const Gaussian g = Correlated();
   const MisfitFunction misfit = [&](const Eigen::VectorXd& x, Eigen::VectorXd* chi2) {
@@ -221,6 +249,12 @@ TEST(SampledEvidence, BadInputNamed) {
   SampledEvidenceOptions share;
   share.prior_share = 0;
   EXPECT_NE(message(share, lo, hi, {}).find("prior_share"), std::string::npos);
+  SampledEvidenceOptions stages;
+  stages.stages = 0;
+  EXPECT_NE(message(stages, lo, hi, {}).find("stages"), std::string::npos);
+  SampledEvidenceOptions cold;
+  cold.temperature = 0.5;
+  EXPECT_NE(message(cold, lo, hi, {}).find("temperature"), std::string::npos);
   EXPECT_NE(message({}, hi, lo, {}).find("range[1]"), std::string::npos);
   EXPECT_NE(
       message({}, lo, hi, {{Eigen::VectorXd::Zero(2), Eigen::MatrixXd::Identity(2, 2)}})

@@ -15,6 +15,9 @@ std::string SampledEvidenceOptions::Validate() const {
   if (!(spread > 0) || !std::isfinite(spread))
     return "spread: must be positive and finite";
   if (tail_dof < 1) return "tail_dof: must be at least 1";
+  if (stages < 1 || stages > samples) return "stages: must be from 1 to samples";
+  if (!(temperature >= 1) || !std::isfinite(temperature))
+    return "temperature: must be finite and >= 1";
   return "";
 }
 
@@ -66,7 +69,19 @@ EvidenceSamples SampleEvidence(const MisfitFunction& misfit, int num_parts,
   const int nu = options.tail_dof;
   const double dd = static_cast<double>(d);
   const double pi = std::acos(-1.0);
-  std::vector<TComponent> comps;
+  // A t component with the scale matrix spread^2 * covariance; false when the
+  // covariance is not positive definite.
+  auto make = [&](const Eigen::VectorXd& mean, const Eigen::MatrixXd& covariance,
+                  TComponent* t) {
+    const Eigen::LLT<Eigen::MatrixXd> llt(covariance * (options.spread * options.spread));
+    if (llt.info() != Eigen::Success) return false;
+    t->mean = mean;
+    t->l = llt.matrixL();
+    t->log_norm = std::lgamma(0.5 * (nu + dd)) - std::lgamma(0.5 * nu) -
+                  0.5 * dd * std::log(nu * pi) - t->l.diagonal().array().log().sum();
+    return t->l.allFinite();
+  };
+  std::vector<TComponent> initial;
   for (std::size_t c = 0; c < components.size(); ++c) {
     const EvidenceComponent& e = components[c];
     const std::string where =
@@ -75,68 +90,126 @@ EvidenceSamples SampleEvidence(const MisfitFunction& misfit, int num_parts,
       throw InputError(where, "mean and covariance must match the range's size");
     if (!e.mean.allFinite() || !e.covariance.allFinite())
       throw InputError(where, "has non-finite entries");
-    const Eigen::LLT<Eigen::MatrixXd> llt(e.covariance *
-                                          (options.spread * options.spread));
-    if (llt.info() != Eigen::Success)
-      throw InputError(where, "the covariance is not positive definite");
     TComponent t;
-    t.mean = e.mean;
-    t.l = llt.matrixL();
-    t.log_norm = std::lgamma(0.5 * (nu + dd)) - std::lgamma(0.5 * nu) -
-                 0.5 * dd * std::log(nu * pi) - t.l.diagonal().array().log().sum();
-    comps.push_back(std::move(t));
+    if (!make(e.mean, e.covariance, &t))
+      throw InputError(where, "the covariance is not positive definite");
+    initial.push_back(std::move(t));
   }
 
-  const int n = options.samples;
-  const int num_prior =
-      comps.empty() ? n
-                    : std::max(1, static_cast<int>(std::lround(options.prior_share * n)));
-  const int per_component =
-      comps.empty() ? 0 : (n - num_prior) / static_cast<int>(comps.size());
-  const int used = num_prior + per_component * static_cast<int>(comps.size());
-  // Deterministic mixture: the shares are the numbers of draws of each kind.
-  const double log_prior_share = std::log(static_cast<double>(num_prior) / used);
-  const double log_component_share =
-      per_component > 0 ? std::log(static_cast<double>(per_component) / used) : kMinusInf;
-
+  // Stage s draws `per_stage[s]` points: a share from the prior, the rest spread
+  // evenly over that stage's components. The weights use the mixture of all
+  // stages' proposals, each with its share of all draws (the balance heuristic
+  // of multiple importance sampling: unbiased whatever the adaptation did).
+  struct Stage {
+    int draws = 0, from_prior = 0;
+    std::vector<TComponent> components;
+  };
+  std::vector<Stage> stages;
+  const int num_stages = options.stages;
+  const int total = options.samples;
+  Eigen::MatrixXd theta(total, d);
   EvidenceSamples out;
   out.num_parts = num_parts;
-  out.log_weight.setConstant(used, kMinusInf);
-  out.chi2.setZero(used, num_parts);
-  Eigen::VectorXd theta(d), z(d), chi2(num_parts);
-  for (int s = 0; s < used; ++s) {
-    CounterRng rng(options.seed, options.stream, static_cast<std::uint64_t>(s));
-    if (s < num_prior) {
-      for (Eigen::Index i = 0; i < d; ++i)
-        theta[i] = lower[i] + 0.5 * (rng.Symmetric() + 1.0) * (upper[i] - lower[i]);
-    } else {
-      const TComponent& t =
-          comps[static_cast<std::size_t>((s - num_prior) / per_component)];
-      for (Eigen::Index i = 0; i < d; ++i) z[i] = rng.Gaussian();
-      double g = 0;
-      for (int k = 0; k < nu; ++k) {
-        const double u = rng.Gaussian();
-        g += u * u;
+  out.log_weight.setConstant(total, kMinusInf);
+  out.chi2.setZero(total, num_parts);
+  std::vector<char> evaluated(static_cast<std::size_t>(total), 0);
+  const Eigen::ArrayXd range = (upper - lower).array();
+
+  // log q(x) of the mixture of stages 0..last, each weighted by its draws / n.
+  auto log_proposal = [&](const Eigen::VectorXd& x, std::size_t last, int n) {
+    double log_q = kMinusInf;
+    for (std::size_t s = 0; s <= last; ++s) {
+      const Stage& st = stages[s];
+      if (st.from_prior > 0)
+        log_q = LogSumExp(log_q,
+                          std::log(static_cast<double>(st.from_prior) / n) - log_volume);
+      const int rest = st.draws - st.from_prior;
+      if (rest == 0 || st.components.empty()) continue;
+      const double share = std::log(static_cast<double>(rest) /
+                                    (n * static_cast<double>(st.components.size())));
+      for (const TComponent& t : st.components)
+        log_q = LogSumExp(log_q, share + t.LogDensity(x, nu));
+    }
+    return log_q;
+  };
+
+  int next = 0;
+  Eigen::VectorXd z(d), x(d), chi2(num_parts);
+  std::vector<TComponent> current = initial;
+  for (int s = 0; s < num_stages; ++s) {
+    Stage st;
+    st.draws = s + 1 == num_stages ? total - next : total / num_stages;
+    st.components = current;
+    st.from_prior =
+        st.components.empty()
+            ? st.draws
+            : std::max(1, static_cast<int>(std::lround(options.prior_share * st.draws)));
+    stages.push_back(st);
+    const Stage& here = stages.back();
+    const int rest = here.draws - here.from_prior;
+    for (int k = 0; k < here.draws; ++k, ++next) {
+      CounterRng rng(options.seed, options.stream, static_cast<std::uint64_t>(next));
+      if (k < here.from_prior) {
+        for (Eigen::Index i = 0; i < d; ++i)
+          x[i] = lower[i] + 0.5 * (rng.Symmetric() + 1.0) * range[i];
+      } else {
+        const std::size_t c = static_cast<std::size_t>(k - here.from_prior) *
+                              here.components.size() / static_cast<std::size_t>(rest);
+        const TComponent& t = here.components[c];
+        for (Eigen::Index i = 0; i < d; ++i) z[i] = rng.Gaussian();
+        double g = 0;
+        for (int j = 0; j < nu; ++j) {
+          const double u = rng.Gaussian();
+          g += u * u;
+        }
+        x = t.mean + t.l * z * std::sqrt(nu / std::max(g, 1e-300));
       }
-      theta = t.mean + t.l * z * std::sqrt(nu / std::max(g, 1e-300));
+      theta.row(next) = x.transpose();
+      bool inside = true;
+      for (Eigen::Index i = 0; i < d && inside; ++i)
+        inside = x[i] >= lower[i] && x[i] <= upper[i];
+      if (!inside) {
+        ++out.outside;
+        continue;
+      }
+      chi2.setZero(num_parts);
+      if (!misfit(x, &chi2) || chi2.size() != num_parts || !chi2.allFinite()) {
+        ++out.failed;
+        continue;
+      }
+      evaluated[static_cast<std::size_t>(next)] = 1;
+      out.chi2.row(next) = chi2.transpose();
     }
-    bool inside = true;
-    for (Eigen::Index i = 0; i < d && inside; ++i)
-      inside = theta[i] >= lower[i] && theta[i] <= upper[i];
-    if (!inside) {
-      ++out.outside;
-      continue;
+    if (s + 1 == num_stages) break;
+    // Adapt: the initial components plus, for the first k parts (k = 1..parts),
+    // a component at the posterior's weighted mean and covariance so far.
+    current = initial;
+    for (int parts = 1; parts <= num_parts; ++parts) {
+      Eigen::VectorXd lw = Eigen::VectorXd::Constant(next, kMinusInf);
+      double top = kMinusInf;
+      for (int i = 0; i < next; ++i) {
+        if (!evaluated[static_cast<std::size_t>(i)]) continue;
+        x = theta.row(i).transpose();
+        lw[i] = -log_volume - log_proposal(x, stages.size() - 1, next) -
+                0.5 * out.chi2.row(i).head(parts).sum() / options.temperature;
+        top = std::max(top, lw[i]);
+      }
+      if (top == kMinusInf) continue;
+      const Eigen::ArrayXd w = (lw.array() - top).exp();
+      const double sum = w.sum();
+      if (sum * sum / w.square().sum() < 2 * (dd + 1)) continue;  // too few to say
+      const Eigen::VectorXd mean = theta.topRows(next).transpose() * w.matrix() / sum;
+      const Eigen::MatrixXd centred = theta.topRows(next).rowwise() - mean.transpose();
+      Eigen::MatrixXd cov = centred.transpose() * w.matrix().asDiagonal() * centred / sum;
+      cov.diagonal().array() += 1e-8 * range.square();
+      TComponent t;
+      if (make(mean, cov, &t)) current.push_back(std::move(t));
     }
-    chi2.setZero(num_parts);
-    if (!misfit(theta, &chi2) || chi2.size() != num_parts || !chi2.allFinite()) {
-      ++out.failed;
-      continue;
-    }
-    double log_q = log_prior_share - log_volume;
-    for (const TComponent& t : comps)
-      log_q = LogSumExp(log_q, log_component_share + t.LogDensity(theta, nu));
-    out.log_weight[s] = -log_volume - log_q;
-    out.chi2.row(s) = chi2.transpose();
+  }
+  for (int i = 0; i < total; ++i) {
+    if (!evaluated[static_cast<std::size_t>(i)]) continue;
+    x = theta.row(i).transpose();
+    out.log_weight[i] = -log_volume - log_proposal(x, stages.size() - 1, total);
   }
   return out;
 }

@@ -292,7 +292,8 @@ Generated GenerateCase(const BenchmarkOptions& opt, int index) {
     }
   }
   y << "diagnosis:\n  noise: {frequency: " << Num(c.frequency_noise)
-    << ", shape: " << Num(c.shape_noise) << "}\n  localise: false\n";
+    << ", shape: " << Num(c.shape_noise)
+    << "}\n  localise: false\n  evidence: " << opt.evidence << "\n";
   g.yaml = y.str();
 
   nlohmann::json tj;
@@ -369,6 +370,8 @@ std::string BenchmarkOptions::Validate() const {
   if (refinement < 1) return "refinement: expected at least 1";
   if (sizes != "noise" && sizes != "absolute")
     return "sizes: expected noise or absolute, not '" + sizes + "'";
+  if (evidence != "sampled" && evidence != "laplace")
+    return "evidence: expected sampled or laplace, not '" + evidence + "'";
   return "";
 }
 
@@ -571,6 +574,7 @@ void WriteBenchmarkOutputs(const BenchmarkResult& r, bool plots, OutputDir* out,
   j["cases"] = r.options.cases;
   j["seed"] = r.options.seed;
   j["sizes"] = r.options.sizes;
+  j["evidence"] = r.options.evidence;
   j["failed"] = s.failed;
   j["top1"] = s.overall.Json();
   j["top1_single_effect"] = s.single_effect.Json();
@@ -678,7 +682,7 @@ std::string BenchmarkReport(const BenchmarkResult& r) {
             ? "absolute (largest frequency shift " + Num(100 * kAbsoluteShiftMin) + "-" +
                   Num(100 * kAbsoluteShiftMax) + " %)"
             : std::string("in noise units (1-50 sigma)"))
-    << "\n\n";
+    << ", " << r.options.evidence << " evidence\n\n";
   o << "| score | value |\n|---|---|\n";
   o << "| top-1 kind, all cases | " << Pct(s.overall) << " |\n";
   o << "| top-1, one effect | " << Pct(s.single_effect) << " |\n";

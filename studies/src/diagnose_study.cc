@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -11,6 +12,7 @@
 #include "femup/errors.h"
 #include "femup/plot.h"
 #include "femup/solvers/nonlinear_solver.h"
+#include "femup/solvers/sampled_evidence.h"
 #include "json_util.h"
 #include "render_staged.h"
 
@@ -92,6 +94,7 @@ struct FitOutcome {
   Eigen::VectorXd theta;
   Eigen::MatrixXd jacobian;
   double chi2 = 0;
+  std::vector<LocalOptimum> optima;  // every start's answer, distinct ones only
 };
 
 // Multi-start fit of one class on `data`.
@@ -110,6 +113,10 @@ FitOutcome FitClass(const EffectFitData& data, const std::vector<const Effect*>&
       continue;
     }
     const double chi2 = sol.residual.squaredNorm();
+    bool seen = false;
+    for (const LocalOptimum& o : best.optima)
+      seen = seen || (o.theta - sol.x).cwiseAbs().maxCoeff() <= 1e-6;
+    if (!seen) best.optima.push_back({sol.x, sol.jacobian, chi2});
     if (!best.ok || chi2 < best.chi2) {
       best.ok = true;
       best.chi2 = chi2;
@@ -417,6 +424,7 @@ DiagnosisResult RunDiagnosis(const Study& study) {
       c.theta = fit.theta;
       c.jacobian = fit.jacobian;
       c.chi2 = fit.chi2;
+      c.optima = fit.optima;
       if (cls.size() == 1) best_single[cls[0]] = fit.theta;
     }
     if (!PredictEffectModes(r.fitted_data, ptrs, c.theta, &c.fitted, &why)) continue;
@@ -446,20 +454,98 @@ DiagnosisResult RunDiagnosis(const Study& study) {
   if (r.candidates.empty()) throw InputError("diagnosis", "no candidate could be fitted");
 
   // Evidence, at the stated noise, then tempered if even the best class fails.
+  auto prior_box = [&](const std::vector<const Effect*>& effects, Eigen::VectorXd* lo,
+                       Eigen::VectorXd* hi) {
+    const auto params = EffectSetParameters(r.fitted_data, effects);
+    lo->resize(static_cast<Eigen::Index>(params.size()));
+    hi->resize(lo->size());
+    for (std::size_t i = 0; i < params.size(); ++i) {
+      (*lo)[static_cast<Eigen::Index>(i)] = params[i].lower;
+      (*hi)[static_cast<Eigen::Index>(i)] = params[i].upper;
+    }
+  };
   auto score_all = [&](double temperature) {
     for (DiagnosisCandidate& c : r.candidates) {
       std::vector<std::unique_ptr<Effect>> effects;
       for (const auto& k : c.kinds) effects.push_back(CreateEffect(k));
-      const auto params = EffectSetParameters(r.fitted_data, Pointers(effects));
-      Eigen::VectorXd lo(params.size()), hi(params.size());
-      for (std::size_t i = 0; i < params.size(); ++i) {
-        lo[static_cast<Eigen::Index>(i)] = params[i].lower;
-        hi[static_cast<Eigen::Index>(i)] = params[i].upper;
-      }
+      Eigen::VectorXd lo, hi;
+      prior_box(Pointers(effects), &lo, &hi);
       c.evidence = LaplaceEvidence(c.chi2, c.jacobian, c.theta, lo, hi, temperature);
       c.held_out_log_predictive = LogPredictiveDensity(
           c.held_out_residual, c.held_out_jacobian, c.evidence.covariance, temperature);
       c.score = c.evidence.log_evidence + c.held_out_log_predictive;
+      c.laplace_score = c.score;
+    }
+  };
+  // The same by importance sampling over each class's prior (sampled_evidence.h),
+  // the proposal's components at the distinct optima of its multi-start fit: the
+  // evidence of the fitted modes, and of fitted and held-out modes together, from
+  // the same draws (their difference is the held-out modes' predictive density).
+  // Classes whose Laplace score is more than kSampledBelow under the best keep
+  // it: their probability is below e^-kSampledBelow either way.
+  constexpr double kSampledBelow = 25;
+  // The largest standard error of a sampled log evidence that replaces Laplace's.
+  constexpr double kSampledStandardError = 0.2;
+  auto sample_all = [&](double temperature) {
+    double best_laplace = -std::numeric_limits<double>::infinity();
+    for (const DiagnosisCandidate& c : r.candidates)
+      best_laplace = std::max(best_laplace, c.laplace_score);
+    for (std::size_t i = 0; i < r.candidates.size(); ++i) {
+      DiagnosisCandidate& c = r.candidates[i];
+      if (c.theta.size() == 0) continue;  // no parameters: Laplace is exact
+      if (c.laplace_score < best_laplace - kSampledBelow) continue;
+      std::vector<std::unique_ptr<Effect>> effects;
+      for (const auto& k : c.kinds) effects.push_back(CreateEffect(k));
+      const std::vector<const Effect*> ptrs = Pointers(effects);
+      Eigen::VectorXd lo, hi;
+      prior_box(ptrs, &lo, &hi);
+      std::vector<EvidenceComponent> components;
+      for (const LocalOptimum& o : c.optima) {
+        // Optima whose likelihood is below e^-15 of the best's add nothing.
+        if (o.chi2 > c.chi2 + 30 * temperature) continue;
+        components.push_back(
+            {o.theta, LaplaceEvidence(o.chi2, o.jacobian, o.theta, lo, hi, temperature)
+                          .covariance});
+      }
+      const bool has_held_out = !r.held_out_data.states.empty();
+      std::vector<PredictedState> predicted;
+      std::string unused;
+      const MisfitFunction misfit = [&](const Eigen::VectorXd& t, Eigen::VectorXd* chi2) {
+        chi2->setZero(2);
+        if (!PredictEffectModes(r.fitted_data, ptrs, t, &predicted, &unused))
+          return false;
+        (*chi2)[0] = EffectResiduals(r.fitted_data, predicted).squaredNorm();
+        if (!has_held_out) return true;
+        if (!PredictEffectModes(r.held_out_data, ptrs, t, &predicted, &unused))
+          return false;
+        (*chi2)[1] = EffectResiduals(r.held_out_data, predicted).squaredNorm();
+        return true;
+      };
+      SampledEvidenceOptions sampling;
+      sampling.samples = spec.evidence_samples;
+      sampling.stream = i;  // classes in a fixed order: the same draws on every run
+      sampling.temperature = temperature;
+      const EvidenceSamples draws =
+          SampleEvidence(misfit, 2, lo, hi, components, sampling);
+      const SampledLogEvidence fitted =
+          LogEvidenceFromSamples(draws, {true, false}, temperature);
+      const SampledLogEvidence all =
+          LogEvidenceFromSamples(draws, {true, true}, temperature);
+      c.evidence_draws = static_cast<int>(draws.log_weight.size());
+      c.evidence_effective_draws = all.effective_samples;
+      c.evidence_standard_error = all.log_standard_error;
+      // A poor proposal (a thin curved ridge in several dimensions) shows as few
+      // effective draws and a large error, and its estimate is biased low: keep
+      // Laplace's then.
+      if (!std::isfinite(fitted.log_evidence) || !std::isfinite(all.log_evidence) ||
+          std::max(fitted.log_standard_error, all.log_standard_error) >
+              kSampledStandardError)
+        continue;
+      c.evidence_method = "sampled";
+      c.evidence.log_evidence = fitted.log_evidence;
+      c.evidence.log_occam = fitted.log_evidence + 0.5 * c.chi2 / temperature;
+      c.held_out_log_predictive = all.log_evidence - fitted.log_evidence;
+      c.score = all.log_evidence;
     }
   };
   score_all(1.0);
@@ -483,6 +569,7 @@ DiagnosisResult RunDiagnosis(const Study& study) {
       << Fixed(r.temperature, 2) << ") for the probabilities";
     r.warnings.push_back(w.str());
   }
+  if (spec.evidence == "sampled") sample_all(r.temperature);
   Eigen::VectorXd scores(static_cast<Eigen::Index>(r.candidates.size()));
   Eigen::VectorXd prior(scores.size());
   const double levels = spec.max_effects >= 2 && num_pairs > 0 ? 3.0 : 2.0;
@@ -608,6 +695,11 @@ void WriteDiagnosisOutputs(const DiagnosisResult& r, bool plots, OutputDir* out,
                          {"chi2", c.chi2},
                          {"held_out_chi2", c.held_out_chi2},
                          {"held_out_log_predictive", c.held_out_log_predictive},
+                         {"evidence_method", c.evidence_method},
+                         {"laplace_score", c.laplace_score},
+                         {"evidence_draws", c.evidence_draws},
+                         {"evidence_effective_draws", c.evidence_effective_draws},
+                         {"evidence_standard_error", c.evidence_standard_error},
                          {"converged", c.converged},
                          {"fits", c.starts}};
     nlohmann::json params = nlohmann::json::object();

@@ -263,7 +263,8 @@ Structure ReadCantilever(const Field& m, CantileverSpec* out) {
 
 DiagnosisSpec ReadDiagnosis(const Field& f) {
   f.ExpectKeys({"noise", "candidates", "max_effects", "held_out", "use_shapes",
-                "mesh_error", "localise", "solver", "confidence"});
+                "mesh_error", "localise", "solver", "confidence", "evidence",
+                "evidence_samples"});
   DiagnosisSpec d;
   if (f.Has("noise")) {
     const Field n = f["noise"];
@@ -325,6 +326,16 @@ DiagnosisSpec ReadDiagnosis(const Field& f) {
     d.confidence = f["confidence"].Num();
     if (!(d.confidence > 0.5 && d.confidence < 1))
       f["confidence"].Fail("expected a probability between 0.5 and 1");
+  }
+  if (f.Has("evidence")) {
+    d.evidence = f["evidence"].Str();
+    if (d.evidence != "sampled" && d.evidence != "laplace")
+      f["evidence"].Fail("expected sampled or laplace, found '" + d.evidence + "'");
+  }
+  if (f.Has("evidence_samples")) {
+    d.evidence_samples = f["evidence_samples"].Int();
+    if (d.evidence_samples < 100 || d.evidence_samples > 1000000)
+      f["evidence_samples"].Fail("expected a number of draws from 100 to 1000000");
   }
   return d;
 }

@@ -9,8 +9,9 @@
 #     has top1 and calibration, cases/ and truth/ hold one file per case, and no
 #     case's study file gives its truth away (its effect kinds, its description).
 #     With --sizes absolute (mixed, 3 cases): every true effect's largest
-#     frequency shift is at most 20 % (the range's top), and an unknown
-#     --sizes exits 1 naming it before any case is written.
+#     frequency shift is at most 20 % (the range's top); with --evidence sampled,
+#     scores.json and every case file name that method; an unknown --sizes or
+#     --evidence exits 1 naming it before any case is written.
 #  3. Bad input: an unknown effect among the candidates and a chain model exit 1
 #     with a message naming the problem, and leave no diagnosis.json behind.
 source "$(dirname "$0")/lib.sh"
@@ -57,11 +58,16 @@ PY
 # 2b. Absolute effect sizes: every true effect's largest frequency shift is at
 #     most 20 % whatever the case's noise (at least 0.5 % unless even the
 #     family's largest strength cannot reach the drawn size).
-"$FEMUP" benchmark --suite mixed --cases 3 --seed 7 --sizes absolute --no-plots \
-  -o bench_abs -q > bench_abs.txt 2>&1 \
+"$FEMUP" benchmark --suite mixed --cases 3 --seed 7 --sizes absolute --evidence sampled \
+  --no-plots -o bench_abs -q > bench_abs.txt 2>&1 \
   || fail "benchmark --sizes absolute exit $?: $(cat bench_abs.txt)"
 [ "$(json bench_abs/scores.json "j['sizes']")" = absolute ] \
   || fail "scores.json sizes: $(json bench_abs/scores.json "j.get('sizes')")"
+[ "$(json bench_abs/scores.json "j['evidence']")" = sampled ] \
+  || fail "scores.json evidence: $(json bench_abs/scores.json "j.get('evidence')")"
+for f in bench_abs/cases/*.yaml; do
+  grep -q "evidence: sampled" "$f" || fail "$f: no evidence method"
+done
 python3 - bench_abs <<'PY' || fail "absolute sizes out of range"
 import json, os, sys
 d = sys.argv[1]
@@ -81,6 +87,14 @@ set -e
 [ "$rc" = 1 ] || fail "--sizes huge: exit $rc"
 grep -q -- "--sizes" err0.txt && grep -q "huge" err0.txt || fail "message: $(cat err0.txt)"
 [ ! -e bench_bad/scores.json ] || fail "--sizes huge: scores.json written"
+set +e
+"$FEMUP" benchmark --suite single --cases 1 --evidence nested -o bench_bad2 2> err0b.txt
+rc=$?
+set -e
+[ "$rc" = 1 ] || fail "--evidence nested: exit $rc"
+grep -q -- "--evidence" err0b.txt && grep -q "nested" err0b.txt \
+  || fail "message: $(cat err0b.txt)"
+[ ! -e bench_bad2/scores.json ] || fail "--evidence nested: scores.json written"
 
 # 3. Bad input: nothing is written.
 { sed -e '/^diagnosis:/,$d' "$ROOT/examples/diagnosis/added_mass.yaml"

@@ -32,6 +32,12 @@ struct SampledEvidenceOptions {
   double prior_share = 0.2;  // of the draws from the prior box, in (0, 1]
   double spread = 1.5;       // multiplies the components' standard deviations, > 0
   int tail_dof = 5;          // Student t degrees of freedom of the components, >= 1
+  // Adaptive stages (>= 1): after each stage but the last, the next one's
+  // components are the given ones plus, for the first k parts of the misfit
+  // (k = 1..parts), one at the weighted mean and covariance of the draws so far
+  // (the posterior of those parts at `temperature`).
+  int stages = 3;
+  double temperature = 1.0;  // of the posterior the stages adapt to, >= 1
   std::uint64_t seed = 20261124;
   std::uint64_t stream = 0;  // e.g. a class's index: independent draws per class
   // Empty when valid, else "<field>: what is wrong".
@@ -60,8 +66,9 @@ struct EvidenceSamples {
   int failed = 0;        // draws where the misfit returned false
 };
 
-// Draws options.samples points from the mixture and evaluates the misfit at
-// those inside the box. With no components every draw comes from the prior.
+// Draws options.samples points in options.stages stages and evaluates the
+// misfit at those inside the box. With no components the first stage draws from
+// the prior only.
 // Throws InputError for invalid options, an empty or non-finite box, or a
 // component of the wrong size or with a covariance that is not positive
 // definite.

@@ -39,8 +39,11 @@ struct BenchmarkOptions {
   unsigned long long seed = 20261121;
   int threads = 2;  // cases diagnosed in parallel
   int diagnosis_elements = 20;
-  int refinement = 3;            // truth mesh = refinement x diagnosis mesh
-  std::string sizes = "noise";   // "noise" or "absolute" (above)
+  int refinement = 3;           // truth mesh = refinement x diagnosis mesh
+  std::string sizes = "noise";  // "noise" or "absolute" (above)
+  // The diagnosis's evidence, written into every case's study file: "laplace"
+  // (the default of diagnose) or "sampled".
+  std::string evidence = "laplace";
   std::string Validate() const;  // "" or "<field>: what is wrong"
 };
 

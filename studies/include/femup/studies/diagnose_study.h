@@ -37,6 +37,13 @@
 namespace femup {
 
 // One candidate model class: no effect, one, or two effects together.
+// One start's answer of a class's multi-start fit.
+struct LocalOptimum {
+  Eigen::VectorXd theta;
+  Eigen::MatrixXd jacobian;  // whitened, at theta
+  double chi2 = 0;
+};
+
 struct DiagnosisCandidate {
   std::vector<std::string> kinds;  // empty = none
   std::string label;               // "none", "added_mass", "added_mass+stiffness_loss"
@@ -52,8 +59,19 @@ struct DiagnosisCandidate {
   Eigen::MatrixXd held_out_jacobian;   // whitened, at theta
   double held_out_log_predictive = 0;  // LogPredictiveDensity, at the final temperature
   double score = 0;                    // log evidence + held-out log predictive density
-  double probability = 0;              // posterior
-  int starts = 0;                      // fits run
+  double laplace_score =
+      0;  // the same by Laplace's approximation (at the final temperature)
+  std::vector<LocalOptimum> optima;  // the multi-start fit's distinct answers
+  // "laplace" or "sampled": how the score was computed. Sampled (when the study
+  // asks for it, the class has parameters and is within reach of the best) when
+  // its standard error is at most 0.2; draws, Kish's effective number of them
+  // and the standard error are reported whenever sampling ran.
+  std::string evidence_method = "laplace";
+  int evidence_draws = 0;
+  double evidence_effective_draws = 0;
+  double evidence_standard_error = 0;
+  double probability = 0;  // posterior
+  int starts = 0;          // fits run
   // Per effect: location and physical size.
   std::vector<EffectLocation> locations;
   std::vector<std::vector<EffectMagnitude>> magnitudes;

@@ -140,6 +140,12 @@ struct DiagnosisSpec {
   bool localise = true;    // the per-element scan
   std::string solver = "ceres";
   double confidence = 0.9;  // a verdict below this lists what it cannot separate
+  // Each class's evidence: "laplace" (Laplace's approximation at the best fit)
+  // or "sampled" (importance sampling over its prior, sampled_evidence.h, where
+  // its standard error is small; Laplace's elsewhere). docs/diagnosis.md has the
+  // two compared on the blind benchmark.
+  std::string evidence = "laplace";
+  int evidence_samples = 2000;  // draws per class when sampled
 };
 
 struct Study {
