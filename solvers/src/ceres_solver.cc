@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "femup/solvers/kkt.h"
@@ -37,6 +38,12 @@ constexpr double kStallRatio = 0.5;
 // iterations, and on an ill-conditioned problem a KKT residual just under
 // kkt_tolerance can still leave x far from the optimum.
 constexpr double kStallKktTolerance = 1e-10;
+// A solve stuck on a bound that its gradient pulls it off is restarted with that
+// parameter moved inside by this fraction of its range (doubled each time), at
+// most kMaxNudges times.
+constexpr double kNudge = 1e-3;
+constexpr int kMaxNudges = 10;
+constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // r(x) of the problem as one Ceres cost on the single parameter block x (n).
 class ModelCost final : public ceres::CostFunction {
@@ -155,8 +162,12 @@ SolverStatus FromCeres(ceres::TerminationType type) {
 // bounds. The signs are those of the original problem (equality multipliers by
 // least squares): the penalised gradient carries rho (C x - d), which is large
 // and of any sign while the penalty is large and C x - d not yet converged.
+// Also the free parameters on a bound whose multiplier has the wrong sign: the
+// gradient pulls them inside, yet Ceres's projected steps can stay stuck there.
 struct Stall {
   std::vector<int> on_bounds;  // ascending
+  std::vector<std::pair<int, double>>
+      leaving;  // (parameter, +1 off lower / -1 off upper)
   bool short_of_optimum = false;
 };
 Stall CheckStall(const NonlinearProblem& problem, const NonlinearSolverOptions& options,
@@ -172,10 +183,18 @@ Stall CheckStall(const NonlinearProblem& problem, const NonlinearSolverOptions& 
       CheckKkt(x, g, problem.lower, problem.upper, problem.equality_matrix,
                problem.equality_rhs, problem.fixed, gradient_scale);
   for (int i : original.active_lower) {
-    if (original.bound_multipliers[i] >= 0) stall.on_bounds.push_back(i);
+    if (original.bound_multipliers[i] >= 0) {
+      stall.on_bounds.push_back(i);
+    } else {
+      stall.leaving.emplace_back(i, 1.0);
+    }
   }
   for (int i : original.active_upper) {
-    if (original.bound_multipliers[i] <= 0) stall.on_bounds.push_back(i);
+    if (original.bound_multipliers[i] <= 0) {
+      stall.on_bounds.push_back(i);
+    } else {
+      stall.leaving.emplace_back(i, -1.0);
+    }
   }
   std::sort(stall.on_bounds.begin(), stall.on_bounds.end());
   Eigen::VectorXd penalised = g;
@@ -274,7 +293,7 @@ nonlinear_internal::BackendResult RunCeres(const NonlinearProblem& problem,
   std::string stop;  // why the last pass that produced x ended
   std::string late_failure;
   double violation = 0;
-  int outer = 0, holds = 0, holds_this_pass = 0;
+  int outer = 0, holds = 0, holds_this_pass = 0, nudges = 0;
   while (true) {
     const Eigen::VectorXd before = x;
     ceres_options.max_num_iterations = options.max_iterations - result.iterations;
@@ -309,6 +328,22 @@ nonlinear_internal::BackendResult RunCeres(const NonlinearProblem& problem,
           ++holds_this_pass;
           continue;
         }
+        if (stall.short_of_optimum && !stall.leaving.empty() && nudges < kMaxNudges) {
+          // Stuck on bounds the gradient pulls it off: step those parameters
+          // inside by kNudge of their range (of max(1, |x|) for a one-sided
+          // bound), twice as far at each further time, and go on from there.
+          for (const auto& [i, direction] : stall.leaving) {
+            const double lo = problem.lower.size() == n ? problem.lower[i] : -kInf;
+            const double hi = problem.upper.size() == n ? problem.upper[i] : kInf;
+            const double range =
+                std::isfinite(hi - lo) ? hi - lo : std::max(1.0, std::abs(x[i]));
+            x[i] =
+                std::clamp(x[i] + direction * std::ldexp(kNudge, nudges) * range, lo, hi);
+          }
+          ++nudges;
+          ++holds_this_pass;
+          continue;
+        }
       }
     }
     ++outer;
@@ -335,6 +370,10 @@ nonlinear_internal::BackendResult RunCeres(const NonlinearProblem& problem,
   if (!late_failure.empty()) msg << "; then " << late_failure;
   if (holds > 0) {
     msg << "; re-solved " << holds << " time(s) with the bounds it stalled at held";
+  }
+  if (nudges > 0) {
+    msg << "; moved off bounds the gradient pulls it from and re-solved " << nudges
+        << " time(s)";
   }
   if (q > 0 && result.status != SolverStatus::kFailed) {
     msg << "; equalities |C x - d|_inf = " << violation << " after " << outer
