@@ -34,6 +34,15 @@ struct Gaussian {
   }
 };
 
+// The Gaussian's chi2 as a one-part misfit (g must outlive it).
+MisfitFunction Misfit(const Gaussian& g) {
+  return [&g](const Eigen::VectorXd& x, Eigen::VectorXd* chi2) {
+    chi2->resize(1);
+    (*chi2)[0] = g.Chi2(x);
+    return true;
+  };
+}
+
 Gaussian Correlated() {
   Gaussian g;
   g.a = Eigen::Vector2d(0.3, -1.2);
@@ -46,11 +55,7 @@ Gaussian Correlated() {
 TEST(SampledEvidence, GaussianLikelihoodMatchesTheClosedForm) {
   const Gaussian g = Correlated();
   const Eigen::Vector2d lo(-3, -4), hi(3, 2);
-  const MisfitFunction misfit = [&](const Eigen::VectorXd& x, Eigen::VectorXd* chi2) {
-    chi2->resize(1);
-    (*chi2)[0] = g.Chi2(x);
-    return true;
-  };
+  const MisfitFunction misfit = Misfit(g);
   const EvidenceSamples s = SampleEvidence(
       misfit, 1, lo, hi, {{g.a, g.precision.inverse()}}, SampledEvidenceOptions{});
   const SampledLogEvidence e = LogEvidenceFromSamples(s, {true});
@@ -158,11 +163,7 @@ TEST(SampledEvidence, AdaptiveStagesRecoverFromAPoorStart) {
   // too wide: with one stage most draws are wasted; with three, the later
   // stages draw from the posterior's moments and the estimate tightens.
   const Gaussian g = Correlated();
-  const MisfitFunction misfit = [&](const Eigen::VectorXd& x, Eigen::VectorXd* chi2) {
-    chi2->resize(1);
-    (*chi2)[0] = g.Chi2(x);
-    return true;
-  };
+  const MisfitFunction misfit = Misfit(g);
   const Eigen::Vector2d lo(-3, -4), hi(3, 2);
   const EvidenceComponent off{g.a + Eigen::Vector2d(1.0, 0.0),
                               Eigen::Matrix2d::Identity() * 0.25};
@@ -183,11 +184,7 @@ TEST(SampledEvidence, AdaptiveStagesRecoverFromAPoorStart) {
 
 TEST(SampledEvidence, SameDrawsForTheSameSeedAndStream) {
   const Gaussian g = Correlated();
-  const MisfitFunction misfit = [&](const Eigen::VectorXd& x, Eigen::VectorXd* chi2) {
-    chi2->resize(1);
-    (*chi2)[0] = g.Chi2(x);
-    return true;
-  };
+  const MisfitFunction misfit = Misfit(g);
   const Eigen::Vector2d lo(-3, -4), hi(3, 2);
   SampledEvidenceOptions o;
   o.samples = 300;
