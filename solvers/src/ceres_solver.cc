@@ -166,8 +166,8 @@ SolverStatus FromCeres(ceres::TerminationType type) {
 // gradient pulls them inside, yet Ceres's projected steps can stay stuck there.
 struct Stall {
   std::vector<int> on_bounds;  // ascending
-  std::vector<std::pair<int, double>>
-      leaving;  // (parameter, +1 off lower / -1 off upper)
+  // (parameter, +1 to step off its lower bound / -1 off its upper bound)
+  std::vector<std::pair<int, double>> leaving;
   bool short_of_optimum = false;
 };
 Stall CheckStall(const NonlinearProblem& problem, const NonlinearSolverOptions& options,

@@ -96,10 +96,11 @@ EvidenceSamples SampleEvidence(const MisfitFunction& misfit, int num_parts,
     initial.push_back(std::move(t));
   }
 
-  // Stage s draws `per_stage[s]` points: a share from the prior, the rest spread
-  // evenly over that stage's components. The weights use the mixture of all
-  // stages' proposals, each with its share of all draws (the balance heuristic
-  // of multiple importance sampling: unbiased whatever the adaptation did).
+  // Each stage draws options.samples / stages points (the last the remainder): a
+  // share from the prior, the rest spread evenly over that stage's components. The
+  // weights use the mixture of all stages' proposals, each with its share of all draws
+  // (the balance heuristic of multiple importance sampling: unbiased whatever the
+  // adaptation did).
   struct Stage {
     int draws = 0, from_prior = 0;
     std::vector<TComponent> components;
@@ -184,14 +185,20 @@ EvidenceSamples SampleEvidence(const MisfitFunction& misfit, int num_parts,
     // Adapt: the initial components plus, for the first k parts (k = 1..parts),
     // a component at the posterior's weighted mean and covariance so far.
     current = initial;
+    // log pi - log q of the draws so far (once; the parts only change the misfit).
+    Eigen::VectorXd log_ratio = Eigen::VectorXd::Constant(next, kMinusInf);
+    for (int i = 0; i < next; ++i) {
+      if (!evaluated[static_cast<std::size_t>(i)]) continue;
+      x = theta.row(i).transpose();
+      log_ratio[i] = -log_volume - log_proposal(x, stages.size() - 1, next);
+    }
     for (int parts = 1; parts <= num_parts; ++parts) {
       Eigen::VectorXd lw = Eigen::VectorXd::Constant(next, kMinusInf);
       double top = kMinusInf;
       for (int i = 0; i < next; ++i) {
-        if (!evaluated[static_cast<std::size_t>(i)]) continue;
-        x = theta.row(i).transpose();
-        lw[i] = -log_volume - log_proposal(x, stages.size() - 1, next) -
-                0.5 * out.chi2.row(i).head(parts).sum() / options.temperature;
+        if (log_ratio[i] == kMinusInf) continue;
+        lw[i] =
+            log_ratio[i] - 0.5 * out.chi2.row(i).head(parts).sum() / options.temperature;
         top = std::max(top, lw[i]);
       }
       if (top == kMinusInf) continue;
