@@ -19,6 +19,7 @@
 
 #include "femup/errors.h"
 #include "femup/output_dir.h"
+#include "femup/problems/effect_fit.h"
 #include "femup/studies/diagnose_study.h"
 #include "femup/studies/study.h"
 #include "scratch_dir.h"
@@ -319,6 +320,72 @@ TEST(Diagnosis, SampledEvidenceReplacesLaplaceWhereItConverged) {
     EXPECT_EQ(c.evidence_method, "laplace") << c.label;
     EXPECT_EQ(c.evidence_draws, 0) << c.label;
     EXPECT_EQ(c.score, c.laplace_score) << c.label;
+  }
+}
+
+// The form error adds, in quadrature, to each frequency's sigma the stated
+// fraction of the nominal model's misfit of that frequency (the nominal mode of
+// the same number), and to each shape entry's the fraction of its misfit (the
+// nominal shape scaled to the measured one), the nominal modes computed here on
+// their own (BendingModesAtSensors); with 0 nothing is added. The shapes' mesh
+// error is in both.
+TEST(Diagnosis, FormErrorAddsAFractionOfTheNominalMisfitToTheNoise) {
+  Study study = Example("support_flexibility");
+  EXPECT_EQ(study.diagnosis->form_error, 0.05);  // the default
+  study.diagnosis->form_error = 0.1;
+  const DiagnosisResult with = RunDiagnosis(study);
+  study.diagnosis->form_error = 0;
+  const DiagnosisResult without = RunDiagnosis(study);
+  ASSERT_EQ(with.fitted_data.states.size(), 1u);
+  const ObservedState& st = with.fitted_data.states[0];
+  const ObservedState& st0 = without.fitted_data.states[0];
+  ASSERT_EQ(st.modes.size(), 3u);  // the fourth is held out
+  Eigen::VectorXd hz;
+  Eigen::MatrixXd shapes;
+  std::string why;
+  ASSERT_TRUE(
+      BendingModesAtSensors(study.cantilever.value(), st.sensors, 4, &hz, &shapes, &why))
+      << why;
+  ASSERT_EQ(with.form_error.size(), 4u);
+  for (std::size_t j = 0; j < st.modes.size(); ++j) {
+    const ObservedMode& m = st.modes[j];
+    const double misfit = hz[j] / m.frequency_hz - 1;
+    EXPECT_GT(std::abs(misfit), 10 * study.diagnosis->frequency_noise) << j;
+    EXPECT_NEAR(with.form_error[j], 0.1 * std::abs(misfit), 1e-12) << j;
+    EXPECT_EQ(without.form_error[j], 0.0) << j;
+    EXPECT_NEAR(m.frequency_sigma * m.frequency_sigma,
+                st0.modes[j].frequency_sigma * st0.modes[j].frequency_sigma +
+                    0.01 * misfit * misfit,
+                1e-15)
+        << j;
+    const Eigen::VectorXd t = m.shape / m.shape.cwiseAbs().maxCoeff();
+    const Eigen::VectorXd sv = shapes.col(static_cast<Eigen::Index>(j));
+    ASSERT_EQ(m.shape_sigma.size(), t.size()) << j;
+    ASSERT_EQ(st0.modes[j].shape_sigma.size(), t.size()) << j;
+    const Eigen::ArrayXd added =
+        m.shape_sigma.array().square() - st0.modes[j].shape_sigma.array().square();
+    EXPECT_LT((added - (0.1 * (sv * (sv.dot(t) / sv.squaredNorm()) - t)).array().square())
+                  .abs()
+                  .maxCoeff(),
+              1e-14)
+        << j;
+    // Without a form error: the noise and the mesh's error, which is below it.
+    EXPECT_GE(st0.modes[j].shape_sigma.minCoeff(), with.shape_noise) << j;
+    EXPECT_LT(st0.modes[j].shape_sigma.maxCoeff(), 1.1 * with.shape_noise) << j;
+  }
+  // A looser fit, the same verdict.
+  EXPECT_EQ(Top(with).label, "support_flexibility") << with.verdict;
+  EXPECT_EQ(Top(without).label, "support_flexibility") << without.verdict;
+  EXPECT_LE(Top(with).chi2, Top(without).chi2);
+}
+
+TEST(Diagnosis, RejectsAFormErrorOutsideZeroToOne) {
+  testing::ScratchDir dir;
+  for (const char* bad : {"1.5", "-0.1"}) {
+    const std::string a =
+        WriteStudy(dir, std::string(kStudy) + "  form_error: " + bad + "\n");
+    ExpectInputError([&] { LoadStudy(a); },
+                     {a, "diagnosis.form_error", "0 <= value < 1", bad});
   }
 }
 

@@ -288,6 +288,19 @@ TEST(EffectFit, ExactDataGiveZeroResiduals) {
   }
   for (int k = 0; k < 3; ++k)
     EXPECT_NEAR(r2[i++], (mod.hz[k] / ref.hz[k] - 1) / 0.01, 1e-7);
+
+  // A mode's own per-sensor sigma replaces the data's shape_sigma for that
+  // mode only.
+  Eigen::VectorXd own(10);
+  for (int j = 0; j < 10; ++j) own[j] = 0.01 * (j + 1);
+  data.states[0].modes[1].shape_sigma = own;
+  ASSERT_EQ(data.Validate(), "");
+  const Eigen::VectorXd r3 = EffectResiduals(data, pred);
+  ASSERT_EQ(r3.size(), r2.size());
+  for (int j = 0; j < 10; ++j) {
+    EXPECT_NEAR(r3[11 + 1 + j], r2[11 + 1 + j] * 0.02 / own[j], 1e-12);  // mode 2
+    EXPECT_EQ(r3[1 + j], r2[1 + j]);                                     // mode 1
+  }
 }
 
 TEST(EffectFit, MacPairsObservedModesListedOutOfOrder) {
@@ -497,6 +510,17 @@ TEST(EffectFitInput, BadShapeSigma) {
   EffectFitData data = ValidData();
   data.shape_sigma = 0;
   ExpectRejected(data, {"shape_sigma"});
+}
+
+TEST(EffectFitInput, BadPerSensorShapeSigma) {
+  EffectFitData data = ValidData();
+  data.states[0].modes[2].shape_sigma = Eigen::VectorXd::Constant(9, 0.01);
+  ExpectRejected(data, {"states[1]", "modes[3]", "shape sigma", "9", "10"});
+  for (double bad : {0.0, -0.01, std::nan("")}) {
+    data.states[0].modes[2].shape_sigma = Eigen::VectorXd::Constant(10, 0.01);
+    data.states[0].modes[2].shape_sigma[4] = bad;
+    ExpectRejected(data, {"states[1]", "modes[3]", "shape sigma", "positive"});
+  }
 }
 
 TEST(EffectFitInput, StartOutsideTheRangeOrOfTheWrongSize) {

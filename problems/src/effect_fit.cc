@@ -144,6 +144,13 @@ std::string EffectFitData::Validate() const {
         if (!m.shape.allFinite() || m.shape.cwiseAbs().maxCoeff() == 0)
           return mw + ": shape must be finite and not all zero";
       }
+      if (m.shape_sigma.size() > 0) {
+        if (m.shape_sigma.size() != m.shape.size())
+          return mw + ": shape sigma has " + std::to_string(m.shape_sigma.size()) +
+                 " entries for a shape of " + std::to_string(m.shape.size());
+        if (!m.shape_sigma.allFinite() || !(m.shape_sigma.minCoeff() > 0))
+          return mw + ": shape sigma must be positive and finite";
+      }
     }
   }
   return "";
@@ -302,8 +309,9 @@ Eigen::VectorXd EffectResiduals(const EffectFitData& data,
       r[k++] = (pm.frequency_hz / om.frequency_hz - 1) / om.frequency_sigma;
       if (shapes) {
         const Eigen::VectorXd t = UnitPeak(om.shape);
+        const bool own = om.shape_sigma.size() > 0;
         for (Eigen::Index i = 0; i < t.size(); ++i) {
-          r[k++] = (pm.shape[i] - t[i]) / data.shape_sigma;
+          r[k++] = (pm.shape[i] - t[i]) / (own ? om.shape_sigma[i] : data.shape_sigma);
         }
       }
     }

@@ -294,6 +294,7 @@ Generated GenerateCase(const BenchmarkOptions& opt, int index) {
   y << "diagnosis:\n  noise: {frequency: " << Num(c.frequency_noise)
     << ", shape: " << Num(c.shape_noise)
     << "}\n  localise: false\n  evidence: " << opt.evidence << "\n";
+  if (opt.form_error >= 0) y << "  form_error: " << Num(opt.form_error) << "\n";
   g.yaml = y.str();
 
   nlohmann::json tj;
@@ -372,6 +373,8 @@ std::string BenchmarkOptions::Validate() const {
     return "sizes: expected noise or absolute, not '" + sizes + "'";
   if (evidence != "sampled" && evidence != "laplace")
     return "evidence: expected sampled or laplace, not '" + evidence + "'";
+  if (!(form_error < 1) || std::isnan(form_error))
+    return "form_error: expected a fraction below 1 (or negative for diagnose's default)";
   return "";
 }
 
@@ -575,6 +578,7 @@ void WriteBenchmarkOutputs(const BenchmarkResult& r, bool plots, OutputDir* out,
   j["seed"] = r.options.seed;
   j["sizes"] = r.options.sizes;
   j["evidence"] = r.options.evidence;
+  if (r.options.form_error >= 0) j["form_error"] = r.options.form_error;
   j["failed"] = s.failed;
   j["top1"] = s.overall.Json();
   j["top1_single_effect"] = s.single_effect.Json();
@@ -682,7 +686,10 @@ std::string BenchmarkReport(const BenchmarkResult& r) {
             ? "absolute (largest frequency shift " + Num(100 * kAbsoluteShiftMin) + "-" +
                   Num(100 * kAbsoluteShiftMax) + " %)"
             : std::string("in noise units (1-50 sigma)"))
-    << ", " << r.options.evidence << " evidence\n\n";
+    << ", " << r.options.evidence << " evidence"
+    << (r.options.form_error >= 0 ? ", form error " + Num(r.options.form_error)
+                                  : std::string())
+    << "\n\n";
   o << "| score | value |\n|---|---|\n";
   o << "| top-1 kind, all cases | " << Pct(s.overall) << " |\n";
   o << "| top-1, one effect | " << Pct(s.single_effect) << " |\n";

@@ -232,6 +232,7 @@ DiagnosisResult RunDiagnosis(const Study& study) {
   r.length = BeamLength(nominal);
   r.frequency_noise = spec.frequency_noise;
   r.shape_noise = spec.shape_noise;
+  r.form_error_fraction = spec.form_error;
   r.confidence = spec.confidence;
 
   // Measured states as observed modes at their sensors.
@@ -310,11 +311,64 @@ DiagnosisResult RunDiagnosis(const Study& study) {
                                                  ", not " + std::to_string(h.second));
     }
   }
-  for (ObservedState& st : observed) {
-    for (ObservedMode& m : st.modes) {
-      const double e = mesh_error[m.number - 1];
-      m.frequency_sigma = std::sqrt(m.frequency_sigma * m.frequency_sigma + e * e);
+  // Per state, the nominal model's modes by number (frequencies, and shapes at
+  // the sensors) for the families' form error: a fraction of the nominal
+  // model's misfit, per frequency and per shape entry (measured, not fitted,
+  // so every class is judged with the same uncertainty); and the mesh's error
+  // in the shapes: each entry's change when every element is halved (node k
+  // becomes node 2k).
+  for (std::size_t s = 0; s < observed.size(); ++s) {
+    ObservedState& st = observed[s];
+    const bool shape_mesh = spec.mesh_error && !st.sensors.empty();
+    Eigen::VectorXd nominal_hz;
+    Eigen::MatrixXd coarse, fine;
+    if (shape_mesh || spec.form_error > 0) {
+      std::string why;
+      if (!BendingModesAtSensors(nominal, st.sensors, highest, &nominal_hz, &coarse,
+                                 &why))
+        throw InputError("model", "the nominal model cannot be solved: " + why);
+    }
+    if (shape_mesh) {
+      std::vector<std::string> fine_sensors;
+      for (const std::string& label : st.sensors) {
+        const std::size_t colon = label.find(':');
+        fine_sensors.push_back("n" +
+                               std::to_string(2 * std::stoi(label.substr(1, colon - 1))) +
+                               label.substr(colon));
+      }
+      Eigen::VectorXd unused;
+      std::string why;
+      if (!BendingModesAtSensors(Refined(nominal), fine_sensors, highest, &unused, &fine,
+                                 &why))
+        throw InputError("model", "the refined nominal model cannot be solved: " + why);
+    }
+    for (std::size_t j = 0; j < st.modes.size(); ++j) {
+      ObservedMode& m = st.modes[j];
+      const int k = m.number - 1;
+      const double e = mesh_error[k];
+      const double form =
+          spec.form_error > 0
+              ? spec.form_error * std::abs(nominal_hz[k] / m.frequency_hz - 1)
+              : 0.0;
+      m.frequency_sigma =
+          std::sqrt(m.frequency_sigma * m.frequency_sigma + e * e + form * form);
+      if (m.shape.size() > 0 && (shape_mesh || spec.form_error > 0)) {
+        const Eigen::VectorXd c = coarse.col(k);
+        Eigen::ArrayXd var =
+            Eigen::ArrayXd::Constant(m.shape.size(), spec.shape_noise * spec.shape_noise);
+        if (shape_mesh) {
+          const Eigen::VectorXd f = fine.col(k);
+          var += (c - f * (f.dot(c) / f.squaredNorm())).array().square();
+        }
+        if (spec.form_error > 0) {
+          const Eigen::VectorXd t = m.shape / m.shape.cwiseAbs().maxCoeff();
+          var +=
+              (spec.form_error * (c * (c.dot(t) / c.squaredNorm()) - t).array()).square();
+        }
+        m.shape_sigma = var.sqrt().matrix();
+      }
       r.mesh_error.push_back(e);
+      r.form_error.push_back(form);
     }
     ObservedState fit = st, out = st;
     fit.modes.clear();
@@ -675,6 +729,8 @@ void WriteDiagnosisOutputs(const DiagnosisResult& r, bool plots, OutputDir* out,
   j["noise"] = {{"frequency", r.frequency_noise},
                 {"shape", r.shape_noise},
                 {"mesh_error", r.mesh_error},
+                {"form_error", r.form_error},
+                {"form_error_fraction", r.form_error_fraction},
                 {"temperature", r.temperature},
                 {"best_chi2_p_value", r.best_chi2_p_value},
                 {"degrees_of_freedom", r.degrees_of_freedom}};
@@ -865,6 +921,8 @@ std::string DiagnosisReport(const DiagnosisResult& r) {
   o << ", " << held << " mode(s) held out\n";
   o << "  noise: frequency " << 100 * r.frequency_noise << " %, shape "
     << 100 * r.shape_noise << " %";
+  if (r.form_error_fraction > 0)
+    o << ", form error " << 100 * r.form_error_fraction << " % of the nominal misfit";
   if (r.temperature > 1) o << " (scaled by sqrt(" << Fixed(r.temperature, 2) << "))";
   o << "\n\n  verdict: " << r.verdict << "\n\n";
   o << "  rank  class                                    P       chi2   held-out  "

@@ -263,8 +263,8 @@ Structure ReadCantilever(const Field& m, CantileverSpec* out) {
 
 DiagnosisSpec ReadDiagnosis(const Field& f) {
   f.ExpectKeys({"noise", "candidates", "max_effects", "held_out", "use_shapes",
-                "mesh_error", "localise", "solver", "confidence", "evidence",
-                "evidence_samples"});
+                "mesh_error", "form_error", "localise", "solver", "confidence",
+                "evidence", "evidence_samples"});
   DiagnosisSpec d;
   if (f.Has("noise")) {
     const Field n = f["noise"];
@@ -316,6 +316,13 @@ DiagnosisSpec ReadDiagnosis(const Field& f) {
   }
   if (f.Has("use_shapes")) d.use_shapes = f["use_shapes"].Bool();
   if (f.Has("mesh_error")) d.mesh_error = f["mesh_error"].Bool();
+  if (f.Has("form_error")) {
+    d.form_error = f["form_error"].Num();
+    if (!(d.form_error >= 0 && d.form_error < 1))
+      f["form_error"].Fail(
+          "a fraction of the nominal misfit: expected 0 <= value < 1, found " +
+          f["form_error"].Str());
+  }
   if (f.Has("localise")) d.localise = f["localise"].Bool();
   if (f.Has("solver")) {
     d.solver = f["solver"].Str();

@@ -12,8 +12,9 @@
 //   frequency:  (f / f_meas - 1) / sigma_k, sigma_k the mode's relative
 //               frequency uncertainty (noise and model error together);
 //   shape (when the mode has one and use_shapes), one per sensor:
-//               (c s_i - t_i) / shape_sigma, t = psi / max |psi|, s = phi at the
-//               sensors, c = s't / s's (the modal scale factor).
+//               (c s_i - t_i) / sigma_i, t = psi / max |psi|, s = phi at the
+//               sensors, c = s't / s's (the modal scale factor), sigma_i the
+//               mode's own per-sensor sigma where it has one, else shape_sigma.
 // Pairing: with shapes, by MAC at the sensors among the lowest
 // (highest observed number + extra_modes) bending modes; without, mode k is the
 // k-th bending mode.
@@ -35,6 +36,9 @@ struct ObservedMode {
   double frequency_hz = 0;     // > 0
   double frequency_sigma = 0;  // relative standard deviation, > 0
   Eigen::VectorXd shape;       // at the state's sensors, or empty
+  // Per sensor, relative to the shape's largest entry (noise and model error
+  // together); empty: EffectFitData::shape_sigma for every entry.
+  Eigen::VectorXd shape_sigma;
 };
 
 struct ObservedState {

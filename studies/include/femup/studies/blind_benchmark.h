@@ -44,6 +44,9 @@ struct BenchmarkOptions {
   // The diagnosis's evidence, written into every case's study file: "laplace"
   // (the default of diagnose) or "sampled".
   std::string evidence = "laplace";
+  // The diagnosis's form error (DiagnosisSpec::form_error), written into every
+  // case's study file when >= 0; below 0, diagnose's default applies.
+  double form_error = -1;
   std::string Validate() const;  // "" or "<field>: what is wrong"
 };
 

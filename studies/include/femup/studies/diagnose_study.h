@@ -94,6 +94,9 @@ struct DiagnosisResult {
   std::vector<PredictedState> nominal_fitted, nominal_held_out;
   double frequency_noise = 0, shape_noise = 0;
   std::vector<double> mesh_error;  // per state and mode (fitted then held out), relative
+  // The families' form error in each frequency, the same order, relative.
+  std::vector<double> form_error;
+  double form_error_fraction = 0;  // DiagnosisSpec::form_error
   double temperature = 1;
   double best_chi2_p_value = 1;  // of the best class at the stated noise
   int degrees_of_freedom = 0;

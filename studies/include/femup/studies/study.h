@@ -137,7 +137,12 @@ struct DiagnosisSpec {
   std::vector<std::pair<std::string, int>> held_out_modes;
   bool use_shapes = true;
   bool mesh_error = true;  // add the discretisation error to the noise
-  bool localise = true;    // the per-element scan
+  // The candidate families' form error, as a fraction of the nominal model's
+  // misfit per frequency and shape entry, added to the noise in quadrature: a
+  // family of a few parameters describes a real effect only to some fraction
+  // of the change it makes (docs/diagnosis.md, "Form error").
+  double form_error = 0.05;
+  bool localise = true;  // the per-element scan
   std::string solver = "ceres";
   double confidence = 0.9;  // a verdict below this lists what it cannot separate
   // Each class's evidence: "laplace" (Laplace's approximation at the best fit)
