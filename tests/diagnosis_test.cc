@@ -187,8 +187,15 @@ TEST(Diagnosis, WritesDiagnosisJson) {
   double sum = 0;
   for (const auto& e : j["effects"]) {
     const std::string kind = e.value("kind", "?");
-    for (const char* key : {"kind", "probability", "score", "gap_before", "gap_after"})
+    for (const char* key :
+         {"kind", "probability", "score", "gap_before", "gap_after", "basins"})
       EXPECT_TRUE(e.contains(key)) << kind << ": " << key;
+    // "none" has no parameters, hence one basin; a class's basins are among
+    // its multi-start fit's distinct optima.
+    if (e["kinds"].empty()) {
+      EXPECT_EQ(e["basins"].get<int>(), 1);
+    }
+    EXPECT_GE(e["basins"].get<int>(), 1) << kind;
     sum += e["probability"].get<double>();
     EXPECT_TRUE(e["gap_before"].contains("rms_frequency_error")) << kind;
     EXPECT_TRUE(e["gap_after"].contains("rms_frequency_error")) << kind;

@@ -1,7 +1,9 @@
 #include "femup/solvers/model_evidence.h"
 
 #include <Eigen/Cholesky>
+#include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "femup/errors.h"
 
@@ -73,6 +75,33 @@ double LogPredictiveDensity(const Eigen::VectorXd& residual,
   const Eigen::MatrixXd l = llt.matrixL();
   const double log_det = 2 * l.diagonal().array().log().sum();
   return -0.5 * residual.dot(llt.solve(residual)) / temperature - 0.5 * log_det;
+}
+
+BasinMixture CombineBasins(const std::vector<double>& log_evidence,
+                           const std::vector<double>& log_predictive) {
+  if (log_evidence.empty() || log_evidence.size() != log_predictive.size())
+    throw InputError("basins",
+                     "needs one predictive density per basin and at least one basin");
+  for (std::size_t k = 0; k < log_evidence.size(); ++k) {
+    if (!std::isfinite(log_evidence[k]) || !std::isfinite(log_predictive[k]))
+      throw InputError("basins",
+                       "basin " + std::to_string(k + 1) +
+                           ": log evidence and log predictive density must be finite");
+  }
+  // log-sum-exp, shifted by the largest term against overflow.
+  auto log_sum = [](const std::vector<double>& v) {
+    const double top = *std::max_element(v.begin(), v.end());
+    double sum = 0;
+    for (double x : v) sum += std::exp(x - top);
+    return top + std::log(sum);
+  };
+  std::vector<double> joint(log_evidence.size());
+  for (std::size_t k = 0; k < joint.size(); ++k)
+    joint[k] = log_evidence[k] + log_predictive[k];
+  BasinMixture m;
+  m.log_evidence = log_sum(log_evidence);
+  m.log_predictive = log_sum(joint) - m.log_evidence;
+  return m;
 }
 
 Eigen::VectorXd PosteriorProbabilities(const Eigen::VectorXd& log_evidence,

@@ -116,7 +116,13 @@ FitOutcome FitClass(const EffectFitData& data, const std::vector<const Effect*>&
     bool seen = false;
     for (const LocalOptimum& o : best.optima)
       seen = seen || (o.theta - sol.x).cwiseAbs().maxCoeff() <= 1e-6;
-    if (!seen) best.optima.push_back({sol.x, sol.jacobian, chi2});
+    if (!seen) {
+      LocalOptimum o;
+      o.theta = sol.x;
+      o.jacobian = sol.jacobian;
+      o.chi2 = chi2;
+      best.optima.push_back(std::move(o));
+    }
     if (!best.ok || chi2 < best.chi2) {
       best.ok = true;
       best.chi2 = chi2;
@@ -495,6 +501,21 @@ DiagnosisResult RunDiagnosis(const Study& study) {
         if (!p.evaluate(c.theta, &rh, &c.held_out_jacobian, &why)) continue;
       }
     }
+    // Each optimum's own prediction of the held-out modes (basins, below).
+    for (LocalOptimum& o : c.optima) {
+      o.held_out_jacobian.resize(0, o.theta.size());
+      if (r.held_out_data.states.empty()) {
+        o.predicts = true;
+        continue;
+      }
+      std::vector<PredictedState> predicted;
+      if (!PredictEffectModes(r.held_out_data, ptrs, o.theta, &predicted, &why)) continue;
+      o.held_out_residual = EffectResiduals(r.held_out_data, predicted);
+      o.held_out_jacobian.resize(o.held_out_residual.size(), o.theta.size());
+      const NonlinearProblem p = BuildEffectFitProblem(r.held_out_data, ptrs, o.theta);
+      Eigen::VectorXd rh;
+      o.predicts = p.evaluate(o.theta, &rh, &o.held_out_jacobian, &why);
+    }
     int offset = 0;
     for (const auto& e : effects) {
       const int n = static_cast<int>(e->Parameters(nominal).size());
@@ -527,6 +548,69 @@ DiagnosisResult RunDiagnosis(const Study& study) {
       c.evidence = LaplaceEvidence(c.chi2, c.jacobian, c.theta, lo, hi, temperature);
       c.held_out_log_predictive = LogPredictiveDensity(
           c.held_out_residual, c.held_out_jacobian, c.evidence.covariance, temperature);
+      // Laplace's approximation at every separated basin the multi-start fit
+      // found, summed (a posterior with several modes: a location that few
+      // modes cannot pin down), and the held-out modes' density as the mixture
+      // of each basin's prediction, weighted by its evidence. One basin: the
+      // best fit's Laplace evidence and prediction as they are.
+      std::vector<double> log_z{c.evidence.log_evidence};
+      std::vector<double> log_p{c.held_out_log_predictive};
+      std::vector<const LocalOptimum*> kept;
+      std::vector<Eigen::MatrixXd> kept_h;  // Laplace's Hessian H of each kept basin
+      const Eigen::ArrayXd range = (hi - lo).array();
+      auto hessian = [&](const Eigen::MatrixXd& j) {
+        Eigen::MatrixXd h = j.transpose() * j / temperature;
+        h.diagonal().array() += 2 * M_PI / range.square();
+        return h;
+      };
+      if (c.theta.size() > 0) kept_h.push_back(hessian(c.jacobian));
+      std::vector<const LocalOptimum*> order;
+      for (const LocalOptimum& o : c.optima) order.push_back(&o);
+      std::sort(
+          order.begin(), order.end(),
+          [](const LocalOptimum* a, const LocalOptimum* b) { return a->chi2 < b->chi2; });
+      std::vector<Eigen::VectorXd> kept_theta{c.theta};
+      std::vector<double> kept_chi2{c.chi2};
+      for (const LocalOptimum* o : order) {
+        // Optima whose likelihood is below e^-15 of the best's add nothing.
+        if (!o->predicts || o->chi2 > c.chi2 + 30 * temperature || c.theta.size() == 0)
+          continue;
+        // The same basin as a kept one: within 3 of its posterior standard
+        // deviations, measured by either basin's Hessian, or no barrier
+        // between the two (chi2 halfway no more than 2 T above the higher of
+        // the two: one curved valley, whose volume Laplace at the best
+        // already counts).
+        const Eigen::MatrixXd h = hessian(o->jacobian);
+        bool separate = true;
+        for (std::size_t k = 0; k < kept_theta.size() && separate; ++k) {
+          const Eigen::VectorXd d = o->theta - kept_theta[k];
+          separate = d.dot(kept_h[k] * d) > 9 && d.dot(h * d) > 9;
+          if (!separate) break;
+          std::vector<PredictedState> halfway;
+          std::string unused;
+          separate =
+              PredictEffectModes(r.fitted_data, Pointers(effects),
+                                 0.5 * (o->theta + kept_theta[k]), &halfway, &unused) &&
+              EffectResiduals(r.fitted_data, halfway).squaredNorm() >
+                  std::max(o->chi2, kept_chi2[k]) + 2 * temperature;
+        }
+        if (!separate) continue;
+        const ModelEvidence e =
+            LaplaceEvidence(o->chi2, o->jacobian, o->theta, lo, hi, temperature);
+        log_z.push_back(e.log_evidence);
+        log_p.push_back(LogPredictiveDensity(o->held_out_residual, o->held_out_jacobian,
+                                             e.covariance, temperature));
+        kept_theta.push_back(o->theta);
+        kept_chi2.push_back(o->chi2);
+        kept_h.push_back(h);
+      }
+      c.basins = static_cast<int>(log_z.size());
+      if (log_z.size() > 1) {
+        const BasinMixture mix = CombineBasins(log_z, log_p);
+        c.evidence.log_occam += mix.log_evidence - c.evidence.log_evidence;
+        c.evidence.log_evidence = mix.log_evidence;
+        c.held_out_log_predictive = mix.log_predictive;
+      }
       c.score = c.evidence.log_evidence + c.held_out_log_predictive;
       c.laplace_score = c.score;
     }
@@ -748,6 +832,7 @@ void WriteDiagnosisOutputs(const DiagnosisResult& r, bool plots, OutputDir* out,
                          {"score", c.score},
                          {"log_evidence", c.evidence.log_evidence},
                          {"log_occam", c.evidence.log_occam},
+                         {"basins", c.basins},
                          {"chi2", c.chi2},
                          {"held_out_chi2", c.held_out_chi2},
                          {"held_out_log_predictive", c.held_out_log_predictive},

@@ -18,6 +18,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <vector>
 
 namespace femup {
 
@@ -51,6 +52,19 @@ ModelEvidence LaplaceEvidence(double chi2, const Eigen::MatrixXd& jacobian,
 double LogPredictiveDensity(const Eigen::VectorXd& residual,
                             const Eigen::MatrixXd& jacobian,
                             const Eigen::MatrixXd& covariance, double temperature = 1.0);
+
+// A posterior with several separated modes (the basins of a multi-start fit:
+// a location few data cannot pin down), each approximated by Laplace at its
+// own optimum: the class's evidence is their sum, Z = sum_k Z_k, and held-out
+// data are predicted by the mixture, p = sum_k Z_k p_k / Z. Takes log Z_k and
+// log p_k (the same size, at least one; finite) and returns log Z and log p.
+// Throws InputError otherwise.
+struct BasinMixture {
+  double log_evidence = 0;
+  double log_predictive = 0;
+};
+BasinMixture CombineBasins(const std::vector<double>& log_evidence,
+                           const std::vector<double>& log_predictive);
 
 // Posterior probabilities from log evidences and prior probabilities (same
 // size; priors > 0, not necessarily normalised): softmax of log Z + log prior.

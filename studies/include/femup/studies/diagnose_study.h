@@ -42,6 +42,11 @@ struct LocalOptimum {
   Eigen::VectorXd theta;
   Eigen::MatrixXd jacobian;  // whitened, at theta
   double chi2 = 0;
+  // The held-out modes predicted from theta (whitened residuals and their
+  // Jacobian); `predicts` false where the model could not be evaluated there.
+  bool predicts = false;
+  Eigen::VectorXd held_out_residual;
+  Eigen::MatrixXd held_out_jacobian;
 };
 
 struct DiagnosisCandidate {
@@ -62,6 +67,7 @@ struct DiagnosisCandidate {
   double laplace_score =
       0;  // the same by Laplace's approximation (at the final temperature)
   std::vector<LocalOptimum> optima;  // the multi-start fit's distinct answers
+  int basins = 1;  // separated optima whose Laplace evidences were summed
   // "laplace" or "sampled": how the score was computed. Sampled (when the study
   // asks for it, the class has parameters and is within reach of the best) when
   // its standard error is at most 0.2; draws, Kish's effective number of them
