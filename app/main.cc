@@ -2,6 +2,7 @@
 // pipeline from studies/, and writes its JSON, matrices and plots into an
 // output folder all at once (nothing is left behind when a run fails).
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -282,9 +283,11 @@ int main(int argc, char** argv) {
     }
     if (*bench) {
       const std::string invalid = bench_options.Validate();
-      if (!invalid.empty())
-        throw femup::InputError("--" + invalid.substr(0, invalid.find(':')),
-                                invalid.substr(invalid.find(':') + 2));
+      if (!invalid.empty()) {
+        std::string flag = invalid.substr(0, invalid.find(':'));
+        std::replace(flag.begin(), flag.end(), '_', '-');  // form_error: --form-error
+        throw femup::InputError("--" + flag, invalid.substr(invalid.find(':') + 2));
+      }
       std::filesystem::create_directories(bench_out);
       femup::BenchmarkResult result;
       {

@@ -10,8 +10,9 @@
 #     case's study file gives its truth away (its effect kinds, its description).
 #     With --sizes absolute (mixed, 3 cases): every true effect's largest
 #     frequency shift is at most 20 % (the range's top); with --evidence sampled,
-#     scores.json and every case file name that method; an unknown --sizes or
-#     --evidence exits 1 naming it before any case is written.
+#     scores.json and every case file name that method, and with --form-error
+#     0.02 that form error; an unknown --sizes or --evidence, or a --form-error
+#     of 1.5, exits 1 naming it before any case is written.
 #  3. Bad input: an unknown effect among the candidates and a chain model exit 1
 #     with a message naming the problem, and leave no diagnosis.json behind.
 source "$(dirname "$0")/lib.sh"
@@ -59,14 +60,17 @@ PY
 #     most 20 % whatever the case's noise (at least 0.5 % unless even the
 #     family's largest strength cannot reach the drawn size).
 "$FEMUP" benchmark --suite mixed --cases 3 --seed 7 --sizes absolute --evidence sampled \
-  --no-plots -o bench_abs -q > bench_abs.txt 2>&1 \
+  --form-error 0.02 --no-plots -o bench_abs -q > bench_abs.txt 2>&1 \
   || fail "benchmark --sizes absolute exit $?: $(cat bench_abs.txt)"
 [ "$(json bench_abs/scores.json "j['sizes']")" = absolute ] \
   || fail "scores.json sizes: $(json bench_abs/scores.json "j.get('sizes')")"
 [ "$(json bench_abs/scores.json "j['evidence']")" = sampled ] \
   || fail "scores.json evidence: $(json bench_abs/scores.json "j.get('evidence')")"
+[ "$(json bench_abs/scores.json "j['form_error']")" = 0.02 ] \
+  || fail "scores.json form_error: $(json bench_abs/scores.json "j.get('form_error')")"
 for f in bench_abs/cases/*.yaml; do
   grep -q "evidence: sampled" "$f" || fail "$f: no evidence method"
+  grep -q "form_error: 0.02" "$f" || fail "$f: no form error"
 done
 python3 - bench_abs <<'PY' || fail "absolute sizes out of range"
 import json, os, sys
@@ -95,6 +99,13 @@ set -e
 grep -q -- "--evidence" err0b.txt && grep -q "nested" err0b.txt \
   || fail "message: $(cat err0b.txt)"
 [ ! -e bench_bad2/scores.json ] || fail "--evidence nested: scores.json written"
+set +e
+"$FEMUP" benchmark --suite single --cases 1 --form-error 1.5 -o bench_bad3 2> err0c.txt
+rc=$?
+set -e
+[ "$rc" = 1 ] || fail "--form-error 1.5: exit $rc"
+grep -q -- "--form-error" err0c.txt || fail "message: $(cat err0c.txt)"
+[ ! -e bench_bad3/scores.json ] || fail "--form-error 1.5: scores.json written"
 
 # 3. Bad input: nothing is written.
 { sed -e '/^diagnosis:/,$d' "$ROOT/examples/diagnosis/added_mass.yaml"
