@@ -373,7 +373,7 @@ std::string BenchmarkOptions::Validate() const {
     return "sizes: expected noise or absolute, not '" + sizes + "'";
   if (evidence != "sampled" && evidence != "laplace")
     return "evidence: expected sampled or laplace, not '" + evidence + "'";
-  if (!(form_error < 1) || std::isnan(form_error))
+  if (!(form_error < 1))  // NaN too
     return "form_error: expected a fraction below 1 (or negative for diagnose's default)";
   return "";
 }

@@ -1,5 +1,6 @@
 #include "femup/studies/diagnose_study.h"
 
+#include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
@@ -555,54 +556,48 @@ DiagnosisResult RunDiagnosis(const Study& study) {
       // best fit's Laplace evidence and prediction as they are.
       std::vector<double> log_z{c.evidence.log_evidence};
       std::vector<double> log_p{c.held_out_log_predictive};
-      std::vector<const LocalOptimum*> kept;
-      std::vector<Eigen::MatrixXd> kept_h;  // Laplace's Hessian H of each kept basin
-      const Eigen::ArrayXd range = (hi - lo).array();
-      auto hessian = [&](const Eigen::MatrixXd& j) {
-        Eigen::MatrixXd h = j.transpose() * j / temperature;
-        h.diagonal().array() += 2 * M_PI / range.square();
-        return h;
-      };
-      if (c.theta.size() > 0) kept_h.push_back(hessian(c.jacobian));
       std::vector<const LocalOptimum*> order;
       for (const LocalOptimum& o : c.optima) order.push_back(&o);
       std::sort(
           order.begin(), order.end(),
           [](const LocalOptimum* a, const LocalOptimum* b) { return a->chi2 < b->chi2; });
+      // The kept basins: where, their chi2, and their Laplace covariance.
       std::vector<Eigen::VectorXd> kept_theta{c.theta};
       std::vector<double> kept_chi2{c.chi2};
+      std::vector<Eigen::LDLT<Eigen::MatrixXd>> kept_covariance;
+      if (c.theta.size() > 0) kept_covariance.emplace_back(c.evidence.covariance);
+      const std::vector<const Effect*> ptrs = Pointers(effects);
       for (const LocalOptimum* o : order) {
         // Optima whose likelihood is below e^-15 of the best's add nothing.
-        if (!o->predicts || o->chi2 > c.chi2 + 30 * temperature || c.theta.size() == 0)
+        if (!o->predicts || o->chi2 > c.chi2 + 30 * temperature || c.theta.size() == 0 ||
+            !o->jacobian.allFinite())
           continue;
+        const ModelEvidence e =
+            LaplaceEvidence(o->chi2, o->jacobian, o->theta, lo, hi, temperature);
+        const Eigen::LDLT<Eigen::MatrixXd> covariance(e.covariance);
         // The same basin as a kept one: within 3 of its posterior standard
-        // deviations, measured by either basin's Hessian, or no barrier
+        // deviations, measured by either basin's covariance, or no barrier
         // between the two (chi2 halfway no more than 2 T above the higher of
-        // the two: one curved valley, whose volume Laplace at the best
-        // already counts).
-        const Eigen::MatrixXd h = hessian(o->jacobian);
+        // the two).
         bool separate = true;
         for (std::size_t k = 0; k < kept_theta.size() && separate; ++k) {
           const Eigen::VectorXd d = o->theta - kept_theta[k];
-          separate = d.dot(kept_h[k] * d) > 9 && d.dot(h * d) > 9;
-          if (!separate) break;
           std::vector<PredictedState> halfway;
           std::string unused;
           separate =
-              PredictEffectModes(r.fitted_data, Pointers(effects),
-                                 0.5 * (o->theta + kept_theta[k]), &halfway, &unused) &&
+              d.dot(kept_covariance[k].solve(d)) > 9 && d.dot(covariance.solve(d)) > 9 &&
+              PredictEffectModes(r.fitted_data, ptrs, 0.5 * (o->theta + kept_theta[k]),
+                                 &halfway, &unused) &&
               EffectResiduals(r.fitted_data, halfway).squaredNorm() >
                   std::max(o->chi2, kept_chi2[k]) + 2 * temperature;
         }
         if (!separate) continue;
-        const ModelEvidence e =
-            LaplaceEvidence(o->chi2, o->jacobian, o->theta, lo, hi, temperature);
         log_z.push_back(e.log_evidence);
         log_p.push_back(LogPredictiveDensity(o->held_out_residual, o->held_out_jacobian,
                                              e.covariance, temperature));
         kept_theta.push_back(o->theta);
         kept_chi2.push_back(o->chi2);
-        kept_h.push_back(h);
+        kept_covariance.push_back(covariance);
       }
       c.basins = static_cast<int>(log_z.size());
       if (log_z.size() > 1) {
