@@ -21,6 +21,7 @@
 
 #include "femup/builders.h"
 #include "femup/errors.h"
+#include "femup/modal.h"
 #include "femup/problems/effects.h"
 #include "femup/solvers/nonlinear_solver.h"
 #include "femup/structure.h"
@@ -339,6 +340,51 @@ TEST(EffectFit, MacPairsObservedModesListedOutOfOrder) {
   EXPECT_EQ(NumEffectResiduals(data), 4);
 }
 
+// A held-out mode whose shape resembles the model mode a fitted one has taken
+// must not take it too: the state's other measured modes (companions) join the
+// MAC pairing and add no residuals.
+TEST(EffectFit, CompanionModesKeepThePairingDistinctAcrossDataSets) {
+  const std::vector<std::string> sensors = TenSensors();
+  const Modes ref = ReferenceModes(Nominal(), sensors);
+  const Eigen::VectorXd p3 = ref.at_sensors.col(2).normalized();
+  const Eigen::VectorXd p4 = ref.at_sensors.col(3).normalized();
+  EffectFitData data;
+  data.nominal = Nominal();
+  ObservedState st;
+  st.state = "held out";
+  st.sensors = sensors;
+  ObservedMode fourth;
+  fourth.number = 4;
+  fourth.frequency_hz = ref.hz[3];
+  fourth.frequency_sigma = 0.01;
+  fourth.shape = p3 + 0.8 * p4;  // closer to model mode 3 than to mode 4
+  st.modes.push_back(fourth);
+  data.states.push_back(st);
+  std::vector<PredictedState> pred;
+  std::string why;
+  ASSERT_TRUE(PredictEffectModes(data, {}, Eigen::VectorXd(), &pred, &why)) << why;
+  ASSERT_EQ(pred[0].modes[0].model_mode, 3) << "the case needs a shape nearer mode 3";
+  const int residuals = NumEffectResiduals(data);
+
+  // The fitted mode 3 (exact) as a companion claims model mode 3 first.
+  ObservedMode third;
+  third.number = 3;
+  third.shape = ref.at_sensors.col(2);
+  data.states[0].companions.push_back(third);
+  EXPECT_EQ(data.Validate(), "");
+  ASSERT_TRUE(PredictEffectModes(data, {}, Eigen::VectorXd(), &pred, &why)) << why;
+  ASSERT_EQ(pred[0].modes.size(), 1u);
+  EXPECT_EQ(pred[0].modes[0].model_mode, 4);
+  EXPECT_NEAR(pred[0].modes[0].frequency_hz, ref.hz[3], 1e-9 * ref.hz[3]);
+  EXPECT_NEAR(pred[0].modes[0].mac, Mac(p4, fourth.shape), 1e-12);
+  EXPECT_EQ(NumEffectResiduals(data), residuals);
+
+  // Without shapes the numbers decide and companions play no part.
+  data.use_shapes = false;
+  ASSERT_TRUE(PredictEffectModes(data, {}, Eigen::VectorXd(), &pred, &why)) << why;
+  EXPECT_EQ(pred[0].modes[0].model_mode, 4);
+}
+
 TEST(EffectFit, JacobianAgreesWithCentralDifferences) {
   const std::vector<std::string> sensors = TenSensors();
   // Data from the nominal model; the Jacobian is taken away from it (nonzero
@@ -521,6 +567,20 @@ TEST(EffectFitInput, BadPerSensorShapeSigma) {
     data.states[0].modes[2].shape_sigma[4] = bad;
     ExpectRejected(data, {"states[1]", "modes[3]", "shape sigma", "positive"});
   }
+}
+
+TEST(EffectFitInput, BadCompanion) {
+  EffectFitData data = ValidData();
+  ObservedMode c;
+  c.number = 0;
+  data.states[0].companions.push_back(c);
+  ExpectRejected(data, {"states[1]", "companions[1]", "start at 1"});
+  data.states[0].companions[0].number = 5;
+  data.states[0].companions[0].shape = Eigen::VectorXd::Ones(8);
+  ExpectRejected(data, {"states[1]", "companions[1]", "shape", "8", "10"});
+  data.states[0].companions[0].shape = Eigen::VectorXd::Ones(10);
+  data.states[0].companions[0].shape[2] = std::nan("");
+  ExpectRejected(data, {"states[1]", "companions[1]", "finite"});
 }
 
 TEST(EffectFitInput, StartOutsideTheRangeOrOfTheWrongSize) {

@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <random>
 #include <string>
 #include <vector>
@@ -312,6 +314,89 @@ TEST(PairModesByMac, WeakPairsLeftUnpaired) {
   EXPECT_EQ(fewer[1].candidate, 0);
   EXPECT_EQ(fewer[2].candidate, -1);
   EXPECT_EQ(fewer[3].candidate, -1);
+}
+
+// Every strictly increasing choice of m candidates out of c, by recursion.
+void IncreasingChoices(int m, int c, int from, std::vector<int>* chosen,
+                       const std::function<void(const std::vector<int>&)>& visit) {
+  if (static_cast<int>(chosen->size()) == m) {
+    visit(*chosen);
+    return;
+  }
+  for (int j = from; j < c; ++j) {
+    chosen->push_back(j);
+    IncreasingChoices(m, c, j + 1, chosen, visit);
+    chosen->pop_back();
+  }
+}
+
+TEST(PairModesInOrder, MatchesExhaustiveSearchOnRandomShapes) {
+  std::mt19937_64 rng(20261125);
+  std::normal_distribution<double> g(0.0, 1.0);
+  for (int trial = 0; trial < 50; ++trial) {
+    const int n = 10, m = 4, c = 7;
+    Eigen::MatrixXd reference(n, m), candidate(n, c);
+    for (int i = 0; i < n; ++i) {
+      for (int j = 0; j < m; ++j) reference(i, j) = g(rng);
+      for (int j = 0; j < c; ++j) candidate(i, j) = g(rng);
+    }
+    double best = -1;
+    std::vector<int> chosen;
+    IncreasingChoices(m, c, 0, &chosen, [&](const std::vector<int>& pick) {
+      double sum = 0;
+      for (int i = 0; i < m; ++i) sum += Mac(reference.col(i), candidate.col(pick[i]));
+      best = std::max(best, sum);
+    });
+    const std::vector<ModePair> pairs = PairModesInOrder(reference, candidate);
+    ASSERT_EQ(pairs.size(), static_cast<std::size_t>(m));
+    double sum = 0;
+    for (int i = 0; i < m; ++i) {
+      EXPECT_EQ(pairs[i].reference, i);
+      ASSERT_GE(pairs[i].candidate, 0);
+      if (i > 0) {
+        EXPECT_GT(pairs[i].candidate, pairs[i - 1].candidate);
+      }
+      EXPECT_NEAR(pairs[i].mac, Mac(reference.col(i), candidate.col(pairs[i].candidate)),
+                  1e-15);
+      sum += pairs[i].mac;
+    }
+    EXPECT_NEAR(sum, best, 1e-12) << "trial " << trial;
+  }
+}
+
+TEST(PairModesInOrder, KeepsTheOrderWhereTheLargestMacFirstCrosses) {
+  // Reference 1 is most like candidate 0 but a little like candidate 1;
+  // reference 0 is most like candidate 1. Largest-first crosses the pairs.
+  const Eigen::MatrixXd q = RandomOrthonormal(6, 3, 41);
+  Eigen::MatrixXd reference(6, 2), candidate(6, 2);
+  candidate = q.leftCols(2);
+  reference.col(0) = 0.6 * q.col(0) + 0.8 * q.col(1);
+  reference.col(1) = 0.95 * q.col(0) + 0.31 * q.col(1);
+  const std::vector<ModePair> greedy = PairModesByMac(reference, candidate);
+  ASSERT_EQ(greedy[1].candidate, 0);
+  ASSERT_EQ(greedy[0].candidate, 1);
+  const std::vector<ModePair> ordered = PairModesInOrder(reference, candidate);
+  EXPECT_EQ(ordered[0].candidate, 0);
+  EXPECT_EQ(ordered[1].candidate, 1);
+  EXPECT_NEAR(ordered[0].mac, 0.36, 1e-12);
+  EXPECT_NEAR(ordered[1].mac, Mac(reference.col(1), q.col(1)), 1e-12);
+}
+
+TEST(PairModesInOrder, PairsAsManyAsTheCandidatesAllow) {
+  const Eigen::MatrixXd q = RandomOrthonormal(8, 4, 31);
+  // Three references, two candidates: two pairs, the order kept.
+  Eigen::MatrixXd candidate(8, 2);
+  candidate.col(0) = q.col(1);
+  candidate.col(1) = q.col(2);
+  const std::vector<ModePair> pairs = PairModesInOrder(q.leftCols(3), candidate);
+  ASSERT_EQ(pairs.size(), 3u);
+  EXPECT_EQ(pairs[0].candidate, -1);
+  EXPECT_EQ(pairs[1].candidate, 0);
+  EXPECT_EQ(pairs[2].candidate, 1);
+  EXPECT_NEAR(pairs[1].mac, 1.0, 1e-12);
+  // No candidates, no references.
+  EXPECT_EQ(PairModesInOrder(q.leftCols(2), Eigen::MatrixXd(8, 0))[1].candidate, -1);
+  EXPECT_TRUE(PairModesInOrder(Eigen::MatrixXd(8, 0), candidate).empty());
 }
 
 // ---------------------------------------------------------------------------

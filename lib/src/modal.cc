@@ -2,6 +2,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -154,6 +155,47 @@ std::vector<ModePair> PairModesByMac(const Eigen::MatrixXd& reference,
     pairs[i].mac = best;
     mac.row(i).setConstant(-1.0);
     mac.col(j).setConstant(-1.0);
+  }
+  return pairs;
+}
+
+std::vector<ModePair> PairModesInOrder(const Eigen::MatrixXd& reference,
+                                       const Eigen::MatrixXd& candidate) {
+  const Eigen::MatrixXd mac = MacMatrix(reference, candidate);
+  const Eigen::Index m = reference.cols(), c = candidate.cols();
+  // best(i, j): the best pairing of the first i references with the first j
+  // candidates, ordered by (pairs made, sum of MACs).
+  struct Score {
+    Eigen::Index pairs = 0;
+    double sum = 0;
+    bool operator<(const Score& o) const {
+      return pairs != o.pairs ? pairs < o.pairs : sum < o.sum;
+    }
+  };
+  std::vector<std::vector<Score>> best(m + 1, std::vector<Score>(c + 1));
+  for (Eigen::Index i = 1; i <= m; ++i) {
+    for (Eigen::Index j = 1; j <= c; ++j) {
+      Score s = std::max(best[i - 1][j], best[i][j - 1]);
+      const Score paired{best[i - 1][j - 1].pairs + 1,
+                         best[i - 1][j - 1].sum + mac(i - 1, j - 1)};
+      best[i][j] = s < paired ? paired : s;
+    }
+  }
+  std::vector<ModePair> pairs(m);
+  for (Eigen::Index i = 0; i < m; ++i) pairs[i].reference = static_cast<int>(i);
+  for (Eigen::Index i = m, j = c; i > 0 && j > 0;) {
+    const Score paired{best[i - 1][j - 1].pairs + 1,
+                       best[i - 1][j - 1].sum + mac(i - 1, j - 1)};
+    if (!(best[i][j] < paired) && !(paired < best[i][j])) {
+      pairs[i - 1].candidate = static_cast<int>(j - 1);
+      pairs[i - 1].mac = mac(i - 1, j - 1);
+      --i;
+      --j;
+    } else if (!(best[i][j] < best[i][j - 1]) && !(best[i][j - 1] < best[i][j])) {
+      --j;
+    } else {
+      --i;
+    }
   }
   return pairs;
 }

@@ -152,6 +152,17 @@ std::string EffectFitData::Validate() const {
           return mw + ": shape sigma must be positive and finite";
       }
     }
+    for (std::size_t j = 0; j < st.companions.size(); ++j) {
+      const ObservedMode& m = st.companions[j];
+      const std::string mw = where + ".companions[" + std::to_string(j + 1) + "]";
+      if (m.number < 1) return mw + ": mode numbers start at 1";
+      if (m.shape.size() > 0 &&
+          m.shape.size() != static_cast<Eigen::Index>(st.sensors.size()))
+        return mw + ": shape has " + std::to_string(m.shape.size()) + " entries for " +
+               std::to_string(st.sensors.size()) + " sensors";
+      if (m.shape.size() > 0 && !m.shape.allFinite())
+        return mw + ": shape must be finite";
+    }
   }
   return "";
 }
@@ -184,6 +195,15 @@ bool PredictEffectModes(const EffectFitData& data,
     const BendingModes& bm = it->second;
     int highest = 0;
     for (const ObservedMode& m : st.modes) highest = std::max(highest, m.number);
+    const bool by_mac = StateUsesShapes(data, st);
+    std::vector<const ObservedMode*> companions;
+    if (by_mac) {
+      for (const ObservedMode& m : st.companions) {
+        if (m.shape.size() == 0) continue;
+        companions.push_back(&m);
+        highest = std::max(highest, m.number);
+      }
+    }
     const int available = static_cast<int>(bm.frequencies_hz.size());
     if (highest > available) {
       if (why)
@@ -206,15 +226,26 @@ bool PredictEffectModes(const EffectFitData& data,
       at_sensors.row(static_cast<Eigen::Index>(i)) =
           bm.shapes.row(rows[i]).head(candidates);
     }
-    const bool by_mac = StateUsesShapes(data, st);
     std::vector<int> pair(st.modes.size());
     if (by_mac) {
-      Eigen::MatrixXd measured(at_sensors.rows(),
-                               static_cast<Eigen::Index>(st.modes.size()));
-      for (std::size_t j = 0; j < st.modes.size(); ++j)
-        measured.col(static_cast<Eigen::Index>(j)) = st.modes[j].shape;
-      const std::vector<ModePair> pairs = PairModesByMac(measured, at_sensors, 0.0);
-      for (std::size_t j = 0; j < pairs.size(); ++j) pair[j] = pairs[j].candidate;
+      // A cantilever's bending modes keep their order whatever the effects
+      // (mode k has k - 1 nodes), so the measured modes, own and companions in
+      // ascending number, pair with model modes in ascending order.
+      std::vector<const ObservedMode*> all;
+      for (const ObservedMode& m : st.modes) all.push_back(&m);
+      all.insert(all.end(), companions.begin(), companions.end());
+      std::vector<std::size_t> order(all.size());
+      for (std::size_t j = 0; j < order.size(); ++j) order[j] = j;
+      std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return all[a]->number < all[b]->number;
+      });
+      Eigen::MatrixXd measured(at_sensors.rows(), static_cast<Eigen::Index>(all.size()));
+      for (std::size_t j = 0; j < order.size(); ++j)
+        measured.col(static_cast<Eigen::Index>(j)) = all[order[j]]->shape;
+      const std::vector<ModePair> pairs = PairModesInOrder(measured, at_sensors);
+      for (std::size_t j = 0; j < order.size(); ++j) {
+        if (order[j] < st.modes.size()) pair[order[j]] = pairs[j].candidate;
+      }
     } else {
       for (std::size_t j = 0; j < st.modes.size(); ++j) pair[j] = st.modes[j].number - 1;
     }

@@ -390,6 +390,10 @@ DiagnosisResult RunDiagnosis(const Study& study) {
       }
       (is_held ? out : fit).modes.push_back(st.modes[j]);
     }
+    // Both sets pair against all of the state's measured shapes, so a held-out
+    // mode never takes the model mode a fitted one has.
+    fit.companions = out.modes;
+    out.companions = fit.modes;
     if (!fit.modes.empty()) r.fitted_data.states.push_back(fit);
     if (!out.modes.empty()) r.held_out_data.states.push_back(out);
   }

@@ -53,5 +53,14 @@ struct ModePair {
 std::vector<ModePair> PairModesByMac(const Eigen::MatrixXd& reference,
                                      const Eigen::MatrixXd& candidate,
                                      double min_mac = 0.0);
+// Pairs each reference mode with a distinct candidate keeping the order: when
+// reference i < j are both paired, candidate(i) < candidate(j). Among such
+// pairings it pairs as many as it can and, of those, maximises the sum of MACs
+// (dynamic programming, O(references x candidates)). For structures whose modes
+// keep their order under any change of mass and stiffness, such as a beam in
+// bending (each mode has one more node than the one below), with the reference
+// modes listed in ascending frequency. Result is in reference order.
+std::vector<ModePair> PairModesInOrder(const Eigen::MatrixXd& reference,
+                                       const Eigen::MatrixXd& candidate);
 
 }  // namespace femup

@@ -15,9 +15,11 @@
 //               (c s_i - t_i) / sigma_i, t = psi / max |psi|, s = phi at the
 //               sensors, c = s't / s's (the modal scale factor), sigma_i the
 //               mode's own per-sensor sigma where it has one, else shape_sigma.
-// Pairing: with shapes, by MAC at the sensors among the lowest
-// (highest observed number + extra_modes) bending modes; without, mode k is the
-// k-th bending mode.
+// Pairing: with shapes, among the lowest (highest observed number +
+// extra_modes) bending modes, in order (PairModesInOrder: the measured modes and
+// the state's companions, in ascending number, take model modes in ascending
+// order with the largest sum of MACs at the sensors; a cantilever's bending
+// modes never swap order); without shapes, mode k is the k-th bending mode.
 #pragma once
 
 #include <Eigen/Core>
@@ -46,6 +48,12 @@ struct ObservedState {
   Immersion immersion = Immersion::kDry;
   std::vector<std::string> sensors;  // DOF labels of the shape rows
   std::vector<ObservedMode> modes;
+  // The state's other measured modes (those held out of this data set, or
+  // fitted when this set is the held-out one). With shapes they take part in the
+  // MAC pairing, so every measured mode of the state gets a distinct model mode
+  // whichever set it is in; they add no residuals. Only number and shape are
+  // read; companions without a shape are left out of the pairing.
+  std::vector<ObservedMode> companions;
 };
 
 struct EffectFitData {
@@ -103,10 +111,10 @@ std::vector<EffectParameter> EffectSetParameters(
 
 // The fit over the effects' parameters (bounds = the prior ranges), starting at
 // `start`; names "<kind>.<parameter>". Jacobian by forward differences of
-// 1e-6 of each range (backward at the upper bound; the pairing is held by MAC,
-// so a step never swaps modes unless two are nearly equal). The effects must
-// outlive the problem. Throws InputError when the data are invalid or `start` has the
-// wrong size or lies outside the ranges.
+// 1e-6 of each range (backward at the upper bound; the pairing keeps the
+// modes' order, so a step never swaps modes unless two MAC sums are nearly equal). The
+// effects must outlive the problem. Throws InputError when the data are invalid or
+// `start` has the wrong size or lies outside the ranges.
 NonlinearProblem BuildEffectFitProblem(const EffectFitData& data,
                                        const std::vector<const Effect*>& effects,
                                        const Eigen::VectorXd& start);
