@@ -396,6 +396,17 @@ TEST(Diagnosis, RejectsAFormErrorOutsideZeroToOne) {
   }
 }
 
+TEST(Diagnosis, RejectsFrequenciesOutOfOrder) {
+  testing::ScratchDir dir;
+  std::string text = kStudy;
+  const std::string listed = "[3.085, 17.885, 50.411, 97.398]";
+  text.replace(text.find(listed), listed.size(), "[3.085, 50.411, 17.885, 97.398]");
+  const Study study = LoadStudy(WriteStudy(dir, text));
+  ExpectInputError([&] { RunDiagnosis(study); },
+                   {"measurements", "state test", "ascending", "mode 2 is 50.411 Hz",
+                    "mode 3 is 17.885 Hz"});
+}
+
 TEST(Diagnosis, RejectsAChainModel) {
   testing::ScratchDir dir;
   const std::string path = WriteStudy(dir, R"(name: chain

@@ -369,6 +369,7 @@ TEST(EffectFit, CompanionModesKeepThePairingDistinctAcrossDataSets) {
   // The fitted mode 3 (exact) as a companion claims model mode 3 first.
   ObservedMode third;
   third.number = 3;
+  third.frequency_hz = ref.hz[2];
   third.shape = ref.at_sensors.col(2);
   data.states[0].companions.push_back(third);
   EXPECT_EQ(data.Validate(), "");

@@ -230,13 +230,16 @@ bool PredictEffectModes(const EffectFitData& data,
     if (by_mac) {
       // A cantilever's bending modes keep their order whatever the effects
       // (mode k has k - 1 nodes), so the measured modes, own and companions in
-      // ascending number, pair with model modes in ascending order.
+      // ascending frequency (then number), pair with model modes in ascending
+      // order.
       std::vector<const ObservedMode*> all;
       for (const ObservedMode& m : st.modes) all.push_back(&m);
       all.insert(all.end(), companions.begin(), companions.end());
       std::vector<std::size_t> order(all.size());
       for (std::size_t j = 0; j < order.size(); ++j) order[j] = j;
       std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        if (all[a]->frequency_hz != all[b]->frequency_hz)
+          return all[a]->frequency_hz < all[b]->frequency_hz;
         return all[a]->number < all[b]->number;
       });
       Eigen::MatrixXd measured(at_sensors.rows(), static_cast<Eigen::Index>(all.size()));

@@ -273,6 +273,17 @@ DiagnosisResult RunDiagnosis(const Study& study) {
         rows.clear();
       }
     }
+    for (int j = 1; j < md.num_modes(); ++j) {
+      // A cantilever's bending modes come in one order (mode k has k - 1
+      // nodes); the pairing and the mode numbers rely on it.
+      if (!(md.frequencies_hz[j] > md.frequencies_hz[j - 1])) {
+        std::ostringstream msg;
+        msg << "state " << md.state << ": frequencies must be listed in ascending order "
+            << "(bending mode 1 first); mode " << j << " is " << md.frequencies_hz[j - 1]
+            << " Hz and mode " << j + 1 << " is " << md.frequencies_hz[j] << " Hz";
+        throw InputError("measurements", msg.str());
+      }
+    }
     for (int j = 0; j < md.num_modes(); ++j) {
       ObservedMode m;
       m.number =

@@ -17,7 +17,7 @@
 //               mode's own per-sensor sigma where it has one, else shape_sigma.
 // Pairing: with shapes, among the lowest (highest observed number +
 // extra_modes) bending modes, in order (PairModesInOrder: the measured modes and
-// the state's companions, in ascending number, take model modes in ascending
+// the state's companions, in ascending frequency, take model modes in ascending
 // order with the largest sum of MACs at the sensors; a cantilever's bending
 // modes never swap order); without shapes, mode k is the k-th bending mode.
 #pragma once
@@ -51,8 +51,9 @@ struct ObservedState {
   // The state's other measured modes (those held out of this data set, or
   // fitted when this set is the held-out one). With shapes they take part in the
   // MAC pairing, so every measured mode of the state gets a distinct model mode
-  // whichever set it is in; they add no residuals. Only number and shape are
-  // read; companions without a shape are left out of the pairing.
+  // whichever set it is in; they add no residuals. Only number, frequency (for
+  // the order) and shape are read; companions without a shape are left out of
+  // the pairing.
   std::vector<ObservedMode> companions;
 };
 
