@@ -3,8 +3,8 @@
 #  1. femup diagnose on examples/diagnosis/support_flexibility.yaml (a 20-element
 #     cantilever; "measured" modes from a 60-element truth with springs at the
 #     base): exit 0, diagnosis.json names support_flexibility as the verdict
-#     with probabilities summing to 1, and the three plots are there when
-#     gnuplot is.
+#     with probabilities summing to 1, the gap pairs distinct nominal modes in
+#     order, and the three plots are there when gnuplot is.
 #  2. femup benchmark --suite single --cases 3 --seed 5: exit 0, scores.json
 #     has top1 and calibration, cases/ and truth/ hold one file per case, and no
 #     case's study file gives its truth away (its effect kinds, its description).
@@ -13,8 +13,9 @@
 #     scores.json and every case file name that method, and with --form-error
 #     0.02 that form error; an unknown --sizes or --evidence, or a --form-error
 #     of 1.5, exits 1 naming it before any case is written.
-#  3. Bad input: an unknown effect among the candidates and a chain model exit 1
-#     with a message naming the problem, and leave no diagnosis.json behind.
+#  3. Bad input: an unknown effect among the candidates, a chain model and
+#     frequencies listed out of order exit 1 with a message naming the problem,
+#     and leave no diagnosis.json behind.
 source "$(dirname "$0")/lib.sh"
 
 # 1. A diagnosis.
@@ -28,6 +29,11 @@ source "$(dirname "$0")/lib.sh"
 [ "$(json diag/diagnosis.json "j['effects'][0]['location']['x']")" = 0.0 ] \
   || fail "support not at the base"
 grep -q "verdict: support_flexibility" diag.txt || fail "report: $(cat diag.txt)"
+# Fitted and held-out modes pair with distinct nominal modes, in order (the
+# support's flexibility changes the shapes so much that MAC alone paired the
+# held-out mode 4 with nominal mode 3).
+[ "$(json diag/diagnosis.json "(lambda h: all(a < b for a, b in zip(h, h[1:])))([m['nominal_hz'] for m in j['gap']['modes']])")" \
+  = True ] || fail "nominal modes not distinct and ascending: $(json diag/diagnosis.json "j['gap']")"
 if command -v gnuplot > /dev/null; then
   for f in localisation.png effects.png gap.png; do
     [ -s "diag/$f" ] || fail "missing $f"
@@ -135,4 +141,15 @@ set -e
 [ "$rc" = 1 ] || fail "chain model: exit $rc"
 grep -q "cantilever" err2.txt || fail "message: $(cat err2.txt)"
 [ ! -e out_chain/diagnosis.json ] || fail "chain model: diagnosis.json written"
+sed -e 's/^    frequencies_hz: \[\([^,]*\), \([^,]*\),/    frequencies_hz: [\2, \1,/' \
+  "$ROOT/examples/diagnosis/frequencies_only.yaml" > swapped.yaml
+grep -q "frequencies_hz: \[17" swapped.yaml || fail "swapped.yaml: $(grep frequencies_hz swapped.yaml)"
+set +e
+"$FEMUP" diagnose swapped.yaml -o out_swapped 2> err3.txt
+rc=$?
+set -e
+[ "$rc" = 1 ] || fail "frequencies out of order: exit $rc"
+grep -q "ascending" err3.txt && grep -q "mode 1 is 17" err3.txt \
+  || fail "message: $(cat err3.txt)"
+[ ! -e out_swapped/diagnosis.json ] || fail "out of order: diagnosis.json written"
 echo "diagnose: ok"
