@@ -114,16 +114,24 @@ grep -q -- "--form-error" err0c.txt || fail "message: $(cat err0c.txt)"
 [ ! -e bench_bad3/scores.json ] || fail "--form-error 1.5: scores.json written"
 
 # 3. Bad input: nothing is written.
+# refused WHAT STUDY NEEDLE...: `diagnose STUDY` exits 1, its message holds every
+# NEEDLE, and no diagnosis.json is left behind.
+refused() {
+  local what="$1" study="$2" rc
+  shift 2
+  set +e
+  "$FEMUP" diagnose "$study" -o "out_$study" 2> "err_$study.txt"
+  rc=$?
+  set -e
+  [ "$rc" = 1 ] || fail "$what: exit $rc"
+  for needle in "$@"; do
+    grep -q -- "$needle" "err_$study.txt" || fail "$what: message: $(cat "err_$study.txt")"
+  done
+  [ ! -e "out_$study/diagnosis.json" ] || fail "$what: diagnosis.json written"
+}
 { sed -e '/^diagnosis:/,$d' "$ROOT/examples/diagnosis/added_mass.yaml"
   echo "diagnosis: {candidates: [added_mass, corrosion]}"; } > unknown.yaml
-set +e
-"$FEMUP" diagnose unknown.yaml -o out_unknown 2> err1.txt
-rc=$?
-set -e
-[ "$rc" = 1 ] || fail "unknown effect: exit $rc"
-grep -q "diagnosis.candidates" err1.txt && grep -q "corrosion" err1.txt \
-  || fail "message: $(cat err1.txt)"
-[ ! -e out_unknown/diagnosis.json ] || fail "unknown effect: diagnosis.json written"
+refused "unknown effect" unknown.yaml "diagnosis.candidates" "corrosion"
 cat > chain.yaml <<'EOF'
 name: chain_diagnosis
 model:
@@ -134,22 +142,9 @@ measurements:
   - state: air
     frequencies_hz: [60, 170, 245]
 EOF
-set +e
-"$FEMUP" diagnose chain.yaml -o out_chain 2> err2.txt
-rc=$?
-set -e
-[ "$rc" = 1 ] || fail "chain model: exit $rc"
-grep -q "cantilever" err2.txt || fail "message: $(cat err2.txt)"
-[ ! -e out_chain/diagnosis.json ] || fail "chain model: diagnosis.json written"
+refused "chain model" chain.yaml "cantilever"
 sed -e 's/^    frequencies_hz: \[\([^,]*\), \([^,]*\),/    frequencies_hz: [\2, \1,/' \
   "$ROOT/examples/diagnosis/frequencies_only.yaml" > swapped.yaml
 grep -q "frequencies_hz: \[17" swapped.yaml || fail "swapped.yaml: $(grep frequencies_hz swapped.yaml)"
-set +e
-"$FEMUP" diagnose swapped.yaml -o out_swapped 2> err3.txt
-rc=$?
-set -e
-[ "$rc" = 1 ] || fail "frequencies out of order: exit $rc"
-grep -q "ascending" err3.txt && grep -q "mode 1 is 17" err3.txt \
-  || fail "message: $(cat err3.txt)"
-[ ! -e out_swapped/diagnosis.json ] || fail "out of order: diagnosis.json written"
+refused "frequencies out of order" swapped.yaml "ascending" "mode 1 is 17"
 echo "diagnose: ok"
