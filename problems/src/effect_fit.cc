@@ -36,7 +36,10 @@ struct BendingModes {
   std::map<std::string, int> row;  // label -> bending row
 };
 
-bool SolveBending(const CantileverSpec& spec, BendingModes* out, std::string* why) {
+// The bending modes of `spec`; their shapes only when `shapes` (frequency-only
+// data need none, and the eigenvectors are most of the cost).
+bool SolveBending(const CantileverSpec& spec, bool shapes, BendingModes* out,
+                  std::string* why) {
   Structure s;
   try {
     CantileverSpec global_only = spec;
@@ -81,7 +84,8 @@ bool SolveBending(const CantileverSpec& spec, BendingModes* out, std::string* wh
           "straight cantilever";
     return false;
   }
-  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(kb, mb);
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(
+      kb, mb, shapes ? Eigen::ComputeEigenvectors | Eigen::Ax_lBx : Eigen::EigenvaluesOnly);
   if (eig.info() != Eigen::Success) {
     if (why) *why = "the mass matrix is not positive definite";
     return false;
@@ -95,7 +99,7 @@ bool SolveBending(const CantileverSpec& spec, BendingModes* out, std::string* wh
     if (why) *why = "the eigen-solution is not finite";
     return false;
   }
-  out->shapes = eig.eigenvectors();
+  if (shapes) out->shapes = eig.eigenvectors();
   out->row.clear();
   for (int i = 0; i < nb; ++i) out->row[s.dof_labels[bending[i]]] = i;
   return true;
@@ -189,7 +193,11 @@ bool PredictEffectModes(const EffectFitData& data,
                           st.immersion, data.wet_only_added_mass, data.nominal, &spec);
       }
       BendingModes bm;
-      if (!SolveBending(spec, &bm, why)) return false;
+      // Shapes are needed where a state of this immersion has sensors.
+      bool shapes = false;
+      for (const ObservedState& other : data.states)
+        shapes = shapes || (other.immersion == st.immersion && !other.sensors.empty());
+      if (!SolveBending(spec, shapes, &bm, why)) return false;
       it = models.emplace(st.immersion, std::move(bm)).first;
     }
     const BendingModes& bm = it->second;
