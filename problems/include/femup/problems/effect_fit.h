@@ -50,7 +50,7 @@ struct ObservedState {
   std::vector<ObservedMode> modes;
   // The state's other measured modes (those held out of this data set, or
   // fitted when this set is the held-out one). With shapes they take part in the
-  // MAC pairing, so every measured mode of the state gets a distinct model mode
+  // pairing, so every measured mode of the state gets a distinct model mode
   // whichever set it is in; they add no residuals. Only number, frequency (for
   // the order) and shape are read; companions without a shape are left out of
   // the pairing.
