@@ -85,7 +85,8 @@ bool SolveBending(const CantileverSpec& spec, bool shapes, BendingModes* out,
     return false;
   }
   Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(
-      kb, mb, shapes ? Eigen::ComputeEigenvectors | Eigen::Ax_lBx : Eigen::EigenvaluesOnly);
+      kb, mb,
+      shapes ? Eigen::ComputeEigenvectors | Eigen::Ax_lBx : Eigen::EigenvaluesOnly);
   if (eig.info() != Eigen::Success) {
     if (why) *why = "the mass matrix is not positive definite";
     return false;
