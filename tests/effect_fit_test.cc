@@ -582,6 +582,11 @@ TEST(EffectFitInput, BadCompanion) {
   data.states[0].companions[0].shape = Eigen::VectorXd::Ones(10);
   data.states[0].companions[0].shape[2] = std::nan("");
   ExpectRejected(data, {"states[1]", "companions[1]", "finite"});
+  data.states[0].companions[0].shape[2] = 1.0;
+  for (double f : {-1.0, std::nan("")}) {
+    data.states[0].companions[0].frequency_hz = f;
+    ExpectRejected(data, {"states[1]", "companions[1]", "frequency"});
+  }
 }
 
 TEST(EffectFitInput, StartOutsideTheRangeOrOfTheWrongSize) {

@@ -171,6 +171,7 @@ std::vector<ModePair> PairModesInOrder(const Eigen::MatrixXd& reference,
     bool operator<(const Score& o) const {
       return pairs != o.pairs ? pairs < o.pairs : sum < o.sum;
     }
+    bool operator==(const Score& o) const { return pairs == o.pairs && sum == o.sum; }
   };
   std::vector<std::vector<Score>> best(m + 1, std::vector<Score>(c + 1));
   for (Eigen::Index i = 1; i <= m; ++i) {
@@ -186,12 +187,12 @@ std::vector<ModePair> PairModesInOrder(const Eigen::MatrixXd& reference,
   for (Eigen::Index i = m, j = c; i > 0 && j > 0;) {
     const Score paired{best[i - 1][j - 1].pairs + 1,
                        best[i - 1][j - 1].sum + mac(i - 1, j - 1)};
-    if (!(best[i][j] < paired) && !(paired < best[i][j])) {
+    if (best[i][j] == paired) {
       pairs[i - 1].candidate = static_cast<int>(j - 1);
       pairs[i - 1].mac = mac(i - 1, j - 1);
       --i;
       --j;
-    } else if (!(best[i][j] < best[i][j - 1]) && !(best[i][j - 1] < best[i][j])) {
+    } else if (best[i][j] == best[i][j - 1]) {
       --j;
     } else {
       --i;

@@ -37,7 +37,8 @@ struct BendingModes {
 };
 
 // The bending modes of `spec`; their shapes only when `shapes` (frequency-only
-// data need none, and the eigenvectors are most of the cost).
+// data need none, and accumulating the eigenvectors is a large part of the
+// eigen-solution's cost).
 bool SolveBending(const CantileverSpec& spec, bool shapes, BendingModes* out,
                   std::string* why) {
   Structure s;
@@ -161,6 +162,8 @@ std::string EffectFitData::Validate() const {
       const ObservedMode& m = st.companions[j];
       const std::string mw = where + ".companions[" + std::to_string(j + 1) + "]";
       if (m.number < 1) return mw + ": mode numbers start at 1";
+      if (!(m.frequency_hz >= 0) || !std::isfinite(m.frequency_hz))
+        return mw + ": frequency must be finite and not negative";
       if (m.shape.size() > 0 &&
           m.shape.size() != static_cast<Eigen::Index>(st.sensors.size()))
         return mw + ": shape has " + std::to_string(m.shape.size()) + " entries for " +
@@ -205,11 +208,14 @@ bool PredictEffectModes(const EffectFitData& data,
     int highest = 0;
     for (const ObservedMode& m : st.modes) highest = std::max(highest, m.number);
     const bool by_mac = StateUsesShapes(data, st);
-    std::vector<const ObservedMode*> companions;
+    // With shapes: the state's measured modes, own first, then its companions
+    // that have a shape.
+    std::vector<const ObservedMode*> all;
     if (by_mac) {
+      for (const ObservedMode& m : st.modes) all.push_back(&m);
       for (const ObservedMode& m : st.companions) {
         if (m.shape.size() == 0) continue;
-        companions.push_back(&m);
+        all.push_back(&m);
         highest = std::max(highest, m.number);
       }
     }
@@ -241,9 +247,6 @@ bool PredictEffectModes(const EffectFitData& data,
       // (mode k has k - 1 nodes), so the measured modes, own and companions in
       // ascending frequency (then number), pair with model modes in ascending
       // order.
-      std::vector<const ObservedMode*> all;
-      for (const ObservedMode& m : st.modes) all.push_back(&m);
-      all.insert(all.end(), companions.begin(), companions.end());
       std::vector<std::size_t> order(all.size());
       for (std::size_t j = 0; j < order.size(); ++j) order[j] = j;
       std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {

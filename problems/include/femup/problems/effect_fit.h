@@ -52,8 +52,8 @@ struct ObservedState {
   // fitted when this set is the held-out one). With shapes they take part in the
   // pairing, so every measured mode of the state gets a distinct model mode
   // whichever set it is in; they add no residuals. Only number, frequency (for
-  // the order) and shape are read; companions without a shape are left out of
-  // the pairing.
+  // the order; finite, >= 0) and shape are read; companions without a shape are
+  // left out of the pairing.
   std::vector<ObservedMode> companions;
 };
 
