@@ -420,6 +420,12 @@ BenchmarkResult RunBenchmark(const BenchmarkOptions& options, const std::string&
       c.probability = top.probability;
       c.separated = d.separated;
       c.indistinguishable = d.indistinguishable;
+      c.temperature = d.temperature;
+      c.degrees_of_freedom = d.degrees_of_freedom;
+      for (const DiagnosisCandidate& k : d.candidates) {
+        c.classes.push_back({k.label, static_cast<int>(k.theta.size()), k.chi2,
+                             k.held_out_chi2, k.score, k.probability});
+      }
       // Location error of each true effect the top class names.
       for (const auto& e : c.effects) {
         for (std::size_t k = 0; k < top.kinds.size(); ++k) {
@@ -626,6 +632,18 @@ void WriteBenchmarkOutputs(const BenchmarkResult& r, bool plots, OutputDir* out,
     nlohmann::json shifts = nlohmann::json::array();
     for (const auto& e : c.effects) shifts.push_back(e.shift_in_noise);
     cj["shift_in_noise"] = shifts;
+    cj["temperature"] = c.temperature;
+    cj["degrees_of_freedom"] = c.degrees_of_freedom;
+    nlohmann::json classes = nlohmann::json::array();
+    for (const BenchmarkClassOutcome& k : c.classes) {
+      classes.push_back({{"label", k.label},
+                         {"parameters", k.parameters},
+                         {"chi2", json_util::Number(k.chi2)},
+                         {"held_out_chi2", json_util::Number(k.held_out_chi2)},
+                         {"score", json_util::Number(k.score)},
+                         {"probability", k.probability}});
+    }
+    cj["classes"] = classes;
     if (c.failed) cj["error"] = c.error;
     lines << cj.dump() << "\n";
   }

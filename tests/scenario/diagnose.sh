@@ -61,6 +61,24 @@ for name in sorted(os.listdir(os.path.join(d, "truth"))):
         assert e["description"] not in case, (name, e["description"])
 print("benchmark cases: no truth in the study files")
 PY
+python3 - bench <<'PY' || fail "results.jsonl: per-class records"
+import json, math, sys
+rows = [json.loads(l) for l in open(sys.argv[1] + "/results.jsonl")]
+assert len(rows) == 3, len(rows)
+for r in rows:
+    k = r["classes"]
+    assert k, (r["case"], "no classes")
+    labels = [c["label"] for c in k]
+    assert "none" in labels and len(set(labels)) == len(labels), (r["case"], labels)
+    p = [c["probability"] for c in k]
+    assert abs(sum(p) - 1) < 1e-9, (r["case"], sum(p))
+    assert p == sorted(p, reverse=True), (r["case"], p)
+    assert k[0]["label"] == r["top"] and k[0]["probability"] == r["probability"], r["case"]
+    assert k[labels.index("none")]["parameters"] == 0, r["case"]
+    assert all(c["chi2"] >= 0 and math.isfinite(c["score"]) for c in k), r["case"]
+    assert r["temperature"] >= 1 and r["degrees_of_freedom"] > 0, r["case"]
+print("results.jsonl: every class, most probable first, probabilities summing to 1")
+PY
 
 # 2b. Absolute effect sizes: every true effect's largest frequency shift is at
 #     most 20 % whatever the case's noise (at least 0.5 % unless even the

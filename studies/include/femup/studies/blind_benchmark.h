@@ -59,6 +59,16 @@ struct BenchmarkEffect {
   std::string description;
 };
 
+// One model class of a case's diagnosis, as results.jsonl reports it.
+struct BenchmarkClassOutcome {
+  std::string label;  // "none", "added_mass", "added_mass+stiffness_loss"
+  int parameters = 0;
+  double chi2 = 0;           // fitted modes, at the best fit, stated noise
+  double held_out_chi2 = 0;  // held-out modes, predicted from the best fit
+  double score = 0;          // log evidence + held-out log predictive density
+  double probability = 0;
+};
+
 struct BenchmarkCase {
   std::string name;                      // "mixed_007"
   std::vector<BenchmarkEffect> effects;  // empty = none
@@ -75,6 +85,9 @@ struct BenchmarkCase {
   double location_error = -1;            // m, worst over located true effects; -1: none
   double gap_before = 0, gap_after = 0;  // rms relative frequency error, fitted modes
   double held_out_before = -1, held_out_after = -1;  // -1: nothing held out
+  std::vector<BenchmarkClassOutcome> classes;        // every class, most probable first
+  double temperature = 1;  // the noise scale the diagnosis applied
+  int degrees_of_freedom = 0;
   bool failed = false;
   std::string error;
   double seconds = 0;
