@@ -81,7 +81,7 @@ void WriteForPeer(const femup::Study& study, const fs::path& dir) {
     const femup::Parameter& p = model.parameter(k);
     j["kinds"].push_back(femup::ToString(p.kind));
     femup::WriteMatrixMarket((dir / ("basis_" + std::to_string(k) + ".mtx")).string(),
-                             p.basis, false);
+                             p.basis.ToSparse(), false);
   }
   const std::vector<std::string> names = model.ParameterNames();
   j["fixed"] = nlohmann::json::object();

@@ -97,10 +97,11 @@ femup::SpaceFrameSpec ParseSize(const std::string& item) {
   return spec;
 }
 
-// One pass over every stored value and index of the matrices; returns the
-// best time of three and a checksum (so the reads are not optimised away).
+// One pass over every stored value and index of the matrices and of the index
+// lists (the bases' DOFs); returns the best time of three and a checksum (so
+// the reads are not optimised away).
 double ReadBound(const std::vector<const femup::SparseMatrix*>& matrices,
-                 double* checksum) {
+                 const std::vector<const std::vector<int>*>& lists, double* checksum) {
   double best = 1e300;
   for (int pass = 0; pass < 3; ++pass) {
     const auto start = Clock::now();
@@ -115,6 +116,9 @@ double ReadBound(const std::vector<const femup::SparseMatrix*>& matrices,
         index_sum += inner[k];
       }
       for (Eigen::Index k = 0; k <= a->outerSize(); ++k) index_sum += outer[k];
+    }
+    for (const std::vector<int>* list : lists) {
+      for (int i : *list) index_sum += i;
     }
     best = std::min(best, Seconds(start));
     *checksum = sum + static_cast<double>(index_sum);
@@ -135,13 +139,14 @@ void WriteBases(const fs::path& path, const femup::ParametrisedModel& model) {
       << "\n";
   char line[96];
   for (int k = 0; k < model.num_parameters(); ++k) {
-    const femup::SparseMatrix& b = model.parameter(k).basis;
+    const femup::SparseMatrix& b = model.parameter(k).basis.local();
+    const std::vector<int>& dofs = model.parameter(k).basis.dofs();
     const long long offset = static_cast<long long>(k) * model.num_dofs();
     for (Eigen::Index c = 0; c < b.outerSize(); ++c) {
       for (femup::SparseMatrix::InnerIterator it(b, c); it; ++it) {
         const int len = std::snprintf(line, sizeof line, "%lld %lld %.17g\n",
-                                      static_cast<long long>(it.row()) + 1,
-                                      offset + c + 1, it.value());
+                                      static_cast<long long>(dofs[it.row()]) + 1,
+                                      offset + dofs[c] + 1, it.value());
         out.write(line, len);
       }
     }
@@ -288,17 +293,21 @@ int main(int argc, char** argv) {
   const double modes_time = Seconds(start);
 
   std::vector<const femup::SparseMatrix*> matrices = {&model.stiffness(), &model.mass()};
+  std::vector<const std::vector<int>*> lists;
   long long nnz_bases = 0;
   for (const femup::Parameter& q : model.parameters()) {
-    matrices.push_back(&q.basis);
+    matrices.push_back(&q.basis.local());
+    lists.push_back(&q.basis.dofs());
     nnz_bases += q.basis.nonZeros();
   }
   double checksum = 0;
-  const double bound = ReadBound(matrices, &checksum);
+  const double bound = ReadBound(matrices, lists, &checksum);
   std::cerr << size << ": read bound " << bound << " s (checksum " << checksum << ")\n";
   long long bytes = 0;
   for (const femup::SparseMatrix* a : matrices)
     bytes += a->nonZeros() * 12LL + (a->outerSize() + 1) * 4LL;
+  for (const std::vector<int>* list : lists)
+    bytes += static_cast<long long>(list->size()) * 4LL;
 
   std::cerr << size << ": writing K, M, the bases and the modes\n";
   start = Clock::now();

@@ -42,7 +42,7 @@ void ExpectedRow(const ParametrisedModel& model, const Eigen::VectorXd& fem_i,
   z->resize(model.num_parameters());
   for (int k = 0; k < model.num_parameters(); ++k) {
     const Parameter& p = model.parameter(k);
-    const Eigen::MatrixXd basis(p.basis);
+    const Eigen::MatrixXd basis(p.basis.ToSparse());
     const double proj = fem_i.dot(basis * phi);
     switch (p.kind) {
       case ParameterKind::kMass:
@@ -151,7 +151,7 @@ TEST(CorrectionSystem, SummedIsAirRowPlusWaterRow) {
   }
   // method.md's closed form of one entry: A_ijp = -Phi_i' M_a (lam_j phi_j +
   // lamw_p phiw_p) for mass factor a = mass[2], i = 3, j = 1, p = 2.
-  const Eigen::MatrixXd m2(ps.s.model.parameter(1).basis);
+  const Eigen::MatrixXd m2(ps.s.model.parameter(1).basis.ToSparse());
   const Eigen::VectorXd combo = ps.air.Eigenvalues()[0] * ps.air.shapes.col(0) +
                                 ps.water.Eigenvalues()[1] * ps.water.shapes.col(1);
   const double a = -ps.fem.shapes.col(2).dot(m2 * combo);

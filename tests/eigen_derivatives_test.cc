@@ -135,8 +135,8 @@ FdAgreement CompareWithFiniteDifferences(const ParametrisedModel& model,
       const bool in_m = par.kind == ParameterKind::kMass ||
                         (par.kind == ParameterKind::kAddedMass && wet);
       const SparseMatrix none;
-      analytic.push_back(
-          solver.Derivative(in_k ? par.basis : none, in_m ? par.basis : none));
+      const SparseMatrix basis = par.basis.ToSparse();
+      analytic.push_back(solver.Derivative(in_k ? basis : none, in_m ? basis : none));
       mode_scale = std::max(mode_scale, analytic.back().eigenvector.norm());
       lambda_scale = std::max(lambda_scale, std::abs(analytic.back().eigenvalue));
       // Central differences with steps h and h/2, combined by Richardson
@@ -167,7 +167,7 @@ FdAgreement CompareWithFiniteDifferences(const ParametrisedModel& model,
       fd_val.push_back((4 * dlambda[1] - dlambda[0]) / 3);
 
       const double norm_change = 2 * phi.dot(m * analytic.back().eigenvector) +
-                                 (in_m ? phi.dot(par.basis * phi) : 0.0);
+                                 (in_m ? phi.dot(basis * phi) : 0.0);
       worst.normalisation = std::max(worst.normalisation, std::abs(norm_change));
     }
     for (int p = 0; p < model.num_parameters(); ++p) {

@@ -35,8 +35,8 @@ TEST(PlaneFrame, CountsFollowTheSpec) {
   // Stiffness blocks sum to K, storey masses to M.
   SparseMatrix k_sum(m.num_dofs(), m.num_dofs()), m_sum(m.num_dofs(), m.num_dofs());
   for (const Parameter& p : m.parameters()) {
-    if (p.kind == ParameterKind::kStiffness) k_sum += p.basis;
-    if (p.kind == ParameterKind::kMass) m_sum += p.basis;
+    if (p.kind == ParameterKind::kStiffness) k_sum += p.basis.ToSparse();
+    if (p.kind == ParameterKind::kMass) m_sum += p.basis.ToSparse();
   }
   EXPECT_LT(Eigen::MatrixXd(k_sum - m.stiffness()).cwiseAbs().maxCoeff(),
             1e-12 * Eigen::MatrixXd(m.stiffness()).cwiseAbs().maxCoeff());

@@ -455,15 +455,15 @@ TEST(SpaceFrameBuild, CountsNamesAndSubstructures) {
   SparseMatrix k_sum(n, n), m_sum(n, n);
   for (const Parameter& p : m.parameters()) {
     names.insert(p.name);
-    EXPECT_GT(p.basis.norm(), 0.0) << p.name;
+    EXPECT_GT(p.basis.local().norm(), 0.0) << p.name;
     EXPECT_FALSE(p.elements.empty()) << p.name;
     if (p.kind == ParameterKind::kAddedMass)
       added.insert(p.elements.begin(), p.elements.end());
     if (p.kind == ParameterKind::kStiffness) {
       stiff.insert(p.elements.begin(), p.elements.end());
-      k_sum += p.basis;
+      k_sum += p.basis.ToSparse();
     }
-    if (p.kind == ParameterKind::kMass) m_sum += p.basis;
+    if (p.kind == ParameterKind::kMass) m_sum += p.basis.ToSparse();
   }
   EXPECT_EQ(static_cast<int>(names.size()), m.num_parameters());
   EXPECT_EQ(std::set<int>(added.begin(), added.end()), wet);

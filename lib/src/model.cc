@@ -139,16 +139,14 @@ int ParametrisedModel::AddParameter(Parameter parameter) {
         << ", expected " << num_dofs() << " x " << num_dofs();
     throw InputError(where, msg.str());
   }
-  if (!AllFinite(parameter.basis)) {
+  if (!AllFinite(parameter.basis.local())) {
     throw InputError(where, "basis matrix has a NaN or infinite entry");
   }
-  if (!IsSymmetric(parameter.basis)) {
+  if (!IsSymmetric(parameter.basis.local())) {
     throw InputError(where, "basis matrix is not symmetric");
   }
-  parameter.basis.makeCompressed();
   // Eigen 3.4's SparseMatrix has no move constructor, so push_back and the
-  // vector's growth would copy every basis (O(n) each even when nearly empty);
-  // grow by hand and swap the matrices instead.
+  // vector's growth would copy every basis; grow by hand and swap instead.
   if (parameters_.size() == parameters_.capacity()) {
     std::vector<Parameter> grown;
     grown.reserve(std::max<std::size_t>(16, 2 * parameters_.size()));
@@ -204,10 +202,20 @@ void ParametrisedModel::CheckFactors(const Eigen::VectorXd& d) const {
 
 SparseMatrix ParametrisedModel::Sum(ParameterKind kind, const Eigen::VectorXd& d) const {
   CheckFactors(d);
-  SparseMatrix sum(num_dofs(), num_dofs());
+  // One triplet list over the bases' entries: O(entries), not O(n) per basis.
+  std::vector<Eigen::Triplet<double>> t;
+  std::size_t entries = 0;
   for (int i = 0; i < num_parameters(); ++i) {
-    if (parameters_[i].kind == kind && d[i] != 0.0) sum += d[i] * parameters_[i].basis;
+    if (parameters_[i].kind == kind && d[i] != 0.0)
+      entries += static_cast<std::size_t>(parameters_[i].basis.nonZeros());
   }
+  t.reserve(entries);
+  for (int i = 0; i < num_parameters(); ++i) {
+    if (parameters_[i].kind == kind && d[i] != 0.0)
+      parameters_[i].basis.AppendTriplets(d[i], &t);
+  }
+  SparseMatrix sum(num_dofs(), num_dofs());
+  sum.setFromTriplets(t.begin(), t.end());
   return sum;
 }
 

@@ -87,51 +87,14 @@ Grouping GroupElements(const std::vector<SpaceFrameElement>& elements, int group
   return g;
 }
 
-// The n x n compressed matrix of the triplets [begin, end), duplicates summed,
-// in O(n + t log t) with one O(n) array (Eigen's setFromTriplets allocates and
-// clears several, which for thousands of factor bases of a 10^6-DOF model
-// costs more than the assembly). Sorts the range; stable, so entries (i, j) and
-// (j, i) of symmetric element matrices are summed in the same order.
-SparseMatrix CompressedFromTriplets(int n, Triplets::iterator begin,
-                                    Triplets::iterator end) {
-  using T = Eigen::Triplet<double>;
-  std::stable_sort(begin, end, [](const T& a, const T& b) {
-    return a.col() < b.col() || (a.col() == b.col() && a.row() < b.row());
-  });
-  std::size_t unique = 0;
-  for (auto it = begin; it != end; ++it) {
-    if (it == begin || it->col() != (it - 1)->col() || it->row() != (it - 1)->row()) {
-      ++unique;
-    }
-  }
-  SparseMatrix m(n, n);  // compressed, outer indices zero
-  m.resizeNonZeros(static_cast<Eigen::Index>(unique));
-  int* outer = m.outerIndexPtr();
-  int* inner = m.innerIndexPtr();
-  double* value = m.valuePtr();
-  std::ptrdiff_t k = -1;
-  for (auto it = begin; it != end; ++it) {
-    if (it == begin || it->col() != (it - 1)->col() || it->row() != (it - 1)->row()) {
-      ++k;
-      inner[k] = it->row();
-      value[k] = it->value();
-      ++outer[it->col() + 1];
-    } else {
-      value[k] += it->value();
-    }
-  }
-  for (int c = 0; c < n; ++c) outer[c + 1] += outer[c];
-  return m;
-}
-
-// Assembles every group's basis into `bases` (one per group, empty groups give
-// 0 x 0 matrices) from the element matrices `matrix(element)`; returns their sum
-// when `total` is set (else a 0 x 0 matrix). One triplet list: each group's
+// Assembles every group's basis into `bases` (one per group, held on its DOFs;
+// empty groups give empty bases) from the element matrices `matrix(element)`; returns
+// their sum when `total` is set (else a 0 x 0 matrix). One triplet list: each group's
 // triplets are a segment of it, so the sum costs no second copy.
 template <typename MatrixFn>
 SparseMatrix AssembleGroups(int n, const std::vector<SpaceFrameElement>& elements,
                             const Grouping& g, MatrixFn matrix, bool total,
-                            std::vector<SparseMatrix>* bases) {
+                            std::vector<BasisMatrix>* bases) {
   const int groups = static_cast<int>(g.offset.size()) - 1;
   // With a total, all triplets at once; without, the biggest group's.
   std::size_t reserve = 0, group_reserve = 0;
@@ -147,7 +110,8 @@ SparseMatrix AssembleGroups(int n, const std::vector<SpaceFrameElement>& element
   }
   Triplets t;
   t.reserve(total ? reserve : group_reserve);
-  bases->assign(groups, SparseMatrix());
+  bases->clear();
+  bases->resize(static_cast<std::size_t>(groups));
   for (int k = 0; k < groups; ++k) {
     if (g.offset[k + 1] == g.offset[k]) continue;
     const std::size_t start = t.size();
@@ -155,8 +119,7 @@ SparseMatrix AssembleGroups(int n, const std::vector<SpaceFrameElement>& element
       const SpaceFrameElement& e = elements[g.order[j]];
       Scatter(matrix(e), DofsOf(e), &t);
     }
-    SparseMatrix basis = CompressedFromTriplets(n, t.begin() + start, t.end());
-    (*bases)[k].swap(basis);  // Eigen 3.4 sparse matrices copy on assignment
+    (*bases)[k] = BasisMatrix::FromTriplets(n, t.begin() + start, t.end());
     if (!total) t.clear();
   }
   if (!total) return SparseMatrix();
@@ -429,7 +392,7 @@ ParametrisedModel BuildSpaceFrame(const SpaceFrameSpec& spec) {
       elements, groups,
       [&](const SpaceFrameElement& e) { return e.wet ? GroupOf(e, blocks) : -1; });
 
-  std::vector<SparseMatrix> k_groups, m_levels, w_groups;
+  std::vector<BasisMatrix> k_groups, m_levels, w_groups;
   SparseMatrix k = AssembleGroups(
       n, elements, by_group,
       [&](const SpaceFrameElement& e) {
@@ -453,7 +416,7 @@ ParametrisedModel BuildSpaceFrame(const SpaceFrameSpec& spec) {
       false, &w_groups);
 
   ParametrisedModel model(std::move(k), std::move(m), std::move(labels));
-  auto add = [&](std::string name, ParameterKind kind, SparseMatrix* basis,
+  auto add = [&](std::string name, ParameterKind kind, BasisMatrix* basis,
                  const Grouping& grouping, int group, std::vector<std::string> tags) {
     Parameter p;
     p.name = std::move(name);

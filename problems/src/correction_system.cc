@@ -48,32 +48,13 @@ PreparedCorrectionSystem::PreparedCorrectionSystem(const ParametrisedModel& mode
   // K and M are symmetric: Phi' K = (K Phi)'.
   phi_t_k_ = (model.stiffness() * phi).transpose();
   phi_t_m_ = (model.mass() * phi).transpose();
-  std::vector<int> local(static_cast<std::size_t>(n), -1);
   projections_.reserve(static_cast<std::size_t>(model.num_parameters()));
   for (const Parameter& p : model.parameters()) {
     Projection q;
     q.kind = p.kind;
-    const SparseMatrix& basis = p.basis;
-    for (int c = 0; c < basis.outerSize(); ++c) {
-      for (SparseMatrix::InnerIterator it(basis, c); it; ++it) {
-        if (local[it.row()] < 0) {
-          local[it.row()] = 0;
-          q.support.push_back(static_cast<int>(it.row()));
-        }
-      }
-    }
-    std::sort(q.support.begin(), q.support.end());
-    for (std::size_t i = 0; i < q.support.size(); ++i)
-      local[q.support[i]] = static_cast<int>(i);
-    // Column c of B (symmetric) has its rows in the support: Phi' B e_c =
-    // sum over its entries of value * Phi(row, :)'.
-    q.phi_t_b = Eigen::MatrixXd::Zero(nf_, static_cast<Eigen::Index>(q.support.size()));
-    for (int c : q.support) {
-      auto column = q.phi_t_b.col(local[c]);
-      for (SparseMatrix::InnerIterator it(basis, c); it; ++it)
-        column.noalias() += it.value() * phi.row(it.row()).transpose();
-    }
-    for (int d : q.support) local[d] = -1;
+    // B is symmetric: Phi' B restricted to the basis's DOFs is (B Phi)' there.
+    q.support = p.basis.dofs();
+    q.phi_t_b = p.basis.RestrictedProduct(phi).transpose();
     projections_.push_back(std::move(q));
   }
 }

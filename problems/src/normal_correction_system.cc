@@ -46,14 +46,8 @@ LinearProblem BuildNormalCorrectionSystem(const ParametrisedModel& model,
   double seconds_half_solve = 0, seconds_gram = 0;
   // The DOFs each basis acts on (its nonzero columns; symmetric, so rows too),
   // the same for every state.
-  std::vector<std::vector<int>> support(p);
-  for (int k = 0; k < p; ++k) {
-    const SparseMatrix& basis = model.parameter(k).basis;
-    for (Eigen::Index r = 0; r < basis.outerSize(); ++r) {
-      if (SparseMatrix::InnerIterator(basis, r))
-        support[k].push_back(static_cast<int>(r));
-    }
-  }
+  std::vector<const std::vector<int>*> support(p);
+  for (int k = 0; k < p; ++k) support[k] = &model.parameter(k).basis.dofs();
   for (const ModalData& st : states) {
     const std::string where = "measurements." + st.state;
     st.Validate(dofs, where);
@@ -66,19 +60,10 @@ LinearProblem BuildNormalCorrectionSystem(const ParametrisedModel& model,
       return model.parameter(k).kind != ParameterKind::kAddedMass || wet;
     };
     // B_k Phi on the support of each basis that enters the state, for all its
-    // modes at once: row r of B_k Phi is sum over column r of B_k (symmetric)
-    // of B_k(c, r) Phi(c, :).
+    // modes at once.
     std::vector<Eigen::MatrixXd> products(p);
     for (int k = 0; k < p; ++k) {
-      if (!enters(k)) continue;
-      const SparseMatrix& basis = model.parameter(k).basis;
-      Eigen::MatrixXd& y = products[k];
-      y = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(support[k].size()), m);
-      for (std::size_t a = 0; a < support[k].size(); ++a) {
-        for (SparseMatrix::InnerIterator it(basis, support[k][a]); it; ++it) {
-          y.row(static_cast<Eigen::Index>(a)) += it.value() * shapes.row(it.row());
-        }
-      }
+      if (enters(k)) products[k] = model.parameter(k).basis.RestrictedProduct(shapes);
     }
     // Z_j for every mode of the state, column k = c_k B_k phi_j on the support
     // of B_k: one sparsity pattern for all of them (the columns whose factor
@@ -86,7 +71,7 @@ LinearProblem BuildNormalCorrectionSystem(const ParametrisedModel& model,
     std::vector<int> outer(p + 1, 0);
     std::vector<int> inner;
     for (int k = 0; k < p; ++k) {
-      if (enters(k)) inner.insert(inner.end(), support[k].begin(), support[k].end());
+      if (enters(k)) inner.insert(inner.end(), support[k]->begin(), support[k]->end());
       outer[k + 1] = static_cast<int>(inner.size());
     }
     std::vector<SparseMatrix> z(m, SparseMatrix(dofs, p));

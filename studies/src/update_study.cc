@@ -109,7 +109,7 @@ UpdateResult RunUpdate(const Study& study) {
   r.dof_labels = study.model.dof_labels();
   for (const Parameter& p : study.model.parameters()) {
     Parameter copy = p;
-    copy.basis = SparseMatrix();
+    copy.basis = BasisMatrix();
     r.parameters.push_back(copy);
   }
   r.preset = study.truth;

@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "femup/basis_matrix.h"
+
 namespace femup {
 
 using SparseMatrix = Eigen::SparseMatrix<double>;  // column-major, symmetric where stated
@@ -27,7 +29,7 @@ bool ParameterKindFromString(const std::string& text, ParameterKind* kind);
 struct Parameter {
   std::string name;  // unique, readable: "mass[3]", "stiffness[e7]", "added_mass[e2]"
   ParameterKind kind = ParameterKind::kMass;
-  SparseMatrix basis;             // num_dofs x num_dofs, symmetric
+  BasisMatrix basis;              // num_dofs x num_dofs, symmetric, held on its DOFs
   std::vector<int> elements;      // element ids the factor covers (may be empty)
   std::vector<std::string> tags;  // e.g. "wet", "dry", "element:3", "region:splash"
   bool HasTag(const std::string& tag) const;
