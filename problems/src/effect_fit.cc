@@ -32,15 +32,20 @@ std::vector<int> Offsets(const EffectFitData& data,
 
 struct BendingModes {
   Eigen::VectorXd frequencies_hz;  // ascending
-  Eigen::MatrixXd shapes;          // bending DOFs x modes
+  Eigen::MatrixXd shapes;          // bending DOFs x modes (mass-normalised)
   std::map<std::string, int> row;  // label -> bending row
+  // Kept for the Jacobian (SolveBending with `keep`): the bending matrices,
+  // the eigenvalues and the bending DOFs' labels in row order.
+  Eigen::MatrixXd kb, mb;
+  Eigen::VectorXd eigenvalues;
+  std::vector<std::string> labels;
 };
 
-// The bending modes of `spec`; their shapes only when `shapes` (frequency-only
-// data need none, and accumulating the eigenvectors is a large part of the
-// eigen-solution's cost).
-bool SolveBending(const CantileverSpec& spec, bool shapes, BendingModes* out,
-                  std::string* why) {
+// The bending (ux, rz) stiffness and mass of `spec` as dense matrices, and the
+// labels of their rows. Fails when the model cannot be built or bending couples
+// with the axial DOFs.
+bool AssembleBending(const CantileverSpec& spec, Eigen::MatrixXd* kb, Eigen::MatrixXd* mb,
+                     std::vector<std::string>* labels, std::string* why) {
   Structure s;
   try {
     CantileverSpec global_only = spec;
@@ -53,17 +58,18 @@ bool SolveBending(const CantileverSpec& spec, bool shapes, BendingModes* out,
   // Bending rows (ux, rz) in order; axial DOFs map to -1.
   const int n = static_cast<int>(s.dof_labels.size());
   std::vector<int> index(n, -1);
-  std::vector<int> bending;
+  labels->clear();
   for (int i = 0; i < n; ++i) {
     if (!IsAxial(s.dof_labels[i])) {
-      index[i] = static_cast<int>(bending.size());
-      bending.push_back(i);
+      index[i] = static_cast<int>(labels->size());
+      labels->push_back(s.dof_labels[i]);
     }
   }
-  const int nb = static_cast<int>(bending.size());
-  Eigen::MatrixXd kb = Eigen::MatrixXd::Zero(nb, nb), mb = Eigen::MatrixXd::Zero(nb, nb);
+  const int nb = static_cast<int>(labels->size());
+  kb->setZero(nb, nb);
+  mb->setZero(nb, nb);
   bool coupled = false;
-  for (auto [matrix, dense] : {std::pair{&s.stiffness, &kb}, std::pair{&s.mass, &mb}}) {
+  for (auto [matrix, dense] : {std::pair{&s.stiffness, kb}, std::pair{&s.mass, mb}}) {
     double largest = 0, coupling = 0;
     for (int col = 0; col < matrix->outerSize(); ++col) {
       for (SparseMatrix::InnerIterator it(*matrix, col); it; ++it) {
@@ -85,6 +91,20 @@ bool SolveBending(const CantileverSpec& spec, bool shapes, BendingModes* out,
           "straight cantilever";
     return false;
   }
+  return true;
+}
+
+// The bending modes of `spec`; their shapes only when `shapes` (frequency-only
+// data need none, and accumulating the eigenvectors is a large part of the
+// eigen-solution's cost). With `keep`, also the matrices, eigenvalues and labels
+// (and the shapes, whatever `shapes` says).
+bool SolveBending(const CantileverSpec& spec, bool shapes, bool keep, BendingModes* out,
+                  std::string* why) {
+  Eigen::MatrixXd kb, mb;
+  std::vector<std::string> labels;
+  if (!AssembleBending(spec, &kb, &mb, &labels, why)) return false;
+  shapes = shapes || keep;
+  const int nb = static_cast<int>(labels.size());
   Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(
       kb, mb,
       shapes ? Eigen::ComputeEigenvectors | Eigen::Ax_lBx : Eigen::EigenvaluesOnly);
@@ -103,7 +123,13 @@ bool SolveBending(const CantileverSpec& spec, bool shapes, BendingModes* out,
   }
   if (shapes) out->shapes = eig.eigenvectors();
   out->row.clear();
-  for (int i = 0; i < nb; ++i) out->row[s.dof_labels[bending[i]]] = i;
+  for (int i = 0; i < nb; ++i) out->row[labels[i]] = i;
+  if (keep) {
+    out->kb = std::move(kb);
+    out->mb = std::move(mb);
+    out->eigenvalues = lambda;
+    out->labels = std::move(labels);
+  }
   return true;
 }
 
@@ -175,33 +201,58 @@ std::string EffectFitData::Validate() const {
   return "";
 }
 
-bool PredictEffectModes(const EffectFitData& data,
-                        const std::vector<const Effect*>& effects,
-                        const Eigen::VectorXd& theta, std::vector<PredictedState>* out,
-                        std::string* why) {
+namespace {
+
+// What the Jacobian needs of a prediction besides the predicted modes: per
+// state, the model mode paired with each observed one (0-based) and the
+// bending rows of the sensors.
+struct PredictionDetail {
+  std::vector<int> pair;
+  std::vector<int> rows;
+};
+
+// The nominal model changed by the effects with parameters theta, for a state
+// of the given immersion.
+CantileverSpec SpecFor(const EffectFitData& data,
+                       const std::vector<const Effect*>& effects,
+                       const std::vector<int>& offsets, const Eigen::VectorXd& theta,
+                       Immersion immersion) {
+  CantileverSpec spec = data.nominal;
+  for (std::size_t e = 0; e < effects.size(); ++e) {
+    effects[e]->Apply(theta.segment(offsets[e], offsets[e + 1] - offsets[e]), immersion,
+                      data.wet_only_added_mass, data.nominal, &spec);
+  }
+  return spec;
+}
+
+// PredictEffectModes, keeping (with `keep`) each immersion's matrices and
+// eigen-solution in *models and each state's pairing in *details.
+bool Predict(const EffectFitData& data, const std::vector<const Effect*>& effects,
+             const Eigen::VectorXd& theta, bool keep,
+             std::map<Immersion, BendingModes>* models_out,
+             std::vector<PredictionDetail>* details, std::vector<PredictedState>* out,
+             std::string* why) {
   const std::vector<int> offsets = Offsets(data, effects);
   if (theta.size() != offsets.back() || !theta.allFinite()) {
     if (why) *why = "parameters of the wrong size or not finite";
     return false;
   }
   // One model per immersion.
-  std::map<Immersion, BendingModes> models;
+  std::map<Immersion, BendingModes>& models = *models_out;
+  models.clear();
+  details->assign(data.states.size(), PredictionDetail());
   out->assign(data.states.size(), PredictedState());
   for (std::size_t s = 0; s < data.states.size(); ++s) {
     const ObservedState& st = data.states[s];
     auto it = models.find(st.immersion);
     if (it == models.end()) {
-      CantileverSpec spec = data.nominal;
-      for (std::size_t e = 0; e < effects.size(); ++e) {
-        effects[e]->Apply(theta.segment(offsets[e], offsets[e + 1] - offsets[e]),
-                          st.immersion, data.wet_only_added_mass, data.nominal, &spec);
-      }
+      const CantileverSpec spec = SpecFor(data, effects, offsets, theta, st.immersion);
       BendingModes bm;
       // Shapes are needed where a state of this immersion has sensors.
       bool shapes = false;
       for (const ObservedState& other : data.states)
         shapes = shapes || (other.immersion == st.immersion && !other.sensors.empty());
-      if (!SolveBending(spec, shapes, &bm, why)) return false;
+      if (!SolveBending(spec, shapes, keep, &bm, why)) return false;
       it = models.emplace(st.immersion, std::move(bm)).first;
     }
     const BendingModes& bm = it->second;
@@ -264,6 +315,8 @@ bool PredictEffectModes(const EffectFitData& data,
     } else {
       for (std::size_t j = 0; j < st.modes.size(); ++j) pair[j] = st.modes[j].number - 1;
     }
+    (*details)[s].pair = pair;
+    (*details)[s].rows = rows;
     PredictedState& ps = (*out)[s];
     for (std::size_t j = 0; j < st.modes.size(); ++j) {
       PredictedMode pm;
@@ -288,6 +341,102 @@ bool PredictEffectModes(const EffectFitData& data,
     }
   }
   return true;
+}
+
+// Column i of the Jacobian of EffectResiduals at x, from the eigen-solution
+// kept at x (`models`, `details`): dK and dM by a forward (backward at the
+// upper bound) difference of the assembled bending matrices over a step of
+// 1e-6 of the parameter's range, then exact eigenpair derivatives for that
+// dK and dM: d lambda = phi'(dK - lambda dM) phi, and d phi by the expansion on
+// all the model's bending modes (a complete basis of the dense problem):
+//   d phi_p = sum_{q != p} phi_q phi_q'(dK - lambda_p dM) phi_p / (lambda_p - lambda_q)
+//             - 1/2 (phi_p' dM phi_p) phi_p.
+// The pairing is held. Returns false (with *why unset) where that does not
+// apply: the step changes the DOFs, a paired eigenvalue is not positive, or
+// two eigenvalues are too close for the expansion; the caller then differences
+// the residuals instead.
+bool SemiAnalyticColumn(const EffectFitData& data,
+                        const std::vector<const Effect*>& effects,
+                        const std::vector<int>& offsets, const Eigen::VectorXd& x,
+                        Eigen::Index i, double step,
+                        const std::map<Immersion, BendingModes>& models,
+                        const std::vector<PredictionDetail>& details,
+                        Eigen::Ref<Eigen::VectorXd> column, bool* failed,
+                        std::string* why) {
+  *failed = false;
+  Eigen::VectorXd xs = x;
+  xs[i] += step;
+  std::map<Immersion, std::pair<Eigen::MatrixXd, Eigen::MatrixXd>> derivative;
+  for (const auto& [immersion, bm] : models) {
+    Eigen::MatrixXd kb, mb;
+    std::vector<std::string> labels;
+    if (!AssembleBending(SpecFor(data, effects, offsets, xs, immersion), &kb, &mb,
+                         &labels, why)) {
+      *failed = true;
+      return false;
+    }
+    if (labels != bm.labels) return false;
+    derivative[immersion] = {(kb - bm.kb) / step, (mb - bm.mb) / step};
+  }
+  Eigen::Index k = 0;
+  for (std::size_t s = 0; s < data.states.size(); ++s) {
+    const ObservedState& st = data.states[s];
+    const bool shapes = StateUsesShapes(data, st);
+    const BendingModes& bm = models.at(st.immersion);
+    const auto& [dk, dm] = derivative.at(st.immersion);
+    const PredictionDetail& detail = details[s];
+    for (std::size_t j = 0; j < st.modes.size(); ++j) {
+      const ObservedMode& om = st.modes[j];
+      const int p = detail.pair[j];
+      const double lambda = bm.eigenvalues[p];
+      if (!(lambda > 0)) return false;
+      const auto phi = bm.shapes.col(p);
+      const Eigen::VectorXd dm_phi = dm * phi;
+      const Eigen::VectorXd g = dk * phi - lambda * dm_phi;
+      const double dlambda = phi.dot(g);
+      // f = sqrt(lambda) / 2 pi, so df = f dlambda / (2 lambda).
+      column[k++] = bm.frequencies_hz[p] * dlambda / (2 * lambda) / om.frequency_hz /
+                    om.frequency_sigma;
+      if (!shapes) continue;
+      Eigen::VectorXd coefficient = bm.shapes.transpose() * g;
+      for (Eigen::Index q = 0; q < coefficient.size(); ++q) {
+        if (q == p) continue;
+        const double gap = lambda - bm.eigenvalues[q];
+        if (!(std::abs(gap) > 1e-9 * std::abs(lambda))) return false;
+        coefficient[q] /= gap;
+      }
+      coefficient[p] = -0.5 * phi.dot(dm_phi);
+      const Eigen::VectorXd dphi = bm.shapes * coefficient;
+      const Eigen::Index m = static_cast<Eigen::Index>(detail.rows.size());
+      Eigen::VectorXd sv(m), ds(m);
+      for (Eigen::Index r = 0; r < m; ++r) {
+        sv[r] = phi[detail.rows[static_cast<std::size_t>(r)]];
+        ds[r] = dphi[detail.rows[static_cast<std::size_t>(r)]];
+      }
+      // The predicted shape is c s with c = s't / s's (PredictEffectModes).
+      const Eigen::VectorXd t = UnitPeak(om.shape);
+      const double ss = sv.squaredNorm();
+      if (!(ss > 0)) return false;
+      const double c = sv.dot(t) / ss;
+      const double dc = ds.dot(t) / ss - 2 * sv.dot(t) * sv.dot(ds) / (ss * ss);
+      const Eigen::VectorXd dshape = dc * sv + c * ds;
+      const bool own = om.shape_sigma.size() > 0;
+      for (Eigen::Index r = 0; r < m; ++r)
+        column[k++] = dshape[r] / (own ? om.shape_sigma[r] : data.shape_sigma);
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+bool PredictEffectModes(const EffectFitData& data,
+                        const std::vector<const Effect*>& effects,
+                        const Eigen::VectorXd& theta, std::vector<PredictedState>* out,
+                        std::string* why) {
+  std::map<Immersion, BendingModes> models;
+  std::vector<PredictionDetail> details;
+  return Predict(data, effects, theta, false, &models, &details, out, why);
 }
 
 bool BendingModesAtSensors(const CantileverSpec& spec,
@@ -412,17 +561,26 @@ NonlinearProblem BuildEffectFitProblem(const EffectFitData& data,
   const Eigen::VectorXd lower = p.lower, upper = p.upper;
   p.evaluate = [data, effects, lower, upper](const Eigen::VectorXd& x, Eigen::VectorXd* r,
                                              Eigen::MatrixXd* jac, std::string* why) {
+    std::map<Immersion, BendingModes> models;
+    std::vector<PredictionDetail> details;
     std::vector<PredictedState> pred;
-    if (!PredictEffectModes(data, effects, x, &pred, why)) return false;
+    if (!Predict(data, effects, x, jac != nullptr, &models, &details, &pred, why))
+      return false;
     *r = EffectResiduals(data, pred);
     if (jac == nullptr) return true;
     jac->resize(r->size(), x.size());
-    // Forward differences (backward at the upper bound): one evaluation per
-    // parameter.
+    const std::vector<int> offsets = Offsets(data, effects);
     for (Eigen::Index i = 0; i < x.size(); ++i) {
       const double h = 1e-6 * (upper[i] - lower[i]);
+      const double step = x[i] + h <= upper[i] ? h : -h;
+      bool failed = false;
+      if (SemiAnalyticColumn(data, effects, offsets, x, i, step, models, details,
+                             jac->col(i), &failed, why))
+        continue;
+      if (failed) return false;
+      // Where the expansion does not apply: difference the residuals.
       Eigen::VectorXd xs = x;
-      xs[i] = x[i] + h <= upper[i] ? x[i] + h : x[i] - h;
+      xs[i] = x[i] + step;
       if (!PredictEffectModes(data, effects, xs, &pred, why)) return false;
       jac->col(i) = (EffectResiduals(data, pred) - *r) / (xs[i] - x[i]);
     }

@@ -111,9 +111,12 @@ std::vector<EffectParameter> EffectSetParameters(
     const EffectFitData& data, const std::vector<const Effect*>& effects);
 
 // The fit over the effects' parameters (bounds = the prior ranges), starting at
-// `start`; names "<kind>.<parameter>". Jacobian by forward differences of
-// 1e-6 of each range (backward at the upper bound; the pairing keeps the
-// modes' order, so a step never swaps modes unless two MAC sums are nearly equal). The
+// `start`; names "<kind>.<parameter>". Jacobian semi-analytic: the bending
+// matrices' derivatives by forward differences of 1e-6 of each range (backward
+// at the upper bound), then exact eigenvalue and eigenvector derivatives on the
+// model's full set of bending modes (one eigen-solution per Jacobian instead of
+// one per parameter), the pairing held; differences of the residuals where that
+// cannot apply (a step that changes the DOFs, eigenvalues too close). The
 // effects must outlive the problem. Throws InputError when the data are invalid or
 // `start` has the wrong size or lies outside the ranges.
 NonlinearProblem BuildEffectFitProblem(const EffectFitData& data,
