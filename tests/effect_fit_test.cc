@@ -386,6 +386,32 @@ TEST(EffectFit, CompanionModesKeepThePairingDistinctAcrossDataSets) {
   EXPECT_EQ(pred[0].modes[0].model_mode, 4);
 }
 
+// The problem's Jacobian at x against central differences of its residuals
+// (steps of 1e-4 of each range), column by column, to `tolerance` relative.
+void ExpectJacobianMatchesCentralDifferences(const NonlinearProblem& p,
+                                             const Eigen::VectorXd& x, double tolerance) {
+  Eigen::VectorXd r;
+  Eigen::MatrixXd jac;
+  std::string why;
+  ASSERT_TRUE(p.evaluate(x, &r, &jac, &why)) << why;
+  ASSERT_EQ(jac.rows(), p.num_residuals);
+  ASSERT_EQ(jac.cols(), x.size());
+  for (Eigen::Index i = 0; i < x.size(); ++i) {
+    const double h = 1e-4 * (p.upper[i] - p.lower[i]);
+    Eigen::VectorXd xp = x, xm = x, rp, rm;
+    xp[i] += h;
+    xm[i] -= h;
+    ASSERT_TRUE(p.evaluate(xp, &rp, nullptr, &why)) << why;
+    ASSERT_TRUE(p.evaluate(xm, &rm, nullptr, &why)) << why;
+    const Eigen::VectorXd central = (rp - rm) / (2 * h);
+    ASSERT_GT(central.norm(), 0) << p.names[i];
+    EXPECT_LT((jac.col(i) - central).norm(), tolerance * central.norm())
+        << p.names[i] << "\n"
+        << jac.col(i).transpose() << "\n"
+        << central.transpose();
+  }
+}
+
 TEST(EffectFit, JacobianAgreesWithCentralDifferences) {
   const std::vector<std::string> sensors = TenSensors();
   // Data from the nominal model; the Jacobian is taken away from it (nonzero
@@ -402,26 +428,7 @@ TEST(EffectFit, JacobianAgreesWithCentralDifferences) {
     for (const Eigen::VectorXd& x : xs) {
       SCOPED_TRACE(kind + " at " + std::to_string(x[0]));
       const NonlinearProblem p = BuildEffectFitProblem(data, {e.get()}, x);
-      Eigen::VectorXd r;
-      Eigen::MatrixXd jac;
-      std::string why;
-      ASSERT_TRUE(p.evaluate(x, &r, &jac, &why)) << why;
-      ASSERT_EQ(jac.rows(), p.num_residuals);
-      ASSERT_EQ(jac.cols(), x.size());
-      for (Eigen::Index i = 0; i < x.size(); ++i) {
-        const double h = 1e-4 * (p.upper[i] - p.lower[i]);
-        Eigen::VectorXd xp = x, xm = x, rp, rm;
-        xp[i] += h;
-        xm[i] -= h;
-        ASSERT_TRUE(p.evaluate(xp, &rp, nullptr, &why)) << why;
-        ASSERT_TRUE(p.evaluate(xm, &rm, nullptr, &why)) << why;
-        const Eigen::VectorXd central = (rp - rm) / (2 * h);
-        ASSERT_GT(central.norm(), 0) << p.names[i];
-        EXPECT_LT((jac.col(i) - central).norm(), 1e-3 * central.norm())
-            << p.names[i] << "\n"
-            << jac.col(i).transpose() << "\n"
-            << central.transpose();
-      }
+      ExpectJacobianMatchesCentralDifferences(p, x, 1e-3);
     }
   }
 }
@@ -457,25 +464,7 @@ TEST(EffectFit, SemiAnalyticJacobianOfPairsAndWetStatesAgreesWithDifferences) {
       Eigen::VectorXd x(xa.size() + xb.size());
       x << xa, xb;
       const NonlinearProblem p = BuildEffectFitProblem(data, {ea.get(), eb.get()}, x);
-      Eigen::VectorXd r;
-      Eigen::MatrixXd jac;
-      std::string why;
-      ASSERT_TRUE(p.evaluate(x, &r, &jac, &why)) << why;
-      ASSERT_EQ(jac.rows(), p.num_residuals);
-      for (Eigen::Index i = 0; i < x.size(); ++i) {
-        const double h = 1e-4 * (p.upper[i] - p.lower[i]);
-        Eigen::VectorXd xp = x, xm = x, rp, rm;
-        xp[i] += h;
-        xm[i] -= h;
-        ASSERT_TRUE(p.evaluate(xp, &rp, nullptr, &why)) << why;
-        ASSERT_TRUE(p.evaluate(xm, &rm, nullptr, &why)) << why;
-        const Eigen::VectorXd central = (rp - rm) / (2 * h);
-        ASSERT_GT(central.norm(), 0) << p.names[i];
-        EXPECT_LT((jac.col(i) - central).norm(), 1e-4 * central.norm())
-            << p.names[i] << "\n"
-            << jac.col(i).transpose() << "\n"
-            << central.transpose();
-      }
+      ExpectJacobianMatchesCentralDifferences(p, x, 1e-4);
     }
   }
 }
