@@ -99,6 +99,27 @@ TEST(BasisMatrix, RestrictedProductIsTheFullProductOnItsDofs) {
   EXPECT_EQ(full.row(5).cwiseAbs().sum(), 0.0);
 }
 
+TEST(BasisMatrix, FormAndAddedProductAreTheFullOnes) {
+  const int n = 15;
+  const std::vector<int> dofs = {2, 6, 7, 14};
+  const Eigen::MatrixXd a = RandomOn(n, dofs, 23);
+  const BasisMatrix b(Sparse(a.sparseView()));
+  std::mt19937 rng(9);
+  std::normal_distribution<double> g;
+  Eigen::VectorXd x(n), y(n);
+  for (int i = 0; i < n; ++i) {
+    x[i] = g(rng);
+    y[i] = g(rng);
+  }
+  EXPECT_NEAR(b.Form(x, y), x.dot(a * y), 1e-13);
+  Eigen::VectorXd z = y;
+  b.AddProductTo(-2.5, x, &z);
+  EXPECT_LE((z - (y - 2.5 * a * x)).cwiseAbs().maxCoeff(), 1e-13);
+  Eigen::VectorXd short_vector(n - 1);
+  EXPECT_THROW(b.Form(short_vector, y), InputError);
+  EXPECT_THROW(b.AddProductTo(1.0, x, &short_vector), InputError);
+}
+
 TEST(BasisMatrix, AppendTripletsScalesAndPlaces) {
   const int n = 6;
   const Eigen::MatrixXd a = RandomOn(n, {1, 2}, 5);

@@ -352,7 +352,10 @@ TEST(EigenSensitivity, GaussNewtonRecoversThePaperFactors) {
     x[fixed] = s.preset[fixed];
     int iterations = 0;
     double step_norm = 1;
-    while (step_norm > 1e-13 && iterations < 20) {
+    // Until the step is 1e-11: quadratic convergence gets there in 5 steps;
+    // below, steps of 1e-13 to 4e-13 are rounding (the residuals' floor is
+    // 1e-12), so a tighter stop would count rounding, not convergence.
+    while (step_norm > 1e-11 && iterations < 20) {
       Eigen::VectorXd r;
       Eigen::MatrixXd jac;
       std::string why;
@@ -363,7 +366,7 @@ TEST(EigenSensitivity, GaussNewtonRecoversThePaperFactors) {
       step_norm = step.norm();
       ++iterations;
     }
-    EXPECT_LE(iterations, 10) << "wet masses " << wet;  // measured: 6
+    EXPECT_LE(iterations, 8) << "wet masses " << wet;  // measured: 5 and 5
     for (int i = 0; i < p.num_parameters(); ++i) {
       EXPECT_NEAR(x[i], s.preset[i], 1e-8) << p.names[i];
     }

@@ -161,6 +161,35 @@ Eigen::MatrixXd BasisMatrix::RestrictedProduct(
   return local_ * rows;
 }
 
+namespace {
+
+void CheckLength(const Eigen::VectorXd& v, int n, const char* what) {
+  if (v.size() != n) {
+    std::ostringstream msg;
+    msg << what << " has " << v.size() << " entries, expected " << n;
+    throw InputError("basis matrix", msg.str());
+  }
+}
+
+}  // namespace
+
+double BasisMatrix::Form(const Eigen::VectorXd& x, const Eigen::VectorXd& y) const {
+  CheckLength(x, n_, "form: x");
+  CheckLength(y, n_, "form: y");
+  const Eigen::VectorXd xl = x(dofs_), yl = y(dofs_);
+  return xl.dot(local_ * yl);
+}
+
+void BasisMatrix::AddProductTo(double scale, const Eigen::VectorXd& x,
+                               Eigen::VectorXd* y) const {
+  CheckLength(x, n_, "product: x");
+  CheckLength(*y, n_, "product: y");
+  const Eigen::VectorXd xl = x(dofs_);
+  const Eigen::VectorXd product = local_ * xl;
+  for (std::size_t i = 0; i < dofs_.size(); ++i)
+    (*y)[dofs_[i]] += scale * product[static_cast<Eigen::Index>(i)];
+}
+
 void BasisMatrix::AppendTriplets(double scale,
                                  std::vector<Eigen::Triplet<double>>* out) const {
   for (Eigen::Index c = 0; c < local_.outerSize(); ++c) {

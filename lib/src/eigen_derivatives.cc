@@ -34,6 +34,12 @@ double EigenvalueDerivative(const Eigen::VectorXd& phi, double lambda,
   return Form(phi, dK, phi) - lambda * Form(phi, dM, phi);
 }
 
+double EigenvalueDerivative(const Eigen::VectorXd& phi, double lambda,
+                            const BasisMatrix* dK, const BasisMatrix* dM) {
+  return (dK != nullptr ? dK->Form(phi, phi) : 0.0) -
+         lambda * (dM != nullptr ? dM->Form(phi, phi) : 0.0);
+}
+
 NelsonSolver::NelsonSolver(const SparseMatrix& K, const SparseMatrix& M, double lambda,
                            const Eigen::VectorXd& phi)
     : lambda_(lambda), phi_(phi) {
@@ -85,15 +91,32 @@ EigenpairDerivative NelsonSolver::Derivative(const SparseMatrix& dK,
   const Eigen::Index n = phi_.size();
   CheckSquare(dK, n, "dK", true);
   CheckSquare(dM, n, "dM", true);
-  EigenpairDerivative out;
   const double phi_dm_phi = Form(phi_, dM, phi_);
-  out.eigenvalue = Form(phi_, dK, phi_) - lambda_ * phi_dm_phi;
-
+  const double dlambda = Form(phi_, dK, phi_) - lambda_ * phi_dm_phi;
   // Right-hand side f = -(dK - dlambda M - lambda dM) phi.
-  Eigen::VectorXd f = out.eigenvalue * mass_phi_;
+  Eigen::VectorXd f = dlambda * mass_phi_;
   if (dK.size() > 0) f -= dK * phi_;
   if (dM.size() > 0) f += lambda_ * (dM * phi_);
+  return Solve(dlambda, phi_dm_phi, f);
+}
 
+EigenpairDerivative NelsonSolver::Derivative(const BasisMatrix* dK,
+                                             const BasisMatrix* dM) const {
+  if (!ok()) throw InputError("eigen derivatives", message_);
+  const double phi_dm_phi = dM != nullptr ? dM->Form(phi_, phi_) : 0.0;
+  const double dlambda =
+      (dK != nullptr ? dK->Form(phi_, phi_) : 0.0) - lambda_ * phi_dm_phi;
+  Eigen::VectorXd f = dlambda * mass_phi_;
+  if (dK != nullptr) dK->AddProductTo(-1.0, phi_, &f);
+  if (dM != nullptr) dM->AddProductTo(lambda_, phi_, &f);
+  return Solve(dlambda, phi_dm_phi, f);
+}
+
+EigenpairDerivative NelsonSolver::Solve(double dlambda, double phi_dm_phi,
+                                        const Eigen::VectorXd& f) const {
+  const Eigen::Index n = phi_.size();
+  EigenpairDerivative out;
+  out.eigenvalue = dlambda;
   Eigen::VectorXd v = Eigen::VectorXd::Zero(n);
   if (n > 1) {
     Eigen::VectorXd f_reduced(n - 1);

@@ -38,8 +38,6 @@ struct StateTerms {
 // Everything evaluate needs, shared by copies of the problem.
 struct Context {
   ParametrisedModel model;
-  // Each parameter's basis as an n x n matrix, for the eigenpair derivatives.
-  std::vector<SparseMatrix> bases;
   std::vector<StateTerms> states;
   double frequency_sigma = 0;
   double min_mac = 0;
@@ -58,23 +56,22 @@ bool Fail(std::string* why, const std::string& message) {
   return false;
 }
 
-// dK/dp and dM/dp of parameter `p` for a state with dry or wet mass; empty
+// dK/dp and dM/dp of parameter `p` for a state with dry or wet mass; nullptr
 // means zero. Returns false when the parameter does not enter the state at all.
-bool ParameterDerivative(const Parameter& p, const SparseMatrix& basis, bool wet,
-                         const SparseMatrix** dk, const SparseMatrix** dm) {
-  static const SparseMatrix kZero;
-  *dk = &kZero;
-  *dm = &kZero;
+bool ParameterDerivative(const Parameter& p, bool wet, const BasisMatrix** dk,
+                         const BasisMatrix** dm) {
+  *dk = nullptr;
+  *dm = nullptr;
   switch (p.kind) {
     case ParameterKind::kStiffness:
-      *dk = &basis;
+      *dk = &p.basis;
       return true;
     case ParameterKind::kMass:
-      *dm = &basis;
+      *dm = &p.basis;
       return true;
     case ParameterKind::kAddedMass:
       if (!wet) return false;
-      *dm = &basis;
+      *dm = &p.basis;
       return true;
   }
   return false;
@@ -186,14 +183,13 @@ bool EvaluateState(const Context& c, const StateTerms& st, const SparseMatrix& k
       }
     }
     for (int p = 0; p < c.model.num_parameters(); ++p) {
-      const SparseMatrix *dk = nullptr, *dm = nullptr;
-      if (!ParameterDerivative(parameters[p], c.bases[p], st.wet, &dk, &dm)) continue;
+      const BasisMatrix *dk = nullptr, *dm = nullptr;
+      if (!ParameterDerivative(parameters[p], st.wet, &dk, &dm)) continue;
       if (!nelson) {
-        (*jac)(row, p) =
-            t.lambda_weight * EigenvalueDerivative(t.phi, t.lambda, *dk, *dm);
+        (*jac)(row, p) = t.lambda_weight * EigenvalueDerivative(t.phi, t.lambda, dk, dm);
         continue;
       }
-      const EigenpairDerivative d = nelson->Derivative(*dk, *dm);
+      const EigenpairDerivative d = nelson->Derivative(dk, dm);
       (*jac)(row, p) = t.lambda_weight * d.eigenvalue;
       const Eigen::VectorXd ds = d.eigenvector(st.sensors);
       // d(c s) = dc s + c ds.
@@ -314,8 +310,6 @@ NonlinearProblem BuildEigenSensitivityProblem(const ParametrisedModel& model,
   auto context = std::make_shared<Context>();
   Context& c = *context;
   c.model = model;
-  c.bases.reserve(static_cast<std::size_t>(model.num_parameters()));
-  for (const Parameter& p : model.parameters()) c.bases.push_back(p.basis.ToSparse());
   c.frequency_sigma = options.frequency_sigma;
   c.min_mac = options.min_mac;
   c.threads = options.threads;

@@ -59,6 +59,10 @@ class BasisMatrix {
   // Rows dofs() of B X, for X with n rows: local() X(dofs(), :), so that the
   // product costs the basis's entries times X's columns.
   Eigen::MatrixXd RestrictedProduct(const Eigen::Ref<const Eigen::MatrixXd>& x) const;
+  // x' B y for x and y with n entries, in O(entries).
+  double Form(const Eigen::VectorXd& x, const Eigen::VectorXd& y) const;
+  // y += scale B x for x and y with n entries; touches y at dofs() only.
+  void AddProductTo(double scale, const Eigen::VectorXd& x, Eigen::VectorXd* y) const;
   // Appends (dofs[i], dofs[j], scale local(i, j)) for every stored entry.
   void AppendTriplets(double scale, std::vector<Eigen::Triplet<double>>* out) const;
 

@@ -21,6 +21,11 @@ namespace femup {
 double EigenvalueDerivative(const Eigen::VectorXd& phi, double lambda,
                             const SparseMatrix& dK, const SparseMatrix& dM);
 
+// The same with dK and dM a correction factor's basis or nullptr (zero), in
+// O(the basis's entries). Throws InputError when sizes disagree.
+double EigenvalueDerivative(const Eigen::VectorXd& phi, double lambda,
+                            const BasisMatrix* dK, const BasisMatrix* dM);
+
 struct EigenpairDerivative {
   double eigenvalue = 0;        // dlambda/dp
   Eigen::VectorXd eigenvector;  // dphi/dp (num_dofs)
@@ -52,8 +57,16 @@ class NelsonSolver {
   // Derivatives for one parameter (dK, dM: n x n or empty). Throws InputError
   // when sizes disagree or the factorisation failed (!ok()).
   EigenpairDerivative Derivative(const SparseMatrix& dK, const SparseMatrix& dM) const;
+  // The same with dK and dM a correction factor's basis or nullptr (zero): the
+  // model's bases need not be expanded to n x n.
+  EigenpairDerivative Derivative(const BasisMatrix* dK, const BasisMatrix* dM) const;
 
  private:
+  // The derivative from dlambda, phi' dM phi and the right-hand side
+  // f = -(dK - dlambda M - lambda dM) phi.
+  EigenpairDerivative Solve(double dlambda, double phi_dm_phi,
+                            const Eigen::VectorXd& f) const;
+
   double lambda_;
   Eigen::VectorXd phi_;
   Eigen::VectorXd mass_phi_;  // M phi
