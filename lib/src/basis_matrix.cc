@@ -8,6 +8,35 @@
 #include "femup/errors.h"
 
 namespace femup {
+namespace {
+
+// The k x k compressed matrix with entry (index[i], index[j]) = a(i, j) for
+// every stored entry of a (duplicates summed).
+BasisMatrix::Sparse Renumbered(const BasisMatrix::Sparse& a,
+                               const std::vector<int>& index, Eigen::Index k) {
+  std::vector<Eigen::Triplet<double>> t;
+  t.reserve(static_cast<std::size_t>(a.nonZeros()));
+  for (Eigen::Index c = 0; c < a.outerSize(); ++c) {
+    for (BasisMatrix::Sparse::InnerIterator it(a, c); it; ++it) {
+      t.emplace_back(index[static_cast<std::size_t>(it.row())],
+                     index[static_cast<std::size_t>(it.col())], it.value());
+    }
+  }
+  BasisMatrix::Sparse out(k, k);
+  out.setFromTriplets(t.begin(), t.end());
+  out.makeCompressed();
+  return out;
+}
+
+void CheckLength(const Eigen::VectorXd& v, int n, const char* what) {
+  if (v.size() != n) {
+    std::ostringstream msg;
+    msg << what << " has " << v.size() << " entries, expected " << n;
+    throw InputError("basis matrix", msg.str());
+  }
+}
+
+}  // namespace
 
 BasisMatrix::BasisMatrix(const Sparse& full) : n_(static_cast<int>(full.rows())) {
   if (full.rows() != full.cols()) {
@@ -29,18 +58,7 @@ BasisMatrix::BasisMatrix(const Sparse& full) : n_(static_cast<int>(full.rows()))
       dofs_.push_back(d);
     }
   }
-  std::vector<Eigen::Triplet<double>> t;
-  t.reserve(static_cast<std::size_t>(full.nonZeros()));
-  for (Eigen::Index c = 0; c < full.outerSize(); ++c) {
-    for (Sparse::InnerIterator it(full, c); it; ++it) {
-      t.emplace_back(local_of[static_cast<std::size_t>(it.row())],
-                     local_of[static_cast<std::size_t>(it.col())], it.value());
-    }
-  }
-  const auto k = static_cast<Eigen::Index>(dofs_.size());
-  local_.resize(k, k);
-  local_.setFromTriplets(t.begin(), t.end());
-  local_.makeCompressed();
+  local_ = Renumbered(full, local_of, static_cast<Eigen::Index>(dofs_.size()));
 }
 
 BasisMatrix::BasisMatrix(int n, std::vector<int> dofs, const Sparse& local)
@@ -77,17 +95,7 @@ BasisMatrix::BasisMatrix(int n, std::vector<int> dofs, const Sparse& local)
     }
   }
   dofs_.swap(sorted);
-  std::vector<Eigen::Triplet<double>> t;
-  t.reserve(static_cast<std::size_t>(local.nonZeros()));
-  for (Eigen::Index c = 0; c < local.outerSize(); ++c) {
-    for (Sparse::InnerIterator it(local, c); it; ++it) {
-      t.emplace_back(rank[static_cast<std::size_t>(it.row())],
-                     rank[static_cast<std::size_t>(it.col())], it.value());
-    }
-  }
-  local_.resize(k, k);
-  local_.setFromTriplets(t.begin(), t.end());
-  local_.makeCompressed();
+  local_ = Renumbered(local, rank, k);
 }
 
 BasisMatrix BasisMatrix::FromTriplets(
@@ -160,18 +168,6 @@ Eigen::MatrixXd BasisMatrix::RestrictedProduct(
   const Eigen::MatrixXd rows = x(dofs_, Eigen::all);
   return local_ * rows;
 }
-
-namespace {
-
-void CheckLength(const Eigen::VectorXd& v, int n, const char* what) {
-  if (v.size() != n) {
-    std::ostringstream msg;
-    msg << what << " has " << v.size() << " entries, expected " << n;
-    throw InputError("basis matrix", msg.str());
-  }
-}
-
-}  // namespace
 
 double BasisMatrix::Form(const Eigen::VectorXd& x, const Eigen::VectorXd& y) const {
   CheckLength(x, n_, "form: x");

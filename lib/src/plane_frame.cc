@@ -163,7 +163,7 @@ ParametrisedModel BuildPlaneFrame(const PlaneFrameSpec& spec) {
     Parameter p;
     p.name = name;
     p.kind = kind;
-    p.basis = FromTriplets(n, t);
+    p.basis = BasisMatrix::FromTriplets(n, t.cbegin(), t.cend());
     p.tags = {tag};
     model.AddParameter(std::move(p));
   };

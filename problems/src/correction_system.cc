@@ -53,7 +53,7 @@ PreparedCorrectionSystem::PreparedCorrectionSystem(const ParametrisedModel& mode
     Projection q;
     q.kind = p.kind;
     // B is symmetric: Phi' B restricted to the basis's DOFs is (B Phi)' there.
-    q.support = p.basis.dofs();
+    q.support = &p.basis.dofs();
     q.phi_t_b = p.basis.RestrictedProduct(phi).transpose();
     projections_.push_back(std::move(q));
   }
@@ -128,8 +128,9 @@ void PreparedCorrectionSystem::Fill(const std::vector<ModalData>& states, Worksp
         double* column = z.col(k).data();
         const double* p = q.phi_t_b.data();
         const double sign = q.kind == ParameterKind::kStiffness ? 1.0 : -lambda;
-        for (std::size_t i = 0; i < q.support.size(); ++i, p += nf_) {
-          const double w = sign * phi[q.support[i]];
+        const std::vector<int>& support = *q.support;
+        for (std::size_t i = 0; i < support.size(); ++i, p += nf_) {
+          const double w = sign * phi[support[i]];
           for (int r = 0; r < nf_; ++r) column[r] += p[r] * w;
         }
       }

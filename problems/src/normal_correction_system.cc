@@ -83,10 +83,6 @@ LinearProblem BuildNormalCorrectionSystem(const ParametrisedModel& model,
   int modes = 0;
   long long nnz_z = 0, nnz_w = 0;
   double seconds_half_solve = 0, seconds_gram = 0;
-  // The DOFs each basis acts on (its nonzero columns; symmetric, so rows too),
-  // the same for every state.
-  std::vector<const std::vector<int>*> support(p);
-  for (int k = 0; k < p; ++k) support[k] = &model.parameter(k).basis.dofs();
   for (const ModalData& st : states) {
     const std::string where = "measurements." + st.state;
     st.Validate(dofs, where);
@@ -110,7 +106,10 @@ LinearProblem BuildNormalCorrectionSystem(const ParametrisedModel& model,
     std::vector<int> outer(p + 1, 0);
     std::vector<int> inner;
     for (int k = 0; k < p; ++k) {
-      if (enters(k)) inner.insert(inner.end(), support[k]->begin(), support[k]->end());
+      if (enters(k)) {
+        const std::vector<int>& touched = model.parameter(k).basis.dofs();
+        inner.insert(inner.end(), touched.begin(), touched.end());
+      }
       outer[k + 1] = static_cast<int>(inner.size());
     }
     std::vector<SparseMatrix> z(m, SparseMatrix(dofs, p));

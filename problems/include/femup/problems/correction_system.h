@@ -61,8 +61,8 @@ class PreparedCorrectionSystem {
 
  private:
   struct Projection {
-    std::vector<int> support;  // DOFs the basis touches
-    Eigen::MatrixXd phi_t_b;   // nf x |support|: Phi(support, :)' B(support, support)
+    const std::vector<int>* support = nullptr;  // the basis's DOFs (the model holds them)
+    Eigen::MatrixXd phi_t_b;  // nf x |support|: Phi(support, :)' B(support, support)
     ParameterKind kind;
   };
   // The rows of the summed form: one dry and one wet state (indices).
