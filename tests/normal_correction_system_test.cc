@@ -125,6 +125,29 @@ TEST(NormalCorrectionSystem, SpaceFrameMatchesTheDenseStackedForm) {
   EXPECT_GT(stats.nnz_z, 0);
 }
 
+TEST(NormalCorrectionSystem, CountsTheGramMatrixsFlopsFromTheBasesSupports) {
+  // The chain's mass matrix is diagonal, so L^-1 P Z_j has Z_j's pattern: DOF
+  // r's row holds one entry per factor entering the state whose basis touches
+  // r, t_r of them, and G's lower triangle takes t_r (t_r + 1) / 2 products of
+  // m-vectors (a multiplication and an addition per mode each).
+  const Case c = Chain();
+  double expected = 0;
+  for (const ModalData& st : c.states) {
+    std::vector<int> t(c.model.num_dofs(), 0);
+    for (const Parameter& q : c.model.parameters()) {
+      if (q.kind == ParameterKind::kAddedMass && st.immersion != Immersion::kWet)
+        continue;
+      for (int r : q.basis.dofs()) ++t[r];
+    }
+    for (int tr : t) expected += static_cast<double>(tr) * (tr + 1) * st.num_modes();
+  }
+  NormalCorrectionStats stats;
+  BuildNormalCorrectionSystem(c.model, c.states, &stats);
+  EXPECT_GT(expected, 0);
+  EXPECT_EQ(stats.flops_gram, expected);
+  EXPECT_EQ(stats.flops_factorise, static_cast<double>(c.model.num_dofs()));
+}
+
 TEST(NormalCorrectionSystem, MassThatIsNotPositiveDefiniteIsNamed) {
   const Case c = Chain();
   SparseMatrix mass = c.model.mass();

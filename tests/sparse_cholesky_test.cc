@@ -158,6 +158,26 @@ TEST(SparseCholesky, NestedDissectionKeepsHalfSolvesShorterOnALongStrip) {
   EXPECT_LT(w.nonZeros(), b.cols() * a.rows() / 10);
 }
 
+TEST(SparseCholesky, CountsTheFactorisationsFlopsFromTheColumnCounts) {
+  // A path (tridiagonal, n = 50) has no fill under minimum degree, which
+  // eliminates it from the ends: every column of L holds its diagonal and one
+  // entry below but the last, so nnz(L) = 2n - 1 and the LL' flop count
+  // sum_j c_j^2 is 4 (n - 1) + 1. Nested dissection's separators make some
+  // fill on it, hence more flops: never fewer than without fill.
+  SparseCholeskyOptions amd;
+  amd.ordering = Ordering::kAmd;
+  const SparseCholesky path(Grid(50, 1, 0.5), amd);
+  EXPECT_EQ(path.info().nnz_l, 99);
+  EXPECT_EQ(path.info().flops, 197.0);
+  SparseCholeskyOptions nd;
+  nd.ordering = Ordering::kNestedDissection;
+  EXPECT_GE(SparseCholesky(Grid(50, 1, 0.5), nd).info().flops, 197.0);
+  // A diagonal matrix: one entry per column, n flops.
+  SparseMatrix diagonal(7, 7);
+  diagonal.setIdentity();
+  EXPECT_EQ(SparseCholesky(diagonal).info().flops, 7.0);
+}
+
 TEST(SparseCholesky, RejectsWhatItCannotFactorise) {
   SparseCholeskyOptions options;
   options.name = "model.mass";

@@ -124,6 +124,7 @@ SparseCholesky::SparseCholesky(const SparseMatrix& a,
                                std::to_string(m.common.status) + ")");
   }
   m.info.seconds_analyse = Since(t0);
+  m.info.flops = m.common.method[m.common.selected].fl;
   t0 = std::chrono::steady_clock::now();
   cholmod_factorize(&view, m.factor, &m.common);
   const int* perm = static_cast<const int*>(m.factor->Perm);

@@ -20,9 +20,11 @@ double Since(std::chrono::steady_clock::time_point t0) {
 // The lower triangle of g += sum_j W_j' W_j for W_j (n x p, compressed) that
 // share one pattern (HalfSolve's output for the modes of a state): row by row,
 // each row's t entries for all modes at once, t (t + 1) / 2 products of
-// m-vectors into G, with no sparse product and its sparse result.
-void AddGramLower(const std::vector<SparseMatrix>& w, Eigen::MatrixXd* g) {
-  if (w.empty()) return;
+// m-vectors into G, with no sparse product and its sparse result. Returns the
+// floating-point operations it made (a multiplication and an addition per
+// product term).
+double AddGramLower(const std::vector<SparseMatrix>& w, Eigen::MatrixXd* g) {
+  if (w.empty()) return 0;
   const SparseMatrix& first = w.front();
   const int n = static_cast<int>(first.rows());
   const int p = static_cast<int>(first.cols());
@@ -47,7 +49,10 @@ void AddGramLower(const std::vector<SparseMatrix>& w, Eigen::MatrixXd* g) {
   }
   double* gd = g->data();
   const Eigen::Index ld = g->rows();
+  double flops = 0;
   for (int r = 0; r < n; ++r) {
+    const double t = row_start[r + 1] - row_start[r];
+    flops += t * (t + 1) * static_cast<double>(m);
     for (int a = row_start[r]; a < row_start[r + 1]; ++a) {
       const double* va = value.data() + static_cast<std::size_t>(a) * m;
       double* ga = gd + static_cast<Eigen::Index>(column[a]) * ld;  // column a of G
@@ -59,6 +64,7 @@ void AddGramLower(const std::vector<SparseMatrix>& w, Eigen::MatrixXd* g) {
       }
     }
   }
+  return flops;
 }
 
 }  // namespace
@@ -82,7 +88,7 @@ LinearProblem BuildNormalCorrectionSystem(const ParametrisedModel& model,
   double f2 = 0;
   int modes = 0;
   long long nnz_z = 0, nnz_w = 0;
-  double seconds_half_solve = 0, seconds_gram = 0;
+  double seconds_half_solve = 0, seconds_gram = 0, flops_gram = 0;
   for (const ModalData& st : states) {
     const std::string where = "measurements." + st.state;
     st.Validate(dofs, where);
@@ -144,7 +150,7 @@ LinearProblem BuildNormalCorrectionSystem(const ParametrisedModel& model,
       h += w[j].transpose() * y.col(j);
     }
     t_phase = std::chrono::steady_clock::now();
-    AddGramLower(w, &g);
+    flops_gram += AddGramLower(w, &g);
     seconds_gram += Since(t_phase);
   }
   // The upper triangle from the lower (a loop: no aliasing between the two).
@@ -191,7 +197,10 @@ LinearProblem BuildNormalCorrectionSystem(const ParametrisedModel& model,
     stats->seconds_assembly = assembly;
     stats->seconds_factorise =
         chol.info().seconds_analyse + chol.info().seconds_factorise;
+    stats->seconds_analyse = chol.info().seconds_analyse;
     stats->nnz_l = chol.info().nnz_l;
+    stats->flops_factorise = chol.info().flops;
+    stats->flops_gram = flops_gram;
     stats->seconds_half_solve = seconds_half_solve;
     stats->seconds_gram = seconds_gram;
     stats->nnz_z = nnz_z;

@@ -35,6 +35,10 @@ struct SparseCholeskyInfo {
   long long n = 0;
   long long nnz_a = 0;  // entries of A's lower triangle
   long long nnz_l = 0;  // entries of L
+  // Floating-point operations of the numerical factorisation for the ordering
+  // chosen (CHOLMOD's count from its analysis: sum of the squares of L's
+  // column counts, a simplicial LL').
+  double flops = 0;
   double seconds_analyse = 0, seconds_factorise = 0;
 };
 

@@ -33,6 +33,7 @@ namespace femup {
 struct NormalCorrectionStats {
   int dropped = 0;                // pivots of G's LDL' below the threshold
   double seconds_factorise = 0;   // sparse Cholesky of M (analysis included)
+  double seconds_analyse = 0;     // of which the ordering and symbolic analysis
   double seconds_assembly = 0;    // Z_j, L^-1 P Z_j and G, factorisation included
   double seconds_half_solve = 0;  // W_j = L^-1 P Z_j, all modes
   double seconds_gram = 0;        // G += W_j' W_j, all modes
@@ -40,6 +41,8 @@ struct NormalCorrectionStats {
   long long nnz_l = 0;            // entries of M's Cholesky factor
   long long nnz_z = 0;            // entries of all Z_j together
   long long nnz_w = 0;            // entries of all L^-1 P Z_j together
+  double flops_factorise = 0;     // of M's Cholesky factorisation (CHOLMOD's count)
+  double flops_gram = 0;          // multiplications and additions of G's lower triangle
 };
 
 // Throws InputError for shapes that are not on every DOF, a model without
