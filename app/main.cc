@@ -169,6 +169,9 @@ int main(int argc, char** argv) {
   bench->add_option("--form-error", bench_options.form_error,
                     "the diagnosis's form error, a fraction of the nominal misfit "
                     "(default: diagnose's, 0.05)");
+  bench->add_flag("--noise-free", bench_options.noise_free,
+                  "the same cases without the noise added to their data (the noise "
+                  "still stated): which misses the noise causes");
   bench->add_option("-o,--out", bench_out, "output folder (default out/benchmark)");
   bench->add_flag("--no-plots", bench_no_plots, "write JSON and tables only");
   bench->add_flag("-q,--quiet", bench_quiet, "print nothing but errors and warnings");

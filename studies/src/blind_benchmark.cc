@@ -261,10 +261,11 @@ Generated GenerateCase(const BenchmarkOptions& opt, int index) {
   Eigen::MatrixXd shapes;
   if (!TruthModes(truth, fine_labels, c.modes, &f, &shapes))
     throw InputError(c.name, "the generated truth model cannot be solved");
+  const double applied = opt.noise_free ? 0.0 : 1.0;
   for (int k = 0; k < c.modes; ++k) {
-    f[k] *= 1 + c.frequency_noise * normal(rng);
+    f[k] *= 1 + applied * c.frequency_noise * normal(rng);
     for (Eigen::Index i = 0; i < shapes.rows(); ++i)
-      shapes(i, k) += c.shape_noise * normal(rng);
+      shapes(i, k) += applied * c.shape_noise * normal(rng);
   }
 
   // Study file.
@@ -585,6 +586,7 @@ void WriteBenchmarkOutputs(const BenchmarkResult& r, bool plots, OutputDir* out,
   j["sizes"] = r.options.sizes;
   j["evidence"] = r.options.evidence;
   if (r.options.form_error >= 0) j["form_error"] = r.options.form_error;
+  j["noise_free"] = r.options.noise_free;
   j["failed"] = s.failed;
   j["top1"] = s.overall.Json();
   j["top1_single_effect"] = s.single_effect.Json();
@@ -707,6 +709,8 @@ std::string BenchmarkReport(const BenchmarkResult& r) {
     << ", " << r.options.evidence << " evidence"
     << (r.options.form_error >= 0 ? ", form error " + Num(r.options.form_error)
                                   : std::string())
+    << (r.options.noise_free ? ", noise-free data (the noise stated, not added)"
+                             : std::string())
     << "\n\n";
   o << "| score | value |\n|---|---|\n";
   o << "| top-1 kind, all cases | " << Pct(s.overall) << " |\n";

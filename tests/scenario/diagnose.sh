@@ -11,7 +11,9 @@
 #     With --sizes absolute (mixed, 3 cases): every true effect's largest
 #     frequency shift is at most 20 % (the range's top); with --evidence sampled,
 #     scores.json and every case file name that method, and with --form-error
-#     0.02 that form error; an unknown --sizes or --evidence, or a --form-error
+#     0.02 that form error; with --noise-free the same cases (same truth files)
+#     with frequencies within 5 sigma of the noisy ones and not all equal; an
+#     unknown --sizes or --evidence, or a --form-error
 #     of 1.5, exits 1 naming it before any case is written.
 #  3. Bad input: an unknown effect among the candidates, a chain model and
 #     frequencies listed out of order exit 1 with a message naming the problem,
@@ -107,6 +109,34 @@ for name in sorted(os.listdir(os.path.join(d, "truth"))):
         assert 0 < shift <= 0.2 * (1 + 1e-6), (name, e["kind"], shift)
         count += 1
 print("absolute sizes: %d effects within (0, 20 %%]" % count)
+PY
+# --noise-free: the same cases (truth files identical to the first run's), the
+# noise stated but not added: each measured frequency moves from the noisy
+# run's by at most 5 sigma of the stated 0.1 %, and not all by zero.
+"$FEMUP" benchmark --suite single --cases 3 --seed 5 --noise-free --no-plots -o bench_nf -q \
+  > bench_nf.txt 2>&1 || fail "benchmark --noise-free exit $?: $(cat bench_nf.txt)"
+[ "$(json bench_nf/scores.json "j['noise_free']")" = True ] \
+  || fail "scores.json noise_free: $(json bench_nf/scores.json "j.get('noise_free')")"
+[ "$(json bench/scores.json "j['noise_free']")" = False ] || fail "noisy run: noise_free"
+for f in bench/truth/*.json; do
+  cmp -s "$f" "bench_nf/truth/$(basename "$f")" || fail "$f: not the same case without noise"
+done
+python3 - bench bench_nf <<'PY' || fail "noise-free frequencies"
+import os, re, sys
+def freqs(path):
+    text = open(path).read()
+    return [float(x) for m in re.findall(r"frequencies_hz: \[([^\]]*)\]", text)
+            for x in m.split(",")]
+moved = 0
+for name in sorted(os.listdir(os.path.join(sys.argv[1], "cases"))):
+    noisy = freqs(os.path.join(sys.argv[1], "cases", name))
+    clean = freqs(os.path.join(sys.argv[2], "cases", name))
+    assert len(noisy) == len(clean) > 0, name
+    for a, b in zip(noisy, clean):
+        assert abs(a / b - 1) < 5 * 0.001, (name, a, b)
+        moved += a != b
+assert moved > 0, "no frequency moved"
+print("noise-free: %d frequencies differ from the noisy run's, all within 5 sigma" % moved)
 PY
 set +e
 "$FEMUP" benchmark --suite single --cases 1 --sizes huge -o bench_bad 2> err0.txt

@@ -47,6 +47,12 @@ struct BenchmarkOptions {
   // The diagnosis's form error (DiagnosisSpec::form_error), written into every
   // case's study file when >= 0; below 0, diagnose's default applies.
   double form_error = -1;
+  // The "measured" modes exactly as the truth model gives them: the noise is
+  // drawn (so that every case is the same as without this flag) but not added,
+  // and the study files state the same noise. What the diagnosis still misses
+  // then is due to the fitted families' form, the data's layout (modes,
+  // sensors) and the evidence's priors, not to the noise draws.
+  bool noise_free = false;
   std::string Validate() const;  // "" or "<field>: what is wrong"
 };
 
