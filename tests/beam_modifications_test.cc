@@ -152,6 +152,79 @@ Eigen::MatrixXd Scattered(const Structure& s, int e, const Matrix6& ke,
 }
 
 // ---------------------------------------------------------------------------
+// Axial force.
+
+TEST(AxialForceStiffness, IsTheTextbookGeometricStiffnessOnEveryElement) {
+  // P / (30 l) [36, 3l, -36, 3l; 3l, 4l^2, -3l, -l^2; -36, -3l, 36, -3l;
+  // 3l, -l^2, -3l, 4l^2] on (w1, theta1, w2, theta2) with theta = dw/dz; here
+  // rz = -dux/dz, so the rotation rows and columns change sign.
+  const double force = -2500;
+  for (bool free_base : {false, true}) {
+    const Structure s = Cantilever(kHeights, free_base);
+    Eigen::MatrixXd expected =
+        Eigen::MatrixXd::Zero(s.dof_labels.size(), s.dof_labels.size());
+    for (std::size_t e = 0; e + 1 < kHeights.size(); ++e) {
+      const double l = kHeights[e + 1] - kHeights[e];
+      Eigen::Matrix4d g;
+      g << 36, 3 * l, -36, 3 * l, 3 * l, 4 * l * l, -3 * l, -l * l, -36, -3 * l, 36,
+          -3 * l, 3 * l, -l * l, -3 * l, 4 * l * l;
+      g *= force / (30 * l);
+      const Eigen::Vector4d sign(1, -1, 1, -1);
+      g = sign.asDiagonal() * g * sign.asDiagonal();
+      Matrix6 k6 = Matrix6::Zero();
+      const int at[4] = {0, 2, 3, 5};  // ux1, rz1, ux2, rz2 among the element's 6
+      for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) k6(at[i], at[j]) = g(i, j);
+      expected += Scattered(s, static_cast<int>(e), k6, {0, 1, 2, 3, 4, 5});
+    }
+    const Eigen::MatrixXd got(AxialForceStiffness(s, force));
+    EXPECT_LT(MaxAbs(got - expected), 1e-9 * MaxAbs(expected)) << free_base;
+    EXPECT_EQ(MaxAbs(Eigen::MatrixXd(AxialForceStiffness(s, 0.0))), 0.0);
+  }
+}
+
+TEST(AxialForceStiffness, CompressionBucklesAUniformCantileverAtEulersLoad) {
+  // K x = P G x, G the geometric stiffness of a unit compression: the lowest
+  // P is pi^2 E I / (4 L^2).
+  const double length = 1.9;
+  const BeamSection sec = PaperSection();
+  const Structure s = Cantilever(UniformHeights(length, 40), false);
+  const Eigen::MatrixXd g = -Eigen::MatrixXd(AxialForceStiffness(s, -1.0));
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(
+      g, Eigen::MatrixXd(s.stiffness));
+  ASSERT_EQ(eig.info(), Eigen::Success);
+  const double euler = M_PI * M_PI * sec.E * sec.I / (4 * length * length);
+  EXPECT_NEAR(1 / eig.eigenvalues().maxCoeff() / euler, 1.0, 1e-7);
+}
+
+TEST(AxialForceStiffness, TensionStiffensAndCompressionSoftensOnlyTheBendingModes) {
+  const double length = 1.9;
+  const BeamSection sec = PaperSection();
+  const double euler = M_PI * M_PI * sec.E * sec.I / (4 * length * length);
+  CantileverSpec spec = Spec(UniformHeights(length, 20), false);
+  const Structure bare = BuildCantilever(spec);
+  const Frequencies f0 = Modes(bare, bare.stiffness, bare.mass);
+  for (double ratio : {-0.5, 0.5, 3.0}) {
+    spec.axial_force = ratio * euler;
+    const Structure s = BuildCantilever(spec);
+    const Frequencies f = Modes(s, s.stiffness, s.mass);
+    ASSERT_EQ(f.bending.size(), f0.bending.size());
+    for (std::size_t k = 0; k < 4; ++k) {
+      if (ratio > 0) {
+        EXPECT_GT(f.bending[k], f0.bending[k] * (1 + 1e-4)) << ratio << k;
+      } else {
+        EXPECT_LT(f.bending[k], f0.bending[k] * (1 - 1e-4)) << ratio << k;
+      }
+    }
+    for (std::size_t k = 0; k < f0.axial.size(); ++k)
+      EXPECT_NEAR(f.axial[k], f0.axial[k], 1e-9 * f0.axial[k]);
+  }
+  spec.axial_force = kInf;
+  ExpectInputError([&] { BuildCantilever(spec); }, {"model.axial_force"});
+  ExpectInputError([&] { AxialForceStiffness(bare, kNaN); }, {"axial_force", "N"});
+}
+
+// ---------------------------------------------------------------------------
 // Bending stiffness.
 
 TEST(BendingStiffnessOverInterval, WholeElementIsTheBendingPartOfFrame2dStiffness) {
@@ -536,6 +609,7 @@ model:
                        {from: 0.7, to: 0.9, mass_per_length: 1.0}]
   stiffness_changes: [{from: 0.2, to: 0.41, factor: -0.3}]
   point_masses: [{height: 0.8, mass: 0.4, rotary_inertia: 1e-3}, {height: 0.32, mass: 0.1}]
+  axial_force: -1200
 parameters: {mass: none, stiffness: single, added_mass: none}
 measurements:
   - {state: air, frequencies_hz: [20]}
@@ -557,6 +631,7 @@ TEST(BeamModifications, StudyFileKeysAreRead) {
   spec.distributed_masses = {{0.1, 0.6, 2.5, 0.1}, {0.7, 0.9, 1.0, 0.0}};
   spec.stiffness_changes = {{0.2, 0.41, -0.3}};
   spec.point_masses = {{0.8, 0.4, 1e-3}, {0.32, 0.1, 0.0}};
+  spec.axial_force = -1200;
   const Structure expected = BuildCantilever(spec);
   const Structure bare = Cantilever(kHeights, false);
   const Eigen::MatrixXd km(study.structure.stiffness), mm(study.structure.mass);
@@ -588,6 +663,7 @@ TEST(BeamModifications, StudyFileBadValuesAreNamed) {
       {"mass: 0.1}", "mass: -0.1}", {"model.point_masses[2].mass", "-0.1"}},
       {"rotary_inertia: 1e-3", "inertia: 1e-3", {"model.point_masses[1].inertia"}},
       {"stiffness_changes:", "stiffness_change:", {"stiffness_change", "unknown key"}},
+      {"axial_force: -1200", "axial_force: heavy", {"model.axial_force", "heavy"}},
   };
   int k = 0;
   for (const Case& c : cases) {

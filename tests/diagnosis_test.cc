@@ -72,6 +72,19 @@ TEST(Diagnosis, SupportFlexibilityExampleBlamesTheSupport) {
   EXPECT_NEAR(top.locations[0].x, 0.0, 1e-12);  // at the base
 }
 
+TEST(Diagnosis, AxialLoadExampleFindsTheTension) {
+  // Truth: a tension of 3.0 kN; the study lists axial_load among its
+  // candidates (it is not a default one). Its size is checked against the
+  // Euler load of the bar, pi^2 E I / (4 L^2), E I = 210e9 x 1.6875e-8.
+  const DiagnosisResult r = RunDiagnosis(Example("axial_load"));
+  const DiagnosisCandidate& top = Top(r);
+  ASSERT_EQ(top.label, "axial_load") << r.verdict;
+  ASSERT_EQ(top.theta.size(), 1);
+  const double euler = M_PI * M_PI * 210e9 * 1.6875e-8 / (4 * kLength * kLength);
+  EXPECT_NEAR(top.theta[0], 3000 / euler, 0.05 * 3000 / euler);
+  EXPECT_NEAR(ProbabilitySum(r), 1.0, 1e-9);
+}
+
 TEST(Diagnosis, AttachedMassExampleFindsTheMassBetweenNodes) {
   // Truth: 1.5 kg with rotary inertia at 1.63 m (diagnosis nodes at 1.6, 1.7).
   const DiagnosisResult r = RunDiagnosis(Example("attached_mass"));

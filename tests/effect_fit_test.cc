@@ -145,6 +145,7 @@ std::map<std::string, Eigen::VectorXd> Truths() {
       {"attached_mass", Vec({std::log(0.15), 0.57 * kLength})},
       {"stiffness_loss", Vec({std::log(0.35), 0.37 * kLength, std::log(0.1)})},
       {"material_scaling", Vec({0.23})},
+      {"axial_load", Vec({1.5})},
   };
 }
 

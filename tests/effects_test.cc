@@ -173,9 +173,12 @@ double SecondModeNode() {
 
 TEST(Effects, AvailableKindsAreCreatedWithTheirNames) {
   const std::vector<std::string> kinds = AvailableEffects();
-  const std::vector<std::string> expected = {"added_mass", "support_flexibility",
+  const std::vector<std::string> defaults = {"added_mass", "support_flexibility",
                                              "attached_mass", "stiffness_loss",
                                              "material_scaling"};
+  EXPECT_EQ(DefaultEffects(), defaults);
+  std::vector<std::string> expected = defaults;
+  expected.push_back("axial_load");
   EXPECT_EQ(kinds, expected);
   for (const std::string& kind : kinds) {
     const std::unique_ptr<Effect> e = CreateEffect(kind);
@@ -291,6 +294,38 @@ TEST(Effects, MaterialScalingReportsWholeLengthAndFactor) {
   EXPECT_DOUBLE_EQ(l.x1, kLength);
   ExpectMagnitude(e->Magnitudes(Nominal(), Theta({0.25})), "e_factor", "1",
                   std::exp(0.25));
+}
+
+TEST(Effects, AxialLoadIsAFractionOfEulersLoadThatMovesEveryBendingFrequency) {
+  const std::unique_ptr<Effect> e = CreateEffect("axial_load");
+  const double euler = M_PI * M_PI * Ei() / (4 * kLength * kLength);
+  const Eigen::VectorXd f0 = BendingFrequencies(Nominal());
+  for (double ratio : {-0.6, 0.4, 5.0}) {
+    const CantileverSpec spec = Applied(*e, Theta({ratio}));
+    EXPECT_NEAR(spec.axial_force, ratio * euler, 1e-9 * euler);
+    const Eigen::VectorXd f = BendingFrequencies(spec);
+    for (int k = 0; k < 4; ++k) {
+      if (ratio > 0) {
+        EXPECT_GT(f[k], f0[k] * (1 + 1e-4)) << ratio << " mode " << k + 1;
+      } else {
+        EXPECT_LT(f[k], f0[k] * (1 - 1e-4)) << ratio << " mode " << k + 1;
+      }
+    }
+    // Geometric stiffness weighs slopes, bending stiffness curvatures: the
+    // lowest mode, with the smallest curvature per slope, moves most.
+    EXPECT_GT(std::abs(f[0] / f0[0] - 1), std::abs(f[3] / f0[3] - 1)) << ratio;
+    const auto m = e->Magnitudes(Nominal(), Theta({ratio}));
+    ExpectMagnitude(m, "axial_force", "N", ratio * euler);
+    ExpectMagnitude(m, "force_ratio", "1", ratio);
+  }
+  const EffectLocation l = e->Location(Nominal(), Theta({1.0}));
+  EXPECT_DOUBLE_EQ(l.x0, 0.0);
+  EXPECT_DOUBLE_EQ(l.x1, kLength);
+  // Compression stays below buckling over the whole range.
+  const std::vector<EffectParameter> p = e->Parameters(Nominal());
+  ASSERT_EQ(p.size(), 1u);
+  EXPECT_GT(p[0].lower, -1.0);
+  EXPECT_GT(BendingFrequencies(Applied(*e, Theta({p[0].lower})))[0], 0.0);
 }
 
 TEST(Effects, AddedMassOverTheWholeLengthLowersByOneOverSqrtOnePlusR) {

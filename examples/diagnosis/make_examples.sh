@@ -72,6 +72,16 @@ EXAMPLES = {
          "water's added mass, 2.83 kg/m from the base to 1.2 m, fading to zero",
          "over the top 0.2 m"],
         "added_mass+material_scaling (depth 1.2 m, fading from 1.0 m; E 3 % low)"),
+    "axial_load": (108, True,
+        "A bar under tension",
+        ["a tension of 3.0 kN along the axis (a riser's or tendon's top tension),",
+         "1.37 times the bar's Euler load pi^2 E I / (4 L^2) = 2.19 kN"],
+        "axial_load, a tension of 3.0 kN"),
+}
+# The candidates a study lists where the default five would not hold the truth.
+CANDIDATES = {
+    "axial_load": ["added_mass", "support_flexibility", "attached_mass",
+                   "stiffness_loss", "material_scaling", "axial_load"],
 }
 # The measured states of each example and the truth model of each (default: one
 # state "test" from truth/<name>.yaml).
@@ -158,6 +168,8 @@ for name, (seed, with_shapes, title, what, expected) in EXAMPLES.items():
                 y.append("      - [%s]" % ", ".join(num(v) for v in s))
     y.append("diagnosis:")
     y.append("  noise: {frequency: %g, shape: %g}" % (FREQ_NOISE, SHAPE_NOISE))
+    if name in CANDIDATES:
+        y.append("  candidates: [%s]" % ", ".join(CANDIDATES[name]))
     open("%s/%s.yaml" % (here, name), "w").write("\n".join(y) + "\n")
     print("wrote %s.yaml: %s Hz" % (name, "; ".join(
         ", ".join("%.3f" % f for f in freqs) for _, freqs, _ in states)))

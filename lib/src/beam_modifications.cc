@@ -140,6 +140,26 @@ SparseMatrix BendingStiffnessOverInterval(const Structure& s, double z0, double 
   return FromTriplets(n, t);
 }
 
+SparseMatrix AxialForceStiffness(const Structure& s, double axial_force) {
+  RequireFinite("axial_force", axial_force, "N");
+  const std::vector<Node> nodes = CantileverNodes(s);
+  const int n = static_cast<int>(s.dof_labels.size());
+  Triplets t;
+  if (axial_force == 0) return FromTriplets(n, t);
+  for (std::size_t e = 0; e < s.elements.size(); ++e) {
+    const double ze0 = s.elements[e].x0, length = s.elements[e].x1 - ze0;
+    // N' is quadratic in z: N' N'^T has degree 4, exact with the Gauss rule.
+    const double half = 0.5 * length;
+    Matrix6 kg = Matrix6::Zero();
+    for (std::size_t q = 0; q < kGaussX.size(); ++q) {
+      const Vector6 g = internal::TransverseSlope(0.5 * (1 + kGaussX[q]), length);
+      kg += (kGaussW[q] * half * axial_force) * (g * g.transpose());
+    }
+    Scatter(0.5 * (kg + kg.transpose()), ElementDofs(nodes, e), &t);
+  }
+  return FromTriplets(n, t);
+}
+
 SparseMatrix PointMassAt(const Structure& s, double z, double mass,
                          double rotary_inertia) {
   RequireFinite("z", z, "m");

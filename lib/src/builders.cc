@@ -203,6 +203,9 @@ Structure BuildCantilever(const CantileverSpec& spec) {
     }
   }
   CheckModifications(spec, z.back());
+  if (!std::isfinite(spec.axial_force)) {
+    throw InputError("model.axial_force", "must be finite (N, tension positive)");
+  }
 
   // Global DOF numbering: base DOFs only where a support spring frees them.
   static const char* kDofNames[3] = {"ux", "uy", "rz"};
@@ -288,6 +291,7 @@ Structure BuildCantilever(const CantileverSpec& spec) {
   for (const CantileverSpec::PointMass& p : spec.point_masses) {
     s.mass += PointMassAt(s, p.height, p.mass, p.rotary_inertia);
   }
+  if (spec.axial_force != 0) s.stiffness += AxialForceStiffness(s, spec.axial_force);
   s.stiffness.makeCompressed();
   s.mass.makeCompressed();
   std::ostringstream desc;

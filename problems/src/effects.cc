@@ -16,6 +16,14 @@ Eigen::VectorXd Vec(std::initializer_list<double> v) {
   return out;
 }
 
+// The location of an effect acting along the whole beam.
+EffectLocation WholeLength(const CantileverSpec& s) {
+  EffectLocation l;
+  l.x0 = 0;
+  l.x1 = BeamLength(s);
+  return l;
+}
+
 // Extra transverse mass per length over [0, depth], fading linearly to zero over
 // its top `fade` fraction (water added mass decays towards the free surface).
 class AddedMassEffect : public Effect {
@@ -210,10 +218,7 @@ class MaterialScalingEffect : public Effect {
   }
   EffectLocation Location(const CantileverSpec& s,
                           const Eigen::VectorXd&) const override {
-    EffectLocation l;
-    l.x0 = 0;
-    l.x1 = BeamLength(s);
-    return l;
+    return WholeLength(s);
   }
   std::vector<EffectMagnitude> Magnitudes(const CantileverSpec&,
                                           const Eigen::VectorXd& t) const override {
@@ -221,11 +226,53 @@ class MaterialScalingEffect : public Effect {
   }
 };
 
+// A uniform axial force along the beam (a riser's or tendon's tension, a
+// pile's compression), as a fraction of the nominal cantilever's Euler load
+// pi^2 E I / (4 L^2): its geometric stiffness on the bending modes.
+class AxialLoadEffect : public Effect {
+ public:
+  // Compression up to 0.8 of the buckling load (K stays positive definite even
+  // with other effects softening the beam a little), tension up to 10 times it.
+  static constexpr double kMaxCompression = 0.8;
+  static constexpr double kMaxTension = 10.0;
+  std::string kind() const override { return "axial_load"; }
+  std::vector<EffectParameter> Parameters(const CantileverSpec&) const override {
+    return {{"force_ratio",
+             "axial force / (pi^2 E I / (4 L^2)), tension positive, compression negative",
+             -kMaxCompression, kMaxTension, false}};
+  }
+  std::vector<Eigen::VectorXd> Starts(const CantileverSpec&) const override {
+    return {Vec({0.0}), Vec({-0.4}), Vec({2.0})};
+  }
+  void Apply(const Eigen::VectorXd& t, Immersion, bool, const CantileverSpec& nominal,
+             CantileverSpec* spec) const override {
+    spec->axial_force += t[0] * EulerLoad(nominal);
+  }
+  EffectLocation Location(const CantileverSpec& s,
+                          const Eigen::VectorXd&) const override {
+    return WholeLength(s);
+  }
+  std::vector<EffectMagnitude> Magnitudes(const CantileverSpec& s,
+                                          const Eigen::VectorXd& t) const override {
+    return {{"axial_force", "N", t[0] * EulerLoad(s)}, {"force_ratio", "1", t[0]}};
+  }
+  static double EulerLoad(const CantileverSpec& s) {
+    const double length = BeamLength(s);
+    return M_PI * M_PI * BeamBendingStiffness(s) / (4 * length * length);
+  }
+};
+
 }  // namespace
 
-std::vector<std::string> AvailableEffects() {
+std::vector<std::string> DefaultEffects() {
   return {"added_mass", "support_flexibility", "attached_mass", "stiffness_loss",
           "material_scaling"};
+}
+
+std::vector<std::string> AvailableEffects() {
+  std::vector<std::string> out = DefaultEffects();
+  out.push_back("axial_load");
+  return out;
 }
 
 std::unique_ptr<Effect> CreateEffect(const std::string& kind) {
@@ -234,6 +281,7 @@ std::unique_ptr<Effect> CreateEffect(const std::string& kind) {
   if (kind == "attached_mass") return std::make_unique<AttachedMassEffect>();
   if (kind == "stiffness_loss") return std::make_unique<StiffnessLossEffect>();
   if (kind == "material_scaling") return std::make_unique<MaterialScalingEffect>();
+  if (kind == "axial_load") return std::make_unique<AxialLoadEffect>();
   std::string known;
   for (const auto& k : AvailableEffects()) known += (known.empty() ? "" : ", ") + k;
   throw InputError("effect",

@@ -439,7 +439,7 @@ DiagnosisResult RunDiagnosis(const Study& study) {
 
   // Candidate classes.
   std::vector<std::string> kinds =
-      spec.candidates.empty() ? AvailableEffects() : spec.candidates;
+      spec.candidates.empty() ? DefaultEffects() : spec.candidates;
   std::vector<std::vector<std::string>> classes{{}};
   for (const auto& k : kinds) classes.push_back({k});
   const std::size_t num_singles = kinds.size();

@@ -172,7 +172,7 @@ Structure ReadChain(const Field& m) {
 Structure ReadCantilever(const Field& m, CantileverSpec* out) {
   m.ExpectKeys({"type", "length", "elements", "node_heights", "section", "water_depth",
                 "added_mass_basis", "support", "lumped_masses", "distributed_masses",
-                "stiffness_changes", "point_masses"});
+                "stiffness_changes", "point_masses", "axial_force"});
   CantileverSpec spec;
   if (m.Has("node_heights")) {
     if (m.Has("length") || m.Has("elements")) {
@@ -189,6 +189,8 @@ Structure ReadCantilever(const Field& m, CantileverSpec* out) {
   spec.section = {s["E"].Positive(), s["A"].Positive(), s["I"].Positive(),
                   s["rho"].Positive()};
   if (m.Has("water_depth")) spec.water_depth = m["water_depth"].NonNegative();
+  // N, tension positive (a riser's tension), compression negative (a pile's load).
+  if (m.Has("axial_force")) spec.axial_force = m["axial_force"].Num();
   if (m.Has("added_mass_basis")) {
     const Field f = m["added_mass_basis"];
     if (!AddedMassBasisFromString(f.Str(), &spec.added_mass_basis)) {

@@ -42,6 +42,17 @@ SparseMatrix TransverseMassOverInterval(const Structure& s, double z0, double z1
 SparseMatrix BendingStiffnessOverInterval(const Structure& s, double z0, double z1,
                                           double delta_ei);
 
+// Geometric stiffness of a uniform axial force along the whole beam (N/m, N,
+// N m entries): the integral over the height of axial_force * N'(z) N'(z)^T, N
+// the Hermite shape of ux, ' = d/dz; per element the textbook
+// P/(30 l) [36, 3l, -36, 3l; 3l, 4l^2, -3l, -l^2; ...] on (ux, rz) at both ends.
+// `axial_force` (N, finite) is a tension when positive (a riser's or tendon's
+// tension: it stiffens the bending modes), a compression when negative (a
+// pile's load: it softens them, and K + this loses positive definiteness at
+// the buckling load, pi^2 E I / (4 L^2) for a uniform cantilever). Axial
+// stiffness and the mass are unchanged.
+SparseMatrix AxialForceStiffness(const Structure& s, double axial_force);
+
 // A rigid point mass at height z (0 <= z <= tip, between nodes allowed): kinetic
 // energy of `mass` (kg, >= 0) moving with ux (Hermite interpolation) and with uy
 // (linear interpolation), and of `rotary_inertia` (kg m^2, >= 0) turning with the

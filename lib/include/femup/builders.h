@@ -69,6 +69,10 @@ struct CantileverSpec {
     double mass = 0;            // kg, >= 0, on both translations
     double rotary_inertia = 0;  // kg m^2, >= 0
   };
+  // Uniform axial force along the whole beam, N: tension positive, compression
+  // negative; its geometric stiffness (AxialForceStiffness in
+  // beam_modifications.h) is added to K like the modifications below. 0: none.
+  double axial_force = 0;
   std::vector<DistributedMass> distributed_masses;
   // Overlapping changes add up: 1 + the sum of the factors must stay > 0.
   std::vector<StiffnessChange> stiffness_changes;

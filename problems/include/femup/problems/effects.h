@@ -23,6 +23,13 @@
 //                       of the length) centred at x: ln(loss fraction), x,
 //                       ln(width / L).
 //   material_scaling    uniform error of the E/rho ratio: ln(E factor).
+//   axial_load          a uniform axial force (tension positive: a riser's or
+//                       tendon's tension; negative: a pile's compression), its
+//                       geometric stiffness on the bending modes: the force over
+//                       the nominal cantilever's Euler load pi^2 E I / (4 L^2),
+//                       from -0.8 to 10. Not among the default candidates
+//                       (DefaultEffects): a study lists it where a load is
+//                       plausible.
 // Several effects at once are a list of effects whose parameter vectors are
 // concatenated (effect_fit.h). To add a kind, derive from Effect and register it
 // in CreateEffect (effects.cc).
@@ -85,8 +92,11 @@ class Effect {
                                                   const Eigen::VectorXd& theta) const = 0;
 };
 
-// The single kinds, in a fixed order (without "none").
+// The single kinds, in a fixed order (without "none"): every kind CreateEffect
+// knows, and the ones `femup diagnose` tries when a study names no candidates
+// (the list: every kind but axial_load).
 std::vector<std::string> AvailableEffects();
+std::vector<std::string> DefaultEffects();
 // Throws InputError("effect", ...) for an unknown kind, listing the known ones.
 std::unique_ptr<Effect> CreateEffect(const std::string& kind);
 
