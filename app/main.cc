@@ -172,6 +172,13 @@ int main(int argc, char** argv) {
   bench->add_flag("--noise-free", bench_options.noise_free,
                   "the same cases without the noise added to their data (the noise "
                   "still stated): which misses the noise causes");
+  bench->add_option("--oracle", bench_options.oracle,
+                    "single suite: also the Bayes-optimal classification under the "
+                    "generator's own prior and forms, the ceiling of top-1: off (the "
+                    "default), weak (cases with no effect or effects below 5 sigma: "
+                    "enough for the ceiling) or all");
+  bench->add_option("--oracle-samples", bench_options.oracle_samples,
+                    "the oracle's importance-sampling draws per sub-class (default 500)");
   bench->add_option("-o,--out", bench_out, "output folder (default out/benchmark)");
   bench->add_flag("--no-plots", bench_no_plots, "write JSON and tables only");
   bench->add_flag("-q,--quiet", bench_quiet, "print nothing but errors and warnings");

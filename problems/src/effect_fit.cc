@@ -41,11 +41,63 @@ struct BendingModes {
   std::vector<std::string> labels;
 };
 
-// The bending (ux, rz) stiffness and mass of `spec` as dense matrices, and the
-// labels of their rows. Fails when the model cannot be built or bending couples
-// with the axial DOFs.
-bool AssembleBending(const CantileverSpec& spec, Eigen::MatrixXd* kb, Eigen::MatrixXd* mb,
-                     std::vector<std::string>* labels, std::string* why) {
+// The bending modes of `spec`; their shapes only when `shapes` (frequency-only
+// data need none, and accumulating the eigenvectors is a large part of the
+// eigen-solution's cost). With `keep`, also the matrices, eigenvalues and labels
+// (and the shapes, whatever `shapes` says).
+bool SolveBending(const CantileverSpec& spec, bool shapes, bool keep, BendingModes* out,
+                  std::string* why) {
+  Eigen::MatrixXd kb, mb;
+  std::vector<std::string> labels;
+  if (!AssembleBendingMatrices(spec, &kb, &mb, &labels, why)) return false;
+  shapes = shapes || keep;
+  const int nb = static_cast<int>(labels.size());
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(
+      kb, mb,
+      shapes ? Eigen::ComputeEigenvectors | Eigen::Ax_lBx : Eigen::EigenvaluesOnly);
+  if (eig.info() != Eigen::Success) {
+    if (why) *why = "the mass matrix is not positive definite";
+    return false;
+  }
+  const Eigen::VectorXd lambda = eig.eigenvalues();
+  out->frequencies_hz.resize(nb);
+  for (int i = 0; i < nb; ++i) {
+    out->frequencies_hz[i] = std::sqrt(std::max(lambda[i], 0.0)) / kTwoPi;
+  }
+  if (!out->frequencies_hz.allFinite()) {
+    if (why) *why = "the eigen-solution is not finite";
+    return false;
+  }
+  if (shapes) out->shapes = eig.eigenvectors();
+  out->row.clear();
+  for (int i = 0; i < nb; ++i) out->row[labels[i]] = i;
+  if (keep) {
+    out->kb = std::move(kb);
+    out->mb = std::move(mb);
+    out->eigenvalues = lambda;
+    out->labels = std::move(labels);
+  }
+  return true;
+}
+
+bool StateUsesShapes(const EffectFitData& data, const ObservedState& st) {
+  if (!data.use_shapes || st.sensors.empty()) return false;
+  for (const ObservedMode& m : st.modes) {
+    if (m.shape.size() == 0) return false;
+  }
+  return !st.modes.empty();
+}
+
+Eigen::VectorXd UnitPeak(const Eigen::VectorXd& v) {
+  const double peak = v.cwiseAbs().maxCoeff();
+  return peak > 0 ? Eigen::VectorXd(v / peak) : v;
+}
+
+}  // namespace
+
+bool AssembleBendingMatrices(const CantileverSpec& spec, Eigen::MatrixXd* kb,
+                             Eigen::MatrixXd* mb, std::vector<std::string>* labels,
+                             std::string* why) {
   Structure s;
   try {
     CantileverSpec global_only = spec;
@@ -93,60 +145,6 @@ bool AssembleBending(const CantileverSpec& spec, Eigen::MatrixXd* kb, Eigen::Mat
   }
   return true;
 }
-
-// The bending modes of `spec`; their shapes only when `shapes` (frequency-only
-// data need none, and accumulating the eigenvectors is a large part of the
-// eigen-solution's cost). With `keep`, also the matrices, eigenvalues and labels
-// (and the shapes, whatever `shapes` says).
-bool SolveBending(const CantileverSpec& spec, bool shapes, bool keep, BendingModes* out,
-                  std::string* why) {
-  Eigen::MatrixXd kb, mb;
-  std::vector<std::string> labels;
-  if (!AssembleBending(spec, &kb, &mb, &labels, why)) return false;
-  shapes = shapes || keep;
-  const int nb = static_cast<int>(labels.size());
-  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(
-      kb, mb,
-      shapes ? Eigen::ComputeEigenvectors | Eigen::Ax_lBx : Eigen::EigenvaluesOnly);
-  if (eig.info() != Eigen::Success) {
-    if (why) *why = "the mass matrix is not positive definite";
-    return false;
-  }
-  const Eigen::VectorXd lambda = eig.eigenvalues();
-  out->frequencies_hz.resize(nb);
-  for (int i = 0; i < nb; ++i) {
-    out->frequencies_hz[i] = std::sqrt(std::max(lambda[i], 0.0)) / kTwoPi;
-  }
-  if (!out->frequencies_hz.allFinite()) {
-    if (why) *why = "the eigen-solution is not finite";
-    return false;
-  }
-  if (shapes) out->shapes = eig.eigenvectors();
-  out->row.clear();
-  for (int i = 0; i < nb; ++i) out->row[labels[i]] = i;
-  if (keep) {
-    out->kb = std::move(kb);
-    out->mb = std::move(mb);
-    out->eigenvalues = lambda;
-    out->labels = std::move(labels);
-  }
-  return true;
-}
-
-bool StateUsesShapes(const EffectFitData& data, const ObservedState& st) {
-  if (!data.use_shapes || st.sensors.empty()) return false;
-  for (const ObservedMode& m : st.modes) {
-    if (m.shape.size() == 0) return false;
-  }
-  return !st.modes.empty();
-}
-
-Eigen::VectorXd UnitPeak(const Eigen::VectorXd& v) {
-  const double peak = v.cwiseAbs().maxCoeff();
-  return peak > 0 ? Eigen::VectorXd(v / peak) : v;
-}
-
-}  // namespace
 
 std::string EffectFitData::Validate() const {
   if (states.empty()) return "states: no measured state";
@@ -370,8 +368,8 @@ bool SemiAnalyticColumn(const EffectFitData& data,
   for (const auto& [immersion, bm] : models) {
     Eigen::MatrixXd kb, mb;
     std::vector<std::string> labels;
-    if (!AssembleBending(SpecFor(data, effects, offsets, xs, immersion), &kb, &mb,
-                         &labels, why)) {
+    if (!AssembleBendingMatrices(SpecFor(data, effects, offsets, xs, immersion), &kb, &mb,
+                                 &labels, why)) {
       *failed = true;
       return false;
     }

@@ -12,10 +12,12 @@
 #include <set>
 #include <sstream>
 
+#include "benchmark_generator.h"
 #include "femup/errors.h"
 #include "femup/parallel.h"
 #include "femup/plot.h"
 #include "femup/problems/effect_fit.h"
+#include "femup/studies/benchmark_oracle.h"
 #include "femup/studies/diagnose_study.h"
 #include "femup/studies/study.h"
 #include "json_util.h"
@@ -24,6 +26,8 @@
 namespace femup {
 
 namespace fs = std::filesystem;
+using benchmark_generator::Ranges;
+using benchmark_generator::TrueEffect;
 
 namespace {
 
@@ -42,49 +46,6 @@ bool TruthModes(const CantileverSpec& spec, const std::vector<std::string>& sens
   return BendingModesAtSensors(spec, sensors, count, f, shapes, &why);
 }
 
-// A true effect of a given kind with a strength s in (0, 1] that sets its size;
-// the other properties (where, form) are drawn once.
-struct TrueEffect {
-  std::string kind;
-  double a = 0, b = 0, c = 0;  // kind-specific draws
-  int variant = 0;
-  double strength = 0;
-
-  void Apply(double s, CantileverSpec* spec) const {
-    const double length = spec->node_heights.back();
-    const double rho_a = spec->section.rho * spec->section.A;
-    const double ei = spec->section.E * spec->section.I;
-    if (kind == "added_mass") {
-      CantileverSpec::DistributedMass m;
-      m.z0 = 0;
-      m.z1 = a;    // depth
-      m.fade = b;  // fade length
-      m.mass_per_length = 3 * s * rho_a;
-      spec->distributed_masses.push_back(m);
-    } else if (kind == "support_flexibility") {
-      const double c_rot = 5 * s;     // EI / (k L)
-      const double c_tr = c_rot * a;  // 3 EI / (k L^3) relative
-      if (variant != 2) spec->support_rotation = ei / (length * c_rot);
-      if (variant != 1)
-        spec->support_transverse = 3 * ei / (length * length * length * c_tr);
-    } else if (kind == "attached_mass") {
-      CantileverSpec::PointMass p;
-      p.height = a;
-      p.mass = s * rho_a * length;
-      p.rotary_inertia = p.mass * b * b;  // radius of gyration b
-      spec->point_masses.push_back(p);
-    } else if (kind == "stiffness_loss") {
-      CantileverSpec::StiffnessChange ch;
-      ch.z0 = std::max(0.0, a - 0.5 * b);
-      ch.z1 = std::min(length, a + 0.5 * b);
-      ch.factor = -0.9 * s;
-      spec->stiffness_changes.push_back(ch);
-    } else if (kind == "material_scaling") {
-      spec->section.E *= 1 + a * 0.5 * s;  // a = +-1
-    }
-  }
-};
-
 std::string Num(double v) {
   std::ostringstream o;
   o << std::setprecision(10) << v;
@@ -96,9 +57,6 @@ struct Generated {
   std::string yaml;
   nlohmann::json truth_json;
 };
-
-// The range of the largest frequency shift for sizes: absolute.
-constexpr double kAbsoluteShiftMin = 0.005, kAbsoluteShiftMax = 0.2;
 
 Generated GenerateCase(const BenchmarkOptions& opt, int index) {
   std::mt19937_64 rng(opt.seed * 1000003ULL +
@@ -154,9 +112,7 @@ Generated GenerateCase(const BenchmarkOptions& opt, int index) {
   }
 
   // Effects.
-  static const std::vector<std::string> kinds = {"added_mass", "support_flexibility",
-                                                 "attached_mass", "stiffness_loss",
-                                                 "material_scaling"};
+  const std::vector<std::string>& kinds = benchmark_generator::Kinds();
   int count = 1;
   const double draw = u(rng);
   if (single) {
@@ -176,32 +132,38 @@ Generated GenerateCase(const BenchmarkOptions& opt, int index) {
     be.depth = be.x = be.x0 = be.x1 = kNan;
     std::ostringstream d;
     if (kind == "added_mass") {
-      e.a = uniform(0.3, 1.0) * c.length;
-      e.b = u(rng) < 0.5 ? uniform(0.05, 0.3) * e.a : 0.0;
+      e.a = uniform(Ranges::kDepthMin, Ranges::kDepthMax) * c.length;
+      e.b = u(rng) < Ranges::kFadeShare
+                ? uniform(Ranges::kFadeMin, Ranges::kFadeMax) * e.a
+                : 0.0;
       be.depth = e.a;
       be.x0 = 0;
       be.x1 = e.a;
       d << "transverse mass from the base to " << Num(e.a) << " m, fading over the top "
         << Num(e.b) << " m";
     } else if (kind == "support_flexibility") {
-      e.variant = u(rng) < 0.5 ? 0 : 1;  // 0: rotation and translation, 1: rotation
-      e.a = uniform(0.2, 2.0);
+      // 0: rotation and translation, 1: rotation
+      e.variant = u(rng) < Ranges::kBothShare ? 0 : 1;
+      e.a = uniform(Ranges::kRatioMin, Ranges::kRatioMax);
       be.x = 0;
       d << (e.variant == 0 ? "rotational and translational" : "rotational")
         << " springs at the base";
     } else if (kind == "attached_mass") {
       // Between diagnosis nodes, with rotary inertia.
       const double h = c.length / opt.diagnosis_elements;
-      const int k = 6 + static_cast<int>(u(rng) * (opt.diagnosis_elements - 6));
-      e.a = std::min(c.length, (k + uniform(0.2, 0.8)) * h);
+      const int k =
+          Ranges::kFirstElement +
+          static_cast<int>(u(rng) * (opt.diagnosis_elements - Ranges::kFirstElement));
+      e.a = std::min(c.length,
+                     (k + uniform(Ranges::kInElementMin, Ranges::kInElementMax)) * h);
       if (e.a > c.length) e.a = c.length - 0.3 * h;
-      e.b = uniform(0.01, 0.05);
+      e.b = uniform(Ranges::kGyrationMin, Ranges::kGyrationMax);
       be.x = e.a;
       d << "point mass at " << Num(e.a) << " m with radius of gyration " << Num(e.b)
         << " m";
     } else if (kind == "stiffness_loss") {
-      e.b = uniform(0.02, 0.2) * c.length;  // width
-      e.a = uniform(0.1, 0.9) * c.length;   // centre
+      e.b = uniform(Ranges::kWidthMin, Ranges::kWidthMax) * c.length;    // width
+      e.a = uniform(Ranges::kCentreMin, Ranges::kCentreMax) * c.length;  // centre
       be.x = e.a;
       be.x0 = std::max(0.0, e.a - 0.5 * e.b);
       be.x1 = std::min(c.length, e.a + 0.5 * e.b);
@@ -212,30 +174,16 @@ Generated GenerateCase(const BenchmarkOptions& opt, int index) {
     }
     // Size: the largest frequency shift on the measured modes, in units of the
     // case's frequency noise or in absolute terms (`sizes`).
-    const double target =
-        opt.sizes == "absolute"
-            ? log_uniform(kAbsoluteShiftMin, kAbsoluteShiftMax)
-            : (u(rng) < 0.8 ? log_uniform(5, 50) : log_uniform(1, 5)) * c.frequency_noise;
-    Eigen::VectorXd f0, f1;
-    Eigen::MatrixXd sh;
-    TruthModes(fine, {}, c.modes, &f0, &sh);
-    auto shift = [&](double s) {
-      CantileverSpec spec = fine;
-      e.Apply(s, &spec);
-      if (!TruthModes(spec, {}, c.modes, &f1, &sh)) return 1.0;
-      return (f1.array() / f0.array() - 1).abs().maxCoeff();
-    };
-    double lo = 0, hi = 1;
-    if (shift(hi) <= target) {
-      e.strength = hi;
-    } else {
-      for (int it = 0; it < 40; ++it) {
-        const double mid = 0.5 * (lo + hi);
-        (shift(mid) < target ? lo : hi) = mid;
-      }
-      e.strength = 0.5 * (lo + hi);
-    }
-    be.shift_in_noise = shift(e.strength) / c.frequency_noise;
+    const double target = opt.sizes == "absolute"
+                              ? log_uniform(Ranges::kAbsoluteMin, Ranges::kAbsoluteMax)
+                              : (u(rng) < Ranges::kStrongShare
+                                     ? log_uniform(Ranges::kStrongMin, Ranges::kStrongMax)
+                                     : log_uniform(Ranges::kWeakMin, Ranges::kWeakMax)) *
+                                    c.frequency_noise;
+    const Eigen::VectorXd f0 = benchmark_generator::BendingFrequencies(fine, c.modes);
+    e.strength = benchmark_generator::CalibrateStrength(e, fine, f0, target);
+    be.shift_in_noise =
+        benchmark_generator::FrequencyShift(e, fine, f0, e.strength) / c.frequency_noise;
     if (kind == "added_mass") {
       d << "; " << Num(3 * e.strength * nominal.section.rho * nominal.section.A)
         << " kg/m";
@@ -362,6 +310,15 @@ bool Correct(const BenchmarkCase& c) {
   return !c.failed && KindSet(c.top_kinds) == truth;
 }
 
+// No effect, or every effect's largest frequency shift below the generator's
+// lower bound for effects above the noise level (5 noise units): the cases
+// the oracle's ceiling needs (RunBenchmark, oracle "weak").
+bool AtNoiseLevel(const BenchmarkCase& c) {
+  for (const auto& e : c.effects)
+    if (e.shift_in_noise >= Ranges::kStrongMin) return false;
+  return true;
+}
+
 }  // namespace
 
 std::string BenchmarkOptions::Validate() const {
@@ -376,6 +333,11 @@ std::string BenchmarkOptions::Validate() const {
     return "evidence: expected sampled or laplace, not '" + evidence + "'";
   if (!(form_error < 1))  // NaN too
     return "form_error: expected a fraction below 1 (or negative for diagnose's default)";
+  if (oracle != "off" && oracle != "weak" && oracle != "all")
+    return "oracle: expected off, weak or all, not '" + oracle + "'";
+  if (oracle != "off" && suite != "single")
+    return "oracle: the Bayes oracle models the single suite only, not '" + suite + "'";
+  if (oracle_samples < 50) return "oracle_samples: expected at least 50";
   return "";
 }
 
@@ -463,6 +425,33 @@ BenchmarkResult RunBenchmark(const BenchmarkOptions& options, const std::string&
     }
     c.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (options.oracle == "off" || (options.oracle == "weak" && !AtNoiseLevel(c))) return;
+    BenchmarkOracleOutcome& o = c.oracle;
+    o.run = true;
+    try {
+      const Study study =
+          LoadStudy((fs::path(out_dir) / "cases" / (c.name + ".yaml")).string());
+      OracleOptions oo;
+      oo.samples = options.oracle_samples;
+      const OracleResult r = BayesOracle(study, options, oo);
+      o.top = r.classes.front().label;
+      o.probability = r.classes.front().probability;
+      o.evaluations = r.evaluations;
+      o.affine_error = r.affine_error;
+      o.seconds = r.seconds;
+      o.effective_samples = std::numeric_limits<double>::infinity();
+      for (const OracleClass& oc : r.classes) {
+        o.probabilities.emplace_back(oc.label, oc.probability);
+        if (oc.label == TruthLabel(c)) o.truth_probability = oc.probability;
+        if (oc.probability >= 0.01) {
+          o.log_standard_error = std::max(o.log_standard_error, oc.log_standard_error);
+          if (oc.label != "none")
+            o.effective_samples = std::min(o.effective_samples, oc.effective_samples);
+        }
+      }
+    } catch (const std::exception& e) {
+      o.error = e.what();
+    }
   };
   ParallelFor(static_cast<int>(result.cases.size()), options.threads, diagnose_case,
               progress);
@@ -493,6 +482,15 @@ struct Scores {
   double median_gap_before = kNan, median_gap_after = kNan;
   double median_held_before = kNan, median_held_after = kNan;
   double seconds = 0;
+  // The Bayes oracle, where it ran: its top-1 and the diagnosis's on the same
+  // cases, per stratum ("none", "at the noise level" (< 5 sigma), "above");
+  // the misses of the oracle and the sum of its top probabilities (its own
+  // expected number right) on the cases with no effect or effects at the
+  // noise level; the worst sampling quality among the cases.
+  std::map<std::string, Tally> oracle, oracle_diagnosis;
+  int oracle_failed = 0, oracle_low_misses = 0, oracle_low_run = 0;
+  double oracle_low_expected = 0, oracle_seconds = 0;
+  double oracle_worst_se = 0, oracle_fewest_draws = kNan, oracle_affine_error = 0;
 };
 
 double Median(std::vector<double> v) {
@@ -542,6 +540,30 @@ Scores Score(const BenchmarkResult& r) {
       s.per_size[weakest < 5 ? "shift < 5 sigma" : "shift >= 5 sigma"].Add(ok);
     // Localisation: every located true effect the top class names, within L/10.
     if (ok && c.location_error >= 0) s.located.Add(c.location_error <= 0.1 * c.length);
+    if (c.oracle.run) {
+      if (!c.oracle.error.empty()) {
+        ++s.oracle_failed;
+      } else {
+        const bool right = c.oracle.top == TruthLabel(c);
+        const std::string stratum = c.effects.empty() ? "none"
+                                    : AtNoiseLevel(c) ? "shift < 5 sigma"
+                                                      : "shift >= 5 sigma";
+        s.oracle[stratum].Add(right);
+        s.oracle["all run"].Add(right);
+        s.oracle_diagnosis[stratum].Add(ok);
+        s.oracle_diagnosis["all run"].Add(ok);
+        if (AtNoiseLevel(c)) {
+          ++s.oracle_low_run;
+          s.oracle_low_misses += right ? 0 : 1;
+          s.oracle_low_expected += c.oracle.probability;
+        }
+        s.oracle_seconds += c.oracle.seconds;
+        s.oracle_worst_se = std::max(s.oracle_worst_se, c.oracle.log_standard_error);
+        if (!(c.oracle.effective_samples >= s.oracle_fewest_draws))
+          s.oracle_fewest_draws = c.oracle.effective_samples;
+        s.oracle_affine_error = std::max(s.oracle_affine_error, c.oracle.affine_error);
+      }
+    }
     if (!c.failed) {
       const double p = c.probability;
       const char* bin = p >= 0.99  ? "0.99-1"
@@ -563,6 +585,12 @@ Scores Score(const BenchmarkResult& r) {
   s.median_held_before = Median(hb);
   s.median_held_after = Median(ha);
   return s;
+}
+
+int CountAtNoiseLevel(const BenchmarkResult& r) {
+  int n = 0;
+  for (const BenchmarkCase& c : r.cases) n += AtNoiseLevel(c) ? 1 : 0;
+  return n;
 }
 
 std::string Pct(const Tally& t) {
@@ -610,6 +638,28 @@ void WriteBenchmarkOutputs(const BenchmarkResult& r, bool plots, OutputDir* out,
   j["median_held_out_gap_before"] = json_util::Number(s.median_held_before);
   j["median_held_out_gap_after"] = json_util::Number(s.median_held_after);
   j["diagnosis_seconds_total"] = s.seconds;
+  if (r.options.oracle != "off") {
+    nlohmann::json o;
+    o["scope"] = r.options.oracle;
+    o["samples_per_subclass"] = r.options.oracle_samples;
+    for (const auto& [k, t] : s.oracle) o["top1"][k] = t.Json();
+    for (const auto& [k, t] : s.oracle_diagnosis)
+      o["diagnosis_top1_same_cases"][k] = t.Json();
+    o["failed"] = s.oracle_failed;
+    const int low = CountAtNoiseLevel(r);
+    if (s.oracle_low_run == low && s.oracle_failed == 0) {
+      const int n = static_cast<int>(r.cases.size());
+      o["ceiling_top1"] =
+          json_util::Number(static_cast<double>(n - s.oracle_low_misses) / n);
+      o["ceiling_top1_expected"] =
+          json_util::Number((n - low + s.oracle_low_expected) / n);
+    }
+    o["largest_log_standard_error"] = s.oracle_worst_se;
+    o["fewest_effective_draws"] = json_util::Number(s.oracle_fewest_draws);
+    o["affine_error"] = s.oracle_affine_error;
+    o["seconds_total"] = s.oracle_seconds;
+    j["oracle"] = o;
+  }
   out->WriteText("scores.json", j.dump(2) + "\n");
 
   std::ostringstream lines;
@@ -647,6 +697,21 @@ void WriteBenchmarkOutputs(const BenchmarkResult& r, bool plots, OutputDir* out,
     }
     cj["classes"] = classes;
     if (c.failed) cj["error"] = c.error;
+    if (c.oracle.run) {
+      nlohmann::json oj = {
+          {"top", c.oracle.top},
+          {"probability", c.oracle.probability},
+          {"truth_probability", c.oracle.truth_probability},
+          {"correct", c.oracle.error.empty() && c.oracle.top == TruthLabel(c)},
+          {"log_standard_error", c.oracle.log_standard_error},
+          {"effective_samples", json_util::Number(c.oracle.effective_samples)},
+          {"evaluations", c.oracle.evaluations},
+          {"seconds", c.oracle.seconds}};
+      for (const auto& [label, prob] : c.oracle.probabilities)
+        oj["probabilities"][label] = prob;
+      if (!c.oracle.error.empty()) oj["error"] = c.oracle.error;
+      cj["oracle"] = oj;
+    }
     lines << cj.dump() << "\n";
   }
   out->WriteText("results.jsonl", lines.str());
@@ -703,8 +768,8 @@ std::string BenchmarkReport(const BenchmarkResult& r) {
   o << "# femup benchmark: " << r.options.suite << " suite, " << r.options.cases
     << " cases, seed " << r.options.seed << ", effect sizes "
     << (r.options.sizes == "absolute"
-            ? "absolute (largest frequency shift " + Num(100 * kAbsoluteShiftMin) + "-" +
-                  Num(100 * kAbsoluteShiftMax) + " %)"
+            ? "absolute (largest frequency shift " + Num(100 * Ranges::kAbsoluteMin) +
+                  "-" + Num(100 * Ranges::kAbsoluteMax) + " %)"
             : std::string("in noise units (1-50 sigma)"))
     << ", " << r.options.evidence << " evidence"
     << (r.options.form_error >= 0 ? ", form error " + Num(r.options.form_error)
@@ -740,6 +805,35 @@ std::string BenchmarkReport(const BenchmarkResult& r) {
   o << "\n## Calibration (stated probability of the verdict)\n\n| stated | right "
        "|\n|---|---|\n";
   for (const auto& [k, t] : s.calibration) o << "| " << k << " | " << Pct(t) << " |\n";
+  if (r.options.oracle != "off") {
+    o << "\n## Bayes oracle (the generator's own prior, forms and noise; "
+         "benchmark_oracle.h)\n\n";
+    o << "Cases: " << r.options.oracle
+      << " (weak: no effect, or every effect below 5 sigma); " << r.options.oracle_samples
+      << " draws per sub-class; " << s.oracle_failed << " failed.\n\n";
+    o << "| cases | oracle top-1 | diagnosis top-1, same cases |\n|---|---|---|\n";
+    for (const auto& [k, t] : s.oracle) {
+      const auto it = s.oracle_diagnosis.find(k);
+      o << "| " << k << " | " << Pct(t) << " | "
+        << (it == s.oracle_diagnosis.end() ? "-" : Pct(it->second)) << " |\n";
+    }
+    const int low = CountAtNoiseLevel(r);
+    const int n = static_cast<int>(r.cases.size());
+    if (s.oracle_low_run == low && s.oracle_failed == 0 && n > 0) {
+      o << "\nCeiling on top-1 for any method, counting every effect above 5 sigma as "
+           "right: "
+        << Num(100.0 * (n - s.oracle_low_misses) / n) << " % (" << n - s.oracle_low_misses
+        << "/" << n << "); with the oracle's own probabilities on the " << low
+        << " cases at the noise level: "
+        << Num(100.0 * (n - low + s.oracle_low_expected) / n) << " %.\n";
+    }
+    o << "\nSampling: largest standard error of a log evidence (classes with P >= "
+         "0.01) "
+      << Num(s.oracle_worst_se) << "; fewest effective draws (the same classes) "
+      << Num(s.oracle_fewest_draws) << "; affine strength model against direct "
+      << "assembly: " << Num(s.oracle_affine_error) << " (largest relative eigenvalue "
+      << "difference); " << Num(s.oracle_seconds) << " CPU-seconds.\n";
+  }
   std::set<std::string> predicted;
   for (const auto& [t, row] : s.confusion)
     for (const auto& [p, n] : row) predicted.insert(p);

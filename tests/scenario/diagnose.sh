@@ -12,9 +12,12 @@
 #     frequency shift is at most 20 % (the range's top); with --evidence sampled,
 #     scores.json and every case file name that method, and with --form-error
 #     0.02 that form error; with --noise-free the same cases (same truth files)
-#     with frequencies within 5 sigma of the noisy ones and not all equal; an
-#     unknown --sizes or --evidence, or a --form-error
-#     of 1.5, exits 1 naming it before any case is written.
+#     with frequencies within 5 sigma of the noisy ones and not all equal; with
+#     --oracle all (2 cases) every case has the Bayes oracle's probabilities
+#     (summing to 1, most probable first) and scores.json its top-1 and the
+#     ceiling; an unknown --sizes, --evidence or --oracle, a --form-error of
+#     1.5, or --oracle on the mixed suite, exits 1 naming it before any case is
+#     written.
 #  3. Bad input: an unknown effect among the candidates, a chain model and
 #     frequencies listed out of order exit 1 with a message naming the problem,
 #     and leave no diagnosis.json behind.
@@ -138,6 +141,38 @@ for name in sorted(os.listdir(os.path.join(sys.argv[1], "cases"))):
 assert moved > 0, "no frequency moved"
 print("noise-free: %d frequencies differ from the noisy run's, all within 5 sigma" % moved)
 PY
+# --oracle all: the Bayes oracle on every case (few draws: this checks the
+# plumbing; tests/benchmark_oracle_test.cc checks the numbers).
+"$FEMUP" benchmark --suite single --cases 2 --seed 5 --oracle all --oracle-samples 50 \
+  --no-plots -o bench_or -q > bench_or.txt 2>&1 || fail "benchmark --oracle exit $?: $(cat bench_or.txt)"
+python3 - bench_or <<'PY' || fail "oracle outputs"
+import json, os, sys
+d = sys.argv[1]
+scores = json.load(open(os.path.join(d, "scores.json")))
+o = scores["oracle"]
+assert o["scope"] == "all" and o["samples_per_subclass"] == 50, o
+assert o["top1"]["all run"]["cases"] == 2 and o["failed"] == 0, o
+assert 0 <= o["ceiling_top1"] <= 1, o
+lines = [json.loads(l) for l in open(os.path.join(d, "results.jsonl"))]
+assert len(lines) == 2
+for c in lines:
+    p = list(c["oracle"]["probabilities"].values())
+    assert abs(sum(p) - 1) < 1e-9, c["oracle"]
+    assert c["oracle"]["top"] == max(c["oracle"]["probabilities"], key=c["oracle"]["probabilities"].get)
+    assert c["oracle"]["correct"] == (c["oracle"]["top"] == c["truth"])
+assert "Bayes oracle" in open(os.path.join(d, "scores.md")).read()
+print("oracle: 2 cases, probabilities sum to 1, ceiling %.3f" % o["ceiling_top1"])
+PY
+for bad in "--suite mixed --oracle weak" "--suite single --oracle maybe"; do
+  set +e
+  # shellcheck disable=SC2086
+  "$FEMUP" benchmark $bad --cases 1 -o bench_bad_or 2> err_or.txt
+  rc=$?
+  set -e
+  [ "$rc" = 1 ] || fail "$bad: exit $rc"
+  grep -q -- "--oracle" err_or.txt || fail "$bad: message $(cat err_or.txt)"
+  [ ! -e bench_bad_or/cases ] || fail "$bad: cases written"
+done
 set +e
 "$FEMUP" benchmark --suite single --cases 1 --sizes huge -o bench_bad 2> err0.txt
 rc=$?

@@ -98,6 +98,15 @@ bool BendingModesAtSensors(const CantileverSpec& spec,
                            Eigen::VectorXd* frequencies_hz, Eigen::MatrixXd* shapes,
                            std::string* why);
 
+// The bending (ux, rz) stiffness and mass of `spec` as dense matrices, rows in
+// the model's DOF order with the axial DOFs left out, and their DOF labels
+// ("n3:ux"). Their bandwidth is 3 (two DOFs per node, numbered along the beam).
+// Returns false with *why when the model cannot be built or bending couples
+// with the axial DOFs.
+bool AssembleBendingMatrices(const CantileverSpec& spec, Eigen::MatrixXd* stiffness,
+                             Eigen::MatrixXd* mass, std::vector<std::string>* labels,
+                             std::string* why);
+
 // Whitened residuals of the observed modes for predictions `predicted`.
 Eigen::VectorXd EffectResiduals(const EffectFitData& data,
                                 const std::vector<PredictedState>& predicted);

@@ -53,6 +53,12 @@ struct BenchmarkOptions {
   // then is due to the fitted families' form, the data's layout (modes,
   // sensors) and the evidence's priors, not to the noise draws.
   bool noise_free = false;
+  // The Bayes oracle (benchmark_oracle.h), single suite only: "off"; "weak"
+  // on the cases with no effect or whose effects all shift a frequency by less
+  // than 5 noise units (enough for the ceiling on top-1 below, counting every
+  // larger effect as right); "all" on every case.
+  std::string oracle = "off";
+  int oracle_samples = 500;      // importance-sampling draws per sub-class
   std::string Validate() const;  // "" or "<field>: what is wrong"
 };
 
@@ -73,6 +79,24 @@ struct BenchmarkClassOutcome {
   double held_out_chi2 = 0;  // held-out modes, predicted from the best fit
   double score = 0;          // log evidence + held-out log predictive density
   double probability = 0;
+};
+
+// The Bayes oracle's answer for a case (benchmark_oracle.h).
+struct BenchmarkOracleOutcome {
+  bool run = false;
+  std::string top;  // the most probable class
+  double probability = 0;
+  double truth_probability = 0;  // of the true class
+  // Among the classes with probability >= 0.01: the largest standard error of
+  // a log evidence, and the fewest effective draws (of the sub-class that
+  // carries most of a class's evidence).
+  double log_standard_error = 0;
+  double effective_samples = 0;
+  double affine_error = 0;
+  int evaluations = 0;
+  double seconds = 0;
+  std::vector<std::pair<std::string, double>> probabilities;  // most probable first
+  std::string error;                                          // when it failed
 };
 
 struct BenchmarkCase {
@@ -97,6 +121,7 @@ struct BenchmarkCase {
   bool failed = false;
   std::string error;
   double seconds = 0;
+  BenchmarkOracleOutcome oracle;
 };
 
 struct BenchmarkResult {
