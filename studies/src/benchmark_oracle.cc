@@ -354,8 +354,10 @@ OracleResult BayesOracle(const Study& study, const BenchmarkOptions& generator,
   {
     BandedEigenpairs ep;
     std::string why;
-    LowestBandedEigenpairs(cm.k0, cm.m0, cm.modes, cm.measured_shapes.size() > 0, &ep,
-                           &why);
+    if (!LowestBandedEigenpairs(cm.k0, cm.m0, cm.modes, cm.measured_shapes.size() > 0,
+                                &ep, &why))
+      throw InputError(study.path + ": model",
+                       "the truth mesh's modes cannot be solved: " + why);
     OracleClass none;
     none.label = "none";
     none.prior = 1.0 / 6;

@@ -808,9 +808,12 @@ std::string BenchmarkReport(const BenchmarkResult& r) {
   if (r.options.oracle != "off") {
     o << "\n## Bayes oracle (the generator's own prior, forms and noise; "
          "benchmark_oracle.h)\n\n";
-    o << "Cases: " << r.options.oracle
-      << " (weak: no effect, or every effect below 5 sigma); " << r.options.oracle_samples
-      << " draws per sub-class; " << s.oracle_failed << " failed.\n\n";
+    o << "Cases: "
+      << (r.options.oracle == "all"
+              ? std::string("all")
+              : std::string("no effect, or every effect below 5 sigma"))
+      << "; " << r.options.oracle_samples << " draws per sub-class; " << s.oracle_failed
+      << " failed.\n\n";
     o << "| cases | oracle top-1 | diagnosis top-1, same cases |\n|---|---|---|\n";
     for (const auto& [k, t] : s.oracle) {
       const auto it = s.oracle_diagnosis.find(k);
@@ -822,10 +825,11 @@ std::string BenchmarkReport(const BenchmarkResult& r) {
     if (s.oracle_low_run == low && s.oracle_failed == 0 && n > 0) {
       o << "\nCeiling on top-1 for any method, counting every effect above 5 sigma as "
            "right: "
-        << Num(100.0 * (n - s.oracle_low_misses) / n) << " % (" << n - s.oracle_low_misses
-        << "/" << n << "); with the oracle's own probabilities on the " << low
-        << " cases at the noise level: "
-        << Num(100.0 * (n - low + s.oracle_low_expected) / n) << " %.\n";
+        << Pct(Tally{n, n - s.oracle_low_misses})
+        << "; with the oracle's own probabilities "
+        << "on the " << low << " cases at the noise level: " << std::fixed
+        << std::setprecision(1) << 100.0 * (n - low + s.oracle_low_expected) / n
+        << std::defaultfloat << " %.\n";
     }
     o << "\nSampling: largest standard error of a log evidence (classes with P >= "
          "0.01) "
