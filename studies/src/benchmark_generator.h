@@ -26,6 +26,11 @@ inline const std::vector<std::string>& Kinds() {
 // The ranges the generator draws an effect's properties from (uniform unless
 // said otherwise). Lengths are fractions of the beam's length L.
 struct Ranges {
+  // The single suite: no effect with probability kSingleNoneShare, else one
+  // effect of a kind drawn uniformly.
+  static constexpr double kSingleNoneShare = 1.0 / 6;
+  // material_scaling: E lower than modelled with probability kLowerShare.
+  static constexpr double kLowerShare = 0.5;
   // added_mass: depth; with probability kFadeShare a linear fade over the top
   // fraction (of the depth) in [kFadeMin, kFadeMax], else none.
   static constexpr double kDepthMin = 0.3, kDepthMax = 1.0;

@@ -59,8 +59,8 @@ std::vector<SubClass> SubClasses(const std::string& kind, const std::string& siz
   } else if (kind == "stiffness_loss") {
     add(0, 1, 3);  // width, centre, size
   } else {
-    add(-1, 0.5, 1);
-    add(1, 0.5, 1);
+    add(-1, Ranges::kLowerShare, 1);
+    add(1, 1 - Ranges::kLowerShare, 1);
   }
   std::vector<SubClass> out;
   for (SubClass s : forms) {
@@ -360,7 +360,7 @@ OracleResult BayesOracle(const Study& study, const BenchmarkOptions& generator,
                        "the truth mesh's modes cannot be solved: " + why);
     OracleClass none;
     none.label = "none";
-    none.prior = 1.0 / 6;
+    none.prior = Ranges::kSingleNoneShare;
     none.log_evidence = -0.5 * Misfit(cm, ep, cm.labels0);
     result.classes.push_back(none);
     ++result.evaluations;
@@ -378,7 +378,7 @@ OracleResult BayesOracle(const Study& study, const BenchmarkOptions& generator,
     std::uint64_t sub_stream = first_stream;
     OracleClass oc;
     oc.label = kind;
-    oc.prior = (5.0 / 6) / static_cast<double>(all.size());
+    oc.prior = (1 - Ranges::kSingleNoneShare) / static_cast<double>(all.size());
     std::vector<double> log_terms, se;
     std::vector<double> ess;
     for (const SubClass& sc : SubClasses(kind, cm.sizes)) {

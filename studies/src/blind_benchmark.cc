@@ -116,7 +116,7 @@ Generated GenerateCase(const BenchmarkOptions& opt, int index) {
   int count = 1;
   const double draw = u(rng);
   if (single) {
-    count = draw < 1.0 / 6 ? 0 : 1;
+    count = draw < Ranges::kSingleNoneShare ? 0 : 1;
   } else {
     count = draw < 0.15 ? 0 : (draw < 0.75 ? 1 : 2);
   }
@@ -169,7 +169,7 @@ Generated GenerateCase(const BenchmarkOptions& opt, int index) {
       be.x1 = std::min(c.length, e.a + 0.5 * e.b);
       d << "EI reduced over " << Num(be.x0) << "-" << Num(be.x1) << " m";
     } else {
-      e.a = u(rng) < 0.5 ? -1.0 : 1.0;
+      e.a = u(rng) < Ranges::kLowerShare ? -1.0 : 1.0;
       d << "Young's modulus " << (e.a > 0 ? "higher" : "lower") << " than modelled";
     }
     // Size: the largest frequency shift on the measured modes, in units of the
