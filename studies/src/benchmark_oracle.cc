@@ -200,11 +200,12 @@ double Shift(const AffineModel& am, const CaseModel& cm, double s, int* evaluati
 // The generator's calibration (benchmark_generator::CalibrateStrength): the
 // strength in (0, 1] whose largest shift is the target, 1 where even that falls
 // short. Secant steps on log shift against log s (a straight line of slope 1
-// for small effects), kept inside a bracket, to 1e-5 in log shift: the
-// eigenvalues' rounding (up to a few 1e-7 of the lowest one here, measured
-// against the directly assembled model) moves a 1-sigma shift of 0.1 % by
-// about 1e-4 of itself, so a tighter stop would chase rounding; a shift 1e-5
-// off changes the likelihood by far less than the sampling error.
+// for small effects), kept inside a bracket, until the log shift is within 1e-5
+// of the target or the bracket is 1e-6 wide in log s. For a 1-sigma shift of
+// 0.1 % the eigenvalues' rounding (up to a few 1e-7 of the lowest, measured
+// against the directly assembled model) already moves the shift by ~1e-4 of
+// itself, so there the bracket ends the search; either way the likelihood
+// changes far less than the sampling error.
 double Strength(const AffineModel& am, const CaseModel& cm, double target,
                 int* evaluations) {
   const double top = Shift(am, cm, 1.0, evaluations);
