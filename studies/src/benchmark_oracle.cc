@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <map>
 
 #include "benchmark_generator.h"
 #include "femup/banded_eigen.h"
@@ -90,9 +89,11 @@ struct CaseModel {
   double sigma_f = 0, sigma_s = 0;
   Eigen::VectorXd measured_hz;
   Eigen::MatrixXd measured_shapes;  // sensors x modes, or empty
-  Eigen::VectorXd f0;               // the nominal truth mesh's frequencies
-  Eigen::MatrixXd k0, m0;           // its bending matrices
+  Eigen::MatrixXd k0, m0;           // the nominal truth mesh's bending matrices
   std::vector<std::string> labels0;
+  std::vector<int> rows0;    // the sensors' rows in them
+  BandedEigenpairs nominal;  // its modes (vectors when there are shapes)
+  Eigen::VectorXd f0;        // their frequencies
   std::string sizes;
 };
 
@@ -144,19 +145,35 @@ TrueEffect MakeEffect(const SubClass& sc, const Eigen::VectorXd& u, const CaseMo
 struct AffineModel {
   Eigen::MatrixXd ka, kd, ma, md;
   bool inverse = false;
-  std::vector<std::string> labels;
+  std::vector<int> rows;  // the sensors' rows
   double G(double s) const { return inverse ? 1 / s : s; }
 };
+
+// The rows of `sensors` among the bending DOFs `labels` (false where one is
+// missing).
+bool SensorRows(const std::vector<std::string>& labels,
+                const std::vector<std::string>& sensors, std::vector<int>* rows) {
+  rows->clear();
+  for (const std::string& sensor : sensors) {
+    const auto it = std::find(labels.begin(), labels.end(), sensor);
+    if (it == labels.end()) return false;
+    rows->push_back(static_cast<int>(it - labels.begin()));
+  }
+  return true;
+}
 
 bool BuildAffine(const TrueEffect& e, const CaseModel& cm, AffineModel* am) {
   std::string why;
   Eigen::MatrixXd k1, m1;
+  std::vector<std::string> labels1;
   CantileverSpec one = cm.fine;
   e.Apply(1.0, &one);
-  if (!AssembleBendingMatrices(one, &k1, &m1, &am->labels, &why)) return false;
+  if (!AssembleBendingMatrices(one, &k1, &m1, &labels1, &why)) return false;
   am->inverse = e.kind == "support_flexibility";
   if (!am->inverse) {
-    if (am->labels != cm.labels0) return false;
+    // Same DOFs as the nominal mesh: its sensor rows hold.
+    if (labels1 != cm.labels0) return false;
+    am->rows = cm.rows0;
     am->kd = k1 - cm.k0;
     am->md = m1 - cm.m0;
     am->ka = cm.k0;
@@ -168,7 +185,8 @@ bool BuildAffine(const TrueEffect& e, const CaseModel& cm, AffineModel* am) {
   std::vector<std::string> labels;
   CantileverSpec half = cm.fine;
   e.Apply(0.5, &half);
-  if (!AssembleBendingMatrices(half, &kh, &mh, &labels, &why) || labels != am->labels)
+  if (!AssembleBendingMatrices(half, &kh, &mh, &labels, &why) || labels != labels1 ||
+      !SensorRows(labels1, cm.sensors, &am->rows))
     return false;
   am->kd = kh - k1;
   am->md = mh - m1;
@@ -236,7 +254,7 @@ double Strength(const AffineModel& am, const CaseModel& cm, double target,
 // -2 log likelihood of the measured modes for truth eigenpairs (constants
 // common to every model left out).
 double Misfit(const CaseModel& cm, const BandedEigenpairs& ep,
-              const std::vector<std::string>& labels) {
+              const std::vector<int>& rows) {
   const Eigen::VectorXd f = Hz(ep.eigenvalues);
   double chi2 = 0;
   for (int k = 0; k < cm.modes; ++k) {
@@ -244,12 +262,10 @@ double Misfit(const CaseModel& cm, const BandedEigenpairs& ep,
     chi2 += r * r + 2 * std::log(f[k] / cm.measured_hz[k]);
   }
   if (cm.measured_shapes.size() == 0) return chi2;
-  std::map<std::string, int> row;
-  for (std::size_t i = 0; i < labels.size(); ++i) row[labels[i]] = static_cast<int>(i);
-  Eigen::VectorXd t(static_cast<Eigen::Index>(cm.sensors.size()));
+  Eigen::VectorXd t(static_cast<Eigen::Index>(rows.size()));
   for (int k = 0; k < cm.modes; ++k) {
-    for (std::size_t i = 0; i < cm.sensors.size(); ++i)
-      t[static_cast<Eigen::Index>(i)] = ep.vectors(row.at(cm.sensors[i]), k);
+    for (std::size_t i = 0; i < rows.size(); ++i)
+      t[static_cast<Eigen::Index>(i)] = ep.vectors(rows[i], k);
     t /= t.cwiseAbs().maxCoeff();
     const Eigen::VectorXd y = cm.measured_shapes.col(k);
     const double plus = (y - t).squaredNorm() / (cm.sigma_s * cm.sigma_s);
@@ -310,10 +326,13 @@ CaseModel ReadCase(const Study& study, const BenchmarkOptions& gen) {
   std::string why;
   if (!AssembleBendingMatrices(cm.fine, &cm.k0, &cm.m0, &cm.labels0, &why))
     throw InputError(study.path + ": model", "the truth mesh cannot be built: " + why);
-  BandedEigenpairs ep;
-  if (!LowestBandedEigenpairs(cm.k0, cm.m0, cm.modes, false, &ep, &why))
+  if (!SensorRows(cm.labels0, cm.sensors, &cm.rows0))
+    throw InputError(study.path + ": sensors",
+                     "a sensor is not a bending DOF of the generator's truth mesh");
+  if (!LowestBandedEigenpairs(cm.k0, cm.m0, cm.modes, cm.measured_shapes.size() > 0,
+                              &cm.nominal, &why))
     throw InputError(study.path + ": model", "the truth mesh cannot be solved: " + why);
-  cm.f0 = Hz(ep.eigenvalues);
+  cm.f0 = Hz(cm.nominal.eigenvalues);
   return cm;
 }
 
@@ -353,20 +372,12 @@ OracleResult BayesOracle(const Study& study, const BenchmarkOptions& generator,
   OracleResult result;
 
   // "none": the nominal truth mesh.
-  {
-    BandedEigenpairs ep;
-    std::string why;
-    if (!LowestBandedEigenpairs(cm.k0, cm.m0, cm.modes, cm.measured_shapes.size() > 0,
-                                &ep, &why))
-      throw InputError(study.path + ": model",
-                       "the truth mesh's modes cannot be solved: " + why);
-    OracleClass none;
-    none.label = "none";
-    none.prior = Ranges::kSingleNoneShare;
-    none.log_evidence = -0.5 * Misfit(cm, ep, cm.labels0);
-    result.classes.push_back(none);
-    ++result.evaluations;
-  }
+  OracleClass none;
+  none.label = "none";
+  none.prior = Ranges::kSingleNoneShare;
+  none.log_evidence = -0.5 * Misfit(cm, cm.nominal, cm.rows0);
+  result.classes.push_back(none);
+  ++result.evaluations;
 
   const std::vector<std::string>& all = benchmark_generator::Kinds();
   std::uint64_t stream = 0;
@@ -415,7 +426,7 @@ OracleResult BayesOracle(const Study& study, const BenchmarkOptions& generator,
           }
         }
         chi2->resize(1);
-        (*chi2)[0] = Misfit(cm, ep, am.labels);
+        (*chi2)[0] = Misfit(cm, ep, am.rows);
         return std::isfinite((*chi2)[0]);
       };
       SampledEvidenceOptions so;

@@ -8,6 +8,7 @@
 #include <iomanip>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <random>
 #include <set>
 #include <sstream>
@@ -372,10 +373,10 @@ BenchmarkResult RunBenchmark(const BenchmarkOptions& options, const std::string&
   auto diagnose_case = [&](int i) {
     BenchmarkCase& c = result.cases[i];
     const auto t0 = std::chrono::steady_clock::now();
+    std::optional<Study> study;  // read once, for the diagnosis and the oracle
     try {
-      const Study study =
-          LoadStudy((fs::path(out_dir) / "cases" / (c.name + ".yaml")).string());
-      const DiagnosisResult d = RunDiagnosis(study);
+      study = LoadStudy((fs::path(out_dir) / "cases" / (c.name + ".yaml")).string());
+      const DiagnosisResult d = RunDiagnosis(*study);
       const DiagnosisCandidate& top = d.candidates.front();
       c.top = top.label;
       c.top_kinds = top.kinds;
@@ -428,12 +429,14 @@ BenchmarkResult RunBenchmark(const BenchmarkOptions& options, const std::string&
     if (options.oracle == "off" || (options.oracle == "weak" && !AtNoiseLevel(c))) return;
     BenchmarkOracleOutcome& o = c.oracle;
     o.run = true;
+    if (!study) {
+      o.error = c.error;  // the study file could not be read
+      return;
+    }
     try {
-      const Study study =
-          LoadStudy((fs::path(out_dir) / "cases" / (c.name + ".yaml")).string());
       OracleOptions oo;
       oo.samples = options.oracle_samples;
-      const OracleResult r = BayesOracle(study, options, oo);
+      const OracleResult r = BayesOracle(*study, options, oo);
       o.top = r.classes.front().label;
       o.probability = r.classes.front().probability;
       o.evaluations = r.evaluations;
