@@ -76,9 +76,9 @@ TEST(UpdatePipeline, WritesEverythingOrNothing) {
     OutputDir out(dir);
     std::vector<std::string> warnings;
     WriteUpdateOutputs(r, false, &out, &warnings);
-    // Not committed: nothing may be visible.
+    // Not committed: nothing may be visible, not even the folder it created.
   }
-  EXPECT_TRUE(std::filesystem::is_empty(dir));
+  EXPECT_FALSE(std::filesystem::exists(dir));
   OutputDir out(dir);
   std::vector<std::string> warnings;
   WriteUpdateOutputs(r, false, &out, &warnings);

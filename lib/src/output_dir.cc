@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <vector>
 
 #include "femup/errors.h"
 
@@ -12,10 +13,30 @@ namespace fs = std::filesystem;
 
 OutputDir::OutputDir(const std::string& directory) : directory_(directory) {
   std::error_code ec;
-  fs::create_directory(directory_, ec);
-  if (ec || !fs::is_directory(directory_)) {
+  if (directory_.empty()) throw InputError("-o", "the output folder's name is empty");
+  // The folders that do not exist yet, outermost first: they are created here
+  // and removed again (when still empty) if the job fails.
+  std::vector<fs::path> missing;
+  for (fs::path p = fs::path(directory_).lexically_normal(); !p.empty();
+       p = p.parent_path()) {
+    if (fs::exists(p, ec)) break;
+    missing.insert(missing.begin(), p);
+    if (p == p.parent_path()) break;
+  }
+  for (const fs::path& p : missing) {
+    if (!fs::create_directory(p, ec) && !fs::is_directory(p)) {
+      RemoveCreatedFolders();
+      throw InputError(directory_, "cannot create the output folder: " + p.string() +
+                                       " (" + ec.message() + ")");
+    }
+    created_.push_back(p.string());
+  }
+  if (!fs::is_directory(directory_, ec)) {
     throw InputError(directory_,
-                     "cannot create the output folder (" + ec.message() + ")");
+                     "cannot create the output folder (" +
+                         std::string(fs::exists(directory_) ? "a file of that name exists"
+                                                            : ec.message()) +
+                         ")");
   }
   std::random_device rd;
   for (int attempt = 0; attempt < 100; ++attempt) {
@@ -26,12 +47,21 @@ OutputDir::OutputDir(const std::string& directory) : directory_(directory) {
       return;
     }
   }
+  RemoveCreatedFolders();
   throw InputError(directory_, "cannot create a staging folder inside the output folder");
 }
 
 OutputDir::~OutputDir() {
   std::error_code ec;
   if (!staging_.empty()) fs::remove_all(staging_, ec);
+  if (!committed_) RemoveCreatedFolders();
+}
+
+void OutputDir::RemoveCreatedFolders() {
+  // Innermost first; fs::remove leaves a folder that is not empty alone.
+  std::error_code ec;
+  for (auto it = created_.rbegin(); it != created_.rend(); ++it) fs::remove(*it, ec);
+  created_.clear();
 }
 
 std::string OutputDir::Stage(const std::string& name) {

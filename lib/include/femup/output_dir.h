@@ -10,8 +10,10 @@ namespace femup {
 
 class OutputDir {
  public:
-  // Creates `directory` if needed (its parent must exist) and a private
-  // staging folder inside it. Throws InputError when that is impossible.
+  // Creates `directory` and any missing parent folders, and a private staging
+  // folder inside it. Throws InputError when that is impossible. The folders it
+  // created are removed again (when empty) unless the output is committed, so a
+  // failed job leaves nothing behind.
   explicit OutputDir(const std::string& directory);
   ~OutputDir();  // removes the staging folder unless committed
   OutputDir(const OutputDir&) = delete;
@@ -27,9 +29,12 @@ class OutputDir {
   const std::vector<std::string>& files() const { return files_; }
 
  private:
+  void RemoveCreatedFolders();
+
   std::string directory_;
   std::string staging_;
   std::vector<std::string> files_;
+  std::vector<std::string> created_;  // folders this object created, outermost first
   bool committed_ = false;
 };
 
