@@ -109,6 +109,12 @@ std::string LinearProblem::Validate() const {
         msg << which << " bound of " << label(i) << " is NaN";
         return msg.str();
       }
+      if (std::isinf((*bound)[i]) && ((*bound)[i] > 0) == (bound == &lower)) {
+        msg << which << " bound of " << label(i) << " is " << ((*bound)[i] > 0 ? "+" : "-")
+            << "inf: no value satisfies it (a missing bound is "
+            << (bound == &lower ? "-inf" : "+inf") << ")";
+        return msg.str();
+      }
     }
   }
   if (lower.size() > 0 && upper.size() > 0) {

@@ -22,7 +22,10 @@ bool EndsWith(const std::string& s, const std::string& tail) {
          s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
 }
 
-Eigen::MatrixXd ReadCsv(const std::string& path, std::vector<std::string>* names) {
+// `allow_infinite`: bounds may be -inf/inf (written inf, -inf, Inf, -Infinity
+// by numpy, MATLAB and by hand); NaN is refused everywhere.
+Eigen::MatrixXd ReadCsv(const std::string& path, std::vector<std::string>* names,
+                        bool allow_infinite) {
   std::ifstream in(path);
   if (!in) throw InputError(path, "cannot open the file");
   std::vector<std::vector<double>> rows;
@@ -57,9 +60,11 @@ Eigen::MatrixXd ReadCsv(const std::string& path, std::vector<std::string>* names
             path + ":" + std::to_string(number),
             "field " + std::to_string(c + 1) + ": expected a number, found '" + t + "'");
       }
-      if (!std::isfinite(v))
+      if (std::isnan(v) || (!allow_infinite && !std::isfinite(v)))
         throw InputError(path + ":" + std::to_string(number),
-                         "field " + std::to_string(c + 1) + " is not finite");
+                         "field " + std::to_string(c + 1) + ": '" + t + "' is " +
+                             (std::isnan(v) ? "NaN (not a number)" : "not finite") +
+                             (allow_infinite ? "" : "; only bounds may be -inf or inf"));
       values.push_back(v);
     }
     if (header) {
@@ -85,8 +90,9 @@ Eigen::MatrixXd ReadCsv(const std::string& path, std::vector<std::string>* names
   return m;
 }
 
-Eigen::VectorXd ReadVector(const std::string& path, const std::string& what) {
-  const Eigen::MatrixXd m = ReadMatrixFile(path, nullptr);
+Eigen::VectorXd ReadVector(const std::string& path, const std::string& what,
+                           bool allow_infinite = false) {
+  const Eigen::MatrixXd m = ReadMatrixFile(path, nullptr, allow_infinite);
   if (m.cols() != 1 && m.rows() != 1)
     throw InputError(path, what + ": expected a vector (one row or one column), found " +
                                std::to_string(m.rows()) + " x " +
@@ -97,9 +103,10 @@ Eigen::VectorXd ReadVector(const std::string& path, const std::string& what) {
 
 }  // namespace
 
-Eigen::MatrixXd ReadMatrixFile(const std::string& path, std::vector<std::string>* names) {
+Eigen::MatrixXd ReadMatrixFile(const std::string& path, std::vector<std::string>* names,
+                               bool allow_infinite) {
   if (EndsWith(path, ".mtx")) return ReadMatrixMarketDense(path);
-  if (EndsWith(path, ".csv")) return ReadCsv(path, names);
+  if (EndsWith(path, ".csv")) return ReadCsv(path, names, allow_infinite);
   throw InputError(path, "unknown file type: expected .mtx (Matrix Market) or .csv");
 }
 
@@ -122,16 +129,16 @@ SolveResult RunSolve(const SolveFiles& files, const std::string& solver,
     for (Eigen::Index j = 0; j < p.A.cols(); ++j)
       p.names.push_back("x" + std::to_string(j + 1));
   }
-  auto read_n = [&](const std::string& path, const std::string& what) {
-    Eigen::VectorXd v = ReadVector(path, what);
+  auto read_n = [&](const std::string& path, const std::string& what, bool bound) {
+    Eigen::VectorXd v = ReadVector(path, what, bound);
     if (v.size() != p.A.cols())
       throw InputError(path, what + " has " + std::to_string(v.size()) + " entries for " +
                                  std::to_string(p.A.cols()) + " unknowns");
     return v;
   };
-  if (!files.lower.empty()) p.lower = read_n(files.lower, "lower");
-  if (!files.upper.empty()) p.upper = read_n(files.upper, "upper");
-  if (!files.truth.empty()) r.truth = read_n(files.truth, "truth");
+  if (!files.lower.empty()) p.lower = read_n(files.lower, "lower", true);
+  if (!files.upper.empty()) p.upper = read_n(files.upper, "upper", true);
+  if (!files.truth.empty()) r.truth = read_n(files.truth, "truth", false);
   if (files.data_sigma > 0)
     p.row_weights = Eigen::VectorXd::Constant(p.A.rows(), 1.0 / files.data_sigma);
   const std::string invalid = p.Validate();

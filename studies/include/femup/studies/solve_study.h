@@ -15,8 +15,10 @@
 namespace femup {
 
 // A dense matrix from .mtx or .csv; `names` (may be null) receives a CSV
-// header's names. Throws InputError naming the file, line and field.
-Eigen::MatrixXd ReadMatrixFile(const std::string& path, std::vector<std::string>* names);
+// header's names. Throws InputError naming the file, line and field. NaN is
+// refused; -inf/inf only where `allow_infinite` (bounds), in CSV files.
+Eigen::MatrixXd ReadMatrixFile(const std::string& path, std::vector<std::string>* names,
+                               bool allow_infinite = false);
 
 struct SolveFiles {
   std::string a, b;          // required
