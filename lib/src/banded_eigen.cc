@@ -2,21 +2,27 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <vector>
 
+// LAPACK (gfortran): every CHARACTER argument has a hidden length argument
+// after the others. They must be passed: a Fortran routine may forward them in
+// a tail call and write them into the caller's argument area, which corrupts
+// the C++ caller's stack when they are missing.
 extern "C" {
 void dsbgvx_(const char* jobz, const char* range, const char* uplo, const int* n,
              const int* ka, const int* kb, double* ab, const int* ldab, double* bb,
              const int* ldbb, double* q, const int* ldq, const double* vl,
              const double* vu, const int* il, const int* iu, const double* abstol, int* m,
              double* w, double* z, const int* ldz, double* work, int* iwork, int* ifail,
-             int* info);
+             int* info, std::size_t jobz_length, std::size_t range_length,
+             std::size_t uplo_length);
 void dgbtrf_(const int* m, const int* n, const int* kl, const int* ku, double* ab,
              const int* ldab, int* ipiv, int* info);
 void dgbtrs_(const char* trans, const int* n, const int* kl, const int* ku,
              const int* nrhs, const double* ab, const int* ldab, const int* ipiv,
-             double* b, const int* ldb, int* info);
+             double* b, const int* ldb, int* info, std::size_t trans_length);
 }
 
 namespace femup {
@@ -60,7 +66,7 @@ bool LowestBandedEigenpairs(const Eigen::MatrixXd& stiffness, const Eigen::Matri
   std::vector<int> iwork(5 * static_cast<std::size_t>(n)), ifail(n);
   dsbgvx_("N", "I", "U", &n, &kd, &kd, ab.data(), &ld, bb.data(), &ld, q.data(), &ldz,
           &vl, &vu, &il, &iu, &abstol, &found, w.data(), z.data(), &ldz, work.data(),
-          iwork.data(), ifail.data(), &info);
+          iwork.data(), ifail.data(), &info, 1, 1, 1);
   if (info != 0 || found != count) {
     if (why)
       *why = info > n ? "the mass matrix is not positive definite"
@@ -103,7 +109,7 @@ bool LowestBandedEigenpairs(const Eigen::MatrixXd& stiffness, const Eigen::Matri
     for (int step = 0; step < 2; ++step) {
       Eigen::VectorXd rhs = mass * x;
       dgbtrs_("N", &n, &kd, &kd, &one, lu.data(), &ldlu, ipiv.data(), rhs.data(), &n,
-              &info);
+              &info, 1);
       if (info != 0 || !rhs.allFinite()) {
         if (why) *why = "inverse iteration failed";
         return false;
