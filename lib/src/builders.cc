@@ -113,8 +113,10 @@ Structure BuildSpringMassChain(const ChainSpec& spec) {
     }
   }
   Structure s;
+  s.type = "chain";
   s.description =
       "spring-mass chain of " + std::to_string(n) + " masses, fixed at x1's end";
+  s.supports.push_back({0, spec.springs[0], "ground spring"});
   Triplets kt, mt;
   for (int e = 0; e < n; ++e) {
     ElementMatrices el;
@@ -211,6 +213,7 @@ Structure BuildCantilever(const CantileverSpec& spec) {
   static const char* kDofNames[3] = {"ux", "uy", "rz"};
   std::vector<std::array<int, 3>> dof(num_nodes);
   Structure s;
+  s.type = "cantilever";
   int next = 0;
   for (int node = 0; node < num_nodes; ++node) {
     for (int k = 0; k < 3; ++k) {
@@ -221,6 +224,7 @@ Structure BuildCantilever(const CantileverSpec& spec) {
         s.dof_positions.push_back(z[node]);
       }
     }
+    s.nodes.push_back({"n" + std::to_string(node), Eigen::Vector3d(0.0, z[node], 0.0)});
   }
   const int n = next;
   Triplets kt, mt;
@@ -257,8 +261,12 @@ Structure BuildCantilever(const CantileverSpec& spec) {
     mt.insert(mt.end(), tm.begin(), tm.end());
     s.elements.push_back(std::move(el));
   }
+  static const char* kSupportNames[3] = {"base transverse", "base axial", "base rotation"};
   for (int k = 0; k < 3; ++k) {
-    if (supports[k] > 0) kt.emplace_back(dof[0][k], dof[0][k], supports[k]);
+    if (supports[k] > 0) {
+      kt.emplace_back(dof[0][k], dof[0][k], supports[k]);
+      s.supports.push_back({dof[0][k], supports[k], kSupportNames[k]});
+    }
   }
   for (std::size_t i = 0; i < spec.lumped_masses.size(); ++i) {
     const LumpedMass& lm = spec.lumped_masses[i];

@@ -37,7 +37,7 @@ struct StateTerms {
 
 // Everything evaluate needs, shared by copies of the problem.
 struct Context {
-  ParametrisedModel model;
+  std::shared_ptr<const ParametrisedPencil> pencil;
   std::vector<StateTerms> states;
   double frequency_sigma = 0;
   double min_mac = 0;
@@ -56,31 +56,10 @@ bool Fail(std::string* why, const std::string& message) {
   return false;
 }
 
-// dK/dp and dM/dp of parameter `p` for a state with dry or wet mass; nullptr
-// means zero. Returns false when the parameter does not enter the state at all.
-bool ParameterDerivative(const Parameter& p, bool wet, const BasisMatrix** dk,
-                         const BasisMatrix** dm) {
-  *dk = nullptr;
-  *dm = nullptr;
-  switch (p.kind) {
-    case ParameterKind::kStiffness:
-      *dk = &p.basis;
-      return true;
-    case ParameterKind::kMass:
-      *dm = &p.basis;
-      return true;
-    case ParameterKind::kAddedMass:
-      if (!wet) return false;
-      *dm = &p.basis;
-      return true;
-  }
-  return false;
-}
-
-// Residuals (and Jacobian rows) of one state, given K~ and the state's M~.
-bool EvaluateState(const Context& c, const StateTerms& st, const SparseMatrix& k,
-                   const SparseMatrix& m, Eigen::VectorXd* r, Eigen::MatrixXd* jac,
-                   std::string* why) {
+// Residuals (and Jacobian rows) of one state, given K~ and the state's M~ at x.
+bool EvaluateState(const Context& c, const StateTerms& st, const Eigen::VectorXd& x,
+                   const SparseMatrix& k, const SparseMatrix& m, Eigen::VectorXd* r,
+                   Eigen::MatrixXd* jac, std::string* why) {
   EigenOptions eigen = c.eigen;
   eigen.num_modes = st.num_model_modes;
   Modes modes;
@@ -165,7 +144,9 @@ bool EvaluateState(const Context& c, const StateTerms& st, const SparseMatrix& k
   // Jacobian rows, mode by mode in parallel (c.threads): each mode factorises
   // its own Nelson matrix and writes only its own rows, so the result does not
   // depend on the thread count.
-  const auto& parameters = c.model.parameters();
+  PencilDerivatives derivatives;
+  c.pencil->Derivatives(x, st.wet, &derivatives);
+  const int num_parameters = c.pencil->num_parameters();
   std::vector<std::string> failure(st.lambdas.size());
   ParallelFor(static_cast<int>(st.lambdas.size()), c.threads, [&](int j) {
     const ModeTerms& t = terms[j];
@@ -182,9 +163,10 @@ bool EvaluateState(const Context& c, const StateTerms& st, const SparseMatrix& k
         return;
       }
     }
-    for (int p = 0; p < c.model.num_parameters(); ++p) {
-      const BasisMatrix *dk = nullptr, *dm = nullptr;
-      if (!ParameterDerivative(parameters[p], st.wet, &dk, &dm)) continue;
+    for (int p = 0; p < num_parameters; ++p) {
+      const BasisMatrix* dk = derivatives.stiffness[p];
+      const BasisMatrix* dm = derivatives.mass[p];
+      if (dk == nullptr && dm == nullptr) continue;
       if (!nelson) {
         (*jac)(row, p) = t.lambda_weight * EigenvalueDerivative(t.phi, t.lambda, dk, dm);
         continue;
@@ -205,7 +187,7 @@ bool EvaluateState(const Context& c, const StateTerms& st, const SparseMatrix& k
 
 bool Evaluate(const Context& c, const Eigen::VectorXd& x, Eigen::VectorXd* r,
               Eigen::MatrixXd* jac, std::string* why) {
-  const int n = c.model.num_parameters();
+  const int n = c.pencil->num_parameters();
   if (x.size() != n) {
     return Fail(why, "x has " + std::to_string(x.size()) + " entries; expected " +
                          std::to_string(n));
@@ -214,14 +196,12 @@ bool Evaluate(const Context& c, const Eigen::VectorXd& x, Eigen::VectorXd* r,
   r->setZero(c.num_residuals);
   if (jac != nullptr) jac->setZero(c.num_residuals, n);
   try {
-    const SparseMatrix k = c.model.UpdatedStiffness(x);
-    SparseMatrix dry_mass, wet_mass;  // assembled when a state needs them
+    // Assembled once per immersion that a state needs.
+    SparseMatrix k[2], m[2];
     for (const StateTerms& st : c.states) {
-      SparseMatrix& m = st.wet ? wet_mass : dry_mass;
-      if (m.size() == 0) {
-        m = st.wet ? c.model.UpdatedWetMass(x) : c.model.UpdatedDryMass(x);
-      }
-      if (!EvaluateState(c, st, k, m, r, jac, why)) return false;
+      const int w = st.wet ? 1 : 0;
+      if (m[w].size() == 0) c.pencil->Assemble(x, st.wet, &k[w], &m[w]);
+      if (!EvaluateState(c, st, x, k[w], m[w], r, jac, why)) return false;
     }
   } catch (const InputError& e) {
     return Fail(why, e.what());
@@ -278,13 +258,23 @@ NonlinearProblem BuildEigenSensitivityProblem(const ParametrisedModel& model,
                                               const std::vector<ModalData>& states,
                                               const EigenSensitivityOptions& options,
                                               const Eigen::VectorXd& start) {
-  const std::string invalid = options.Validate();
-  if (!invalid.empty()) throw InputError("eigen sensitivity options", invalid);
-  const int n = model.num_parameters();
-  const int num_dofs = model.num_dofs();
-  if (n == 0) {
+  if (model.num_parameters() == 0) {
     throw InputError("model.parameters", "the model has no correction factor to update");
   }
+  return BuildOutputErrorProblem(std::make_shared<const ModelPencil>(model), states,
+                                 options, start);
+}
+
+NonlinearProblem BuildOutputErrorProblem(std::shared_ptr<const ParametrisedPencil> pencil,
+                                         const std::vector<ModalData>& states,
+                                         const EigenSensitivityOptions& options,
+                                         const Eigen::VectorXd& start) {
+  const std::string invalid = options.Validate();
+  if (!invalid.empty()) throw InputError("eigen sensitivity options", invalid);
+  if (!pencil) throw InputError("pencil", "no model is given");
+  const int n = pencil->num_parameters();
+  const int num_dofs = pencil->num_dofs();
+  if (n == 0) throw InputError("parameters", "there is no unknown to fit");
   if (states.empty()) throw InputError("states", "no measured state is given");
   auto size_error = [n](const std::string& field, Eigen::Index size) {
     std::ostringstream msg;
@@ -309,7 +299,7 @@ NonlinearProblem BuildEigenSensitivityProblem(const ParametrisedModel& model,
 
   auto context = std::make_shared<Context>();
   Context& c = *context;
-  c.model = model;
+  c.pencil = pencil;
   c.frequency_sigma = options.frequency_sigma;
   c.min_mac = options.min_mac;
   c.threads = options.threads;
@@ -371,14 +361,14 @@ NonlinearProblem BuildEigenSensitivityProblem(const ParametrisedModel& model,
       problem.residual_labels.push_back(mode + " lambda");
       if (!st.shape_residuals) continue;
       for (int dof : st.sensors) {
-        problem.residual_labels.push_back(mode + " shape " + model.dof_labels()[dof]);
+        problem.residual_labels.push_back(mode + " shape " + pencil->dof_labels()[dof]);
       }
     }
     row += data.num_modes() * st.rows_per_mode();
     c.states.push_back(std::move(st));
   }
 
-  const std::vector<std::string> names = model.ParameterNames();
+  const std::vector<std::string> names = pencil->ParameterNames();
   c.prior_first_row = row;
   c.prior_mean = options.prior_mean.size() == n ? options.prior_mean
                                                 : Eigen::VectorXd::Zero(n).eval();
@@ -403,8 +393,7 @@ NonlinearProblem BuildEigenSensitivityProblem(const ParametrisedModel& model,
   problem.num_residuals = row;
   problem.initial = start.size() == n ? start : Eigen::VectorXd::Zero(n).eval();
   problem.names = names;
-  for (const Parameter& p : model.parameters())
-    problem.groups.push_back(ToString(p.kind));
+  problem.groups = pencil->ParameterGroups();
   problem.residuals_whitened = true;
   std::shared_ptr<const Context> shared = std::move(context);
   problem.evaluate = [shared](const Eigen::VectorXd& x, Eigen::VectorXd* residuals,

@@ -22,7 +22,24 @@ struct ElementMatrices {
   double x0 = 0, x1 = 0;          // position along the structure (m), where it applies
 };
 
+// A node of a model with geometry.
+struct ModelNode {
+  std::string name;  // the prefix of its DOF labels: "n3" of "n3:ux"
+  Eigen::Vector3d xyz = Eigen::Vector3d::Zero();  // m, the model's axes
+};
+
+// A support modelled as a spring to the ground on one free DOF (a chain's
+// ground spring, a cantilever's elastic base): what support flexibility softens.
+struct SupportSpring {
+  int dof = -1;            // index into dof_labels
+  double stiffness = 0;    // N/m or N m/rad, > 0
+  std::string name;        // "ground spring", "base rotation"
+};
+
 struct Structure {
+  // What built it: "chain", "cantilever", "space_frame", "matrix_market", ...;
+  // says which unmodelled effects apply (model_effects.h).
+  std::string type;
   std::string description;
   SparseMatrix stiffness;  // baseline K (includes supports, springs)
   SparseMatrix mass;       // baseline M (includes lumped masses)
@@ -34,6 +51,12 @@ struct Structure {
   // The DOFs that shape plots draw, in drawing order (e.g. one leg of a space
   // frame, bottom to top); empty: every transverse (":ux") DOF.
   std::vector<int> plot_dofs;
+  // Every node of models with geometry (a cantilever: node k at (0, height, 0),
+  // supported ones too; a space frame's free nodes); empty for a chain or a
+  // Matrix Market model. Used to place test sensors by their coordinates.
+  std::vector<ModelNode> nodes;
+  // Supports that are springs in the model (rigid supports have no DOF here).
+  std::vector<SupportSpring> supports;
   // Index of the element with the given id, or -1.
   int FindElement(int id) const;
 };

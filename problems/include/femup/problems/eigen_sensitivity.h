@@ -38,6 +38,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,7 @@
 #include "femup/modal.h"
 #include "femup/model.h"
 #include "femup/problems/nonlinear_problem.h"
+#include "femup/problems/parametrised_pencil.h"
 
 namespace femup {
 
@@ -118,5 +120,15 @@ NonlinearProblem BuildEigenSensitivityProblem(const ParametrisedModel& model,
                                               const std::vector<ModalData>& states,
                                               const EigenSensitivityOptions& options,
                                               const Eigen::VectorXd& start = {});
+
+// The same output-error problem over the unknowns of any pencil (the one engine
+// behind the updating above and the effect fits: parametrised_pencil.h): names
+// and groups from the pencil, the same residuals, options and errors; the
+// Jacobian from the pencil's dK/dx and dM/dx at x. The problem shares the pencil.
+// Throws InputError as above, and when the pencil has no unknown.
+NonlinearProblem BuildOutputErrorProblem(std::shared_ptr<const ParametrisedPencil> pencil,
+                                         const std::vector<ModalData>& states,
+                                         const EigenSensitivityOptions& options,
+                                         const Eigen::VectorXd& start = {});
 
 }  // namespace femup

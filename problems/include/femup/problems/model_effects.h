@@ -1,0 +1,122 @@
+// Unmodelled effects as changes of the model itself: each family is a
+// parametrised change dK(theta), dM(theta) of a Structure's matrices, built from
+// that structure's own element matrices, DOFs, node heights and supports, so one
+// family serves every model type that has what it needs (issue 26; effects.h is
+// the older form that edits a CantileverSpec and rebuilds the beam).
+//
+// A family on a structure comes as one or more instances, one per region it can
+// act on (a stiffness loss in storey 3, an attached mass at node n7): the
+// discrete choice is the instance, the continuous parameters are theta. Each
+// parameter's range is also its prior, uniform in the parameter's coordinate
+// (log coordinates for magnitudes spanning decades).
+//
+// The families (kinds), with theta and the change they make:
+//   material_scaling    ln(s): every element's stiffness times s (E error);
+//                       dK = (s - 1) sum_e K_e. Region: all elements.
+//   stiffness_loss      ln(loss fraction): one element's stiffness (a chain's
+//                       spring: a storey; a beam element) times 1 - loss;
+//                       dK = -loss K_e. One instance per element.
+//   attached_mass       ln(m / m_ref): a point mass on one node's translational
+//                       DOFs (sensors, cables, equipment); m_ref is the
+//                       structure's total mass (m_ref below). One instance per
+//                       node with translational DOFs.
+//   added_mass          ln(ratio) [, level]: the elements' added-mass bases
+//                       (water acting on the wet part) times ratio. Where the
+//                       elements have heights (x0 < x1 along the structure:
+//                       a cantilever), the wet part is below `level` (m), each
+//                       element counted by the fraction of it below the level;
+//                       otherwise (a chain), the elements flagged wet. Acts in
+//                       wet states only when the study has wet states.
+//   support_flexibility ln(c): each support spring in series with a spring c
+//                       times more compliant: k -> k / (1 + c). Applies where
+//                       the model's supports are springs (Structure::supports;
+//                       a chain's ground spring, a cantilever's elastic base).
+//
+// Every change and its derivatives with respect to theta are exact (analytic):
+// the families are linear in exp(theta_0), and the level's weights are
+// piecewise linear.
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "femup/measurement.h"
+#include "femup/model.h"
+#include "femup/problems/effects.h"
+#include "femup/structure.h"
+
+namespace femup {
+
+// A change of the model's matrices (same DOFs as the structure). Either may be
+// empty (0 x 0): no change of that matrix.
+struct ModelChange {
+  SparseMatrix stiffness;
+  SparseMatrix mass;
+};
+
+// Where in the structure an instance acts.
+struct EffectRegion {
+  std::string name;           // "all elements", "element 3", "node n7", "support"
+  std::vector<int> elements;  // indices into Structure::elements
+  std::vector<int> dofs;  // indices into the structure's DOFs (attached mass, support)
+};
+
+class ModelEffect {
+ public:
+  virtual ~ModelEffect() = default;
+  // "material_scaling", "stiffness_loss", ...
+  virtual std::string kind() const = 0;
+  virtual const EffectRegion& region() const = 0;
+  // Parameters and their prior ranges.
+  virtual std::vector<EffectParameter> Parameters() const = 0;
+  // Starting points for a multi-start fit (each of size Parameters().size()).
+  virtual std::vector<Eigen::VectorXd> Starts() const = 0;
+  // The change at theta in a state of the given immersion.
+  virtual ModelChange Change(const Eigen::VectorXd& theta, Immersion immersion) const = 0;
+  // Its derivative with respect to theta[i].
+  virtual ModelChange Derivative(const Eigen::VectorXd& theta, int i,
+                                 Immersion immersion) const = 0;
+  virtual EffectLocation Location(const Eigen::VectorXd& theta) const = 0;
+  virtual std::vector<EffectMagnitude> Magnitudes(const Eigen::VectorXd& theta) const = 0;
+};
+
+struct ModelEffectOptions {
+  // Added mass acts in wet states only (the study has wet states); otherwise in
+  // every state.
+  bool wet_only_added_mass = false;
+};
+
+// The kinds model_effects knows, in a fixed order.
+std::vector<std::string> ModelEffectKinds();
+
+// The kinds that apply to `structure`, and for the others why not (the same
+// order as ModelEffectKinds, one entry per kind; empty reason = applies).
+struct FamilyApplicability {
+  std::string kind;
+  std::string why_not;  // empty when it applies
+};
+std::vector<FamilyApplicability> ApplicableModelEffects(const Structure& structure);
+
+// The instances of `kind` on `structure`. Throws InputError("effect", ...) for
+// an unknown kind (listing the known ones) and for a kind that does not apply to
+// the structure (saying why). The instances keep a pointer to `structure`,
+// which must outlive them.
+std::vector<std::unique_ptr<ModelEffect>> CreateModelEffects(
+    const std::string& kind, const Structure& structure,
+    const ModelEffectOptions& options = {});
+
+// The structure's matrices changed by `effects` at their parameters `thetas`
+// (one vector each) for a state of the given immersion.
+void ApplyModelEffects(const Structure& structure,
+                       const std::vector<const ModelEffect*>& effects,
+                       const std::vector<Eigen::VectorXd>& thetas, Immersion immersion,
+                       SparseMatrix* stiffness, SparseMatrix* mass);
+
+// The reference mass of the attached-mass family: the structure's mass moving
+// with a unit rigid translation along its most massive translational direction
+// (every ":ux" DOF, every ":uy" DOF, ..., or every DOF of a chain), kg.
+double ReferenceMass(const Structure& structure);
+
+}  // namespace femup

@@ -1,0 +1,419 @@
+#include "femup/problems/model_effects.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "femup/errors.h"
+
+namespace femup {
+
+namespace {
+
+Eigen::VectorXd Vec(std::initializer_list<double> v) {
+  Eigen::VectorXd out(static_cast<Eigen::Index>(v.size()));
+  Eigen::Index i = 0;
+  for (double x : v) out[i++] = x;
+  return out;
+}
+
+SparseMatrix Zero(int n) { return SparseMatrix(n, n); }
+
+// The node and component of a DOF label: "n7:ux" -> ("n7", "ux"); a chain's "x3"
+// -> ("x3", "").
+std::pair<std::string, std::string> SplitLabel(const std::string& label) {
+  const auto colon = label.find(':');
+  if (colon == std::string::npos) return {label, ""};
+  return {label.substr(0, colon), label.substr(colon + 1)};
+}
+
+bool IsTranslation(const std::string& component) {
+  return component.empty() || component == "ux" || component == "uy" || component == "uz";
+}
+
+// Elements whose positions along the structure are heights (x0 < x1 in m).
+bool HasHeights(const Structure& s) {
+  if (s.type != "cantilever" || s.elements.empty()) return false;
+  return std::all_of(s.elements.begin(), s.elements.end(),
+                     [](const ElementMatrices& e) { return e.x1 > e.x0; });
+}
+
+bool HasElementMatrices(const Structure& s) {
+  return !s.elements.empty() &&
+         std::all_of(s.elements.begin(), s.elements.end(), [&](const ElementMatrices& e) {
+           return e.stiffness.rows() == static_cast<Eigen::Index>(s.dof_labels.size());
+         });
+}
+
+class Base : public ModelEffect {
+ public:
+  Base(const Structure& s, EffectRegion region) : s_(s), region_(std::move(region)) {}
+  const EffectRegion& region() const override { return region_; }
+
+ protected:
+  int n() const { return static_cast<int>(s_.dof_labels.size()); }
+  const Structure& s_;
+  EffectRegion region_;
+};
+
+// Every element's stiffness times s = exp(theta_0).
+class MaterialScaling : public Base {
+ public:
+  MaterialScaling(const Structure& s, EffectRegion region) : Base(s, std::move(region)) {
+    sum_ = Zero(n());
+    for (int e : region_.elements) sum_ += s_.elements[e].stiffness;
+  }
+  std::string kind() const override { return "material_scaling"; }
+  std::vector<EffectParameter> Parameters() const override {
+    return {{"ln_e_factor", "ln(E_real / E_model)", -0.7, 0.7, false}};
+  }
+  std::vector<Eigen::VectorXd> Starts() const override { return {Vec({0.0})}; }
+  ModelChange Change(const Eigen::VectorXd& t, Immersion) const override {
+    return {(std::exp(t[0]) - 1.0) * sum_, {}};
+  }
+  ModelChange Derivative(const Eigen::VectorXd& t, int, Immersion) const override {
+    return {std::exp(t[0]) * sum_, {}};
+  }
+  EffectLocation Location(const Eigen::VectorXd&) const override {
+    EffectLocation l;
+    l.x0 = s_.elements.front().x0;
+    l.x1 = s_.elements.back().x1;
+    return l;
+  }
+  std::vector<EffectMagnitude> Magnitudes(const Eigen::VectorXd& t) const override {
+    return {{"e_factor", "1", std::exp(t[0])}};
+  }
+
+ private:
+  SparseMatrix sum_;
+};
+
+// One element's stiffness times 1 - loss, loss = exp(theta_0).
+class StiffnessLoss : public Base {
+ public:
+  using Base::Base;
+  std::string kind() const override { return "stiffness_loss"; }
+  std::vector<EffectParameter> Parameters() const override {
+    return {{"ln_loss", "ln(fraction of the stiffness lost)", std::log(3e-3),
+             std::log(0.9), false}};
+  }
+  std::vector<Eigen::VectorXd> Starts() const override {
+    return {Vec({std::log(0.03)}), Vec({std::log(0.3)})};
+  }
+  ModelChange Change(const Eigen::VectorXd& t, Immersion) const override {
+    return {-std::exp(t[0]) * Element().stiffness, {}};
+  }
+  ModelChange Derivative(const Eigen::VectorXd& t, int, Immersion) const override {
+    return {-std::exp(t[0]) * Element().stiffness, {}};
+  }
+  EffectLocation Location(const Eigen::VectorXd&) const override {
+    EffectLocation l;
+    l.x0 = Element().x0;
+    l.x1 = Element().x1;
+    l.x = 0.5 * (l.x0 + l.x1);
+    return l;
+  }
+  std::vector<EffectMagnitude> Magnitudes(const Eigen::VectorXd& t) const override {
+    return {{"stiffness_loss_fraction", "1", std::exp(t[0])}};
+  }
+
+ private:
+  const ElementMatrices& Element() const { return s_.elements[region_.elements.front()]; }
+};
+
+// A point mass m = m_ref exp(theta_0) on one node's translational DOFs.
+class AttachedMass : public Base {
+ public:
+  AttachedMass(const Structure& s, EffectRegion region, double reference_mass,
+               double position)
+      : Base(s, std::move(region)), m_ref_(reference_mass), position_(position) {
+    std::vector<Eigen::Triplet<double>> t;
+    for (int d : region_.dofs) t.emplace_back(d, d, 1.0);
+    unit_ = Zero(n());
+    unit_.setFromTriplets(t.begin(), t.end());
+  }
+  std::string kind() const override { return "attached_mass"; }
+  std::vector<EffectParameter> Parameters() const override {
+    return {{"ln_mass_ratio", "ln(mass / the structure's mass)", std::log(1e-4),
+             std::log(2.0), false}};
+  }
+  std::vector<Eigen::VectorXd> Starts() const override {
+    return {Vec({std::log(0.003)}), Vec({std::log(0.1)})};
+  }
+  ModelChange Change(const Eigen::VectorXd& t, Immersion) const override {
+    return {{}, m_ref_ * std::exp(t[0]) * unit_};
+  }
+  ModelChange Derivative(const Eigen::VectorXd& t, int, Immersion) const override {
+    return {{}, m_ref_ * std::exp(t[0]) * unit_};
+  }
+  EffectLocation Location(const Eigen::VectorXd&) const override {
+    EffectLocation l;
+    l.x = position_;
+    return l;
+  }
+  std::vector<EffectMagnitude> Magnitudes(const Eigen::VectorXd& t) const override {
+    return {{"mass", "kg", m_ref_ * std::exp(t[0])},
+            {"mass_ratio", "1 (of the structure's mass)", std::exp(t[0])}};
+  }
+
+ private:
+  double m_ref_;
+  double position_;
+  SparseMatrix unit_;
+};
+
+// The added-mass bases times ratio = exp(theta_0): on the flagged wet elements
+// (no level), or below a level theta_1 (m) where the elements have heights.
+class AddedMass : public Base {
+ public:
+  AddedMass(const Structure& s, EffectRegion region, bool with_level, bool wet_only)
+      : Base(s, std::move(region)), with_level_(with_level), wet_only_(wet_only) {
+    flagged_ = Zero(n());
+    if (!with_level_) {
+      for (int e : region_.elements) flagged_ += s_.elements[e].added_mass_basis;
+    }
+  }
+  std::string kind() const override { return "added_mass"; }
+  std::vector<EffectParameter> Parameters() const override {
+    std::vector<EffectParameter> p = {{"ln_mass_ratio",
+                                       "ln(added mass / the elements' added-mass basis)",
+                                       std::log(1e-3), std::log(5.0), false}};
+    if (with_level_) {
+      p.push_back({"level", "height of the water level above the support (m)",
+                   Bottom() + 0.05 * (Top() - Bottom()), Top(), true});
+    }
+    return p;
+  }
+  std::vector<Eigen::VectorXd> Starts() const override {
+    if (!with_level_) return {Vec({std::log(0.05)}), Vec({std::log(0.5)})};
+    std::vector<Eigen::VectorXd> out;
+    for (double f : {0.3, 0.6, 0.95})
+      out.push_back(Vec({std::log(0.05), Bottom() + f * (Top() - Bottom())}));
+    return out;
+  }
+  ModelChange Change(const Eigen::VectorXd& t, Immersion immersion) const override {
+    if (wet_only_ && immersion != Immersion::kWet) return {};
+    return {{}, std::exp(t[0]) * Basis(t)};
+  }
+  ModelChange Derivative(const Eigen::VectorXd& t, int i,
+                         Immersion immersion) const override {
+    if (wet_only_ && immersion != Immersion::kWet) return {};
+    if (i == 0) return {{}, std::exp(t[0]) * Basis(t)};
+    // d/d level: each element partly below the level gains basis / height.
+    SparseMatrix d = Zero(n());
+    for (int e : region_.elements) {
+      const ElementMatrices& el = s_.elements[e];
+      if (t[1] > el.x0 && t[1] < el.x1) d += el.added_mass_basis / (el.x1 - el.x0);
+    }
+    return {{}, std::exp(t[0]) * d};
+  }
+  EffectLocation Location(const Eigen::VectorXd& t) const override {
+    EffectLocation l;
+    l.x0 = Bottom();
+    l.x1 = with_level_ ? t[1] : s_.elements[region_.elements.back()].x1;
+    if (with_level_) l.depth = t[1];
+    return l;
+  }
+  std::vector<EffectMagnitude> Magnitudes(const Eigen::VectorXd& t) const override {
+    std::vector<EffectMagnitude> m = {
+        {"added_mass_ratio", "1 (of the added-mass basis)", std::exp(t[0])}};
+    if (with_level_) m.push_back({"water_level", "m", t[1]});
+    return m;
+  }
+
+ private:
+  double Bottom() const { return s_.elements[region_.elements.front()].x0; }
+  double Top() const { return s_.elements[region_.elements.back()].x1; }
+  SparseMatrix Basis(const Eigen::VectorXd& t) const {
+    if (!with_level_) return flagged_;
+    SparseMatrix b = Zero(n());
+    for (int e : region_.elements) {
+      const ElementMatrices& el = s_.elements[e];
+      const double w = std::clamp((t[1] - el.x0) / (el.x1 - el.x0), 0.0, 1.0);
+      if (w > 0) b += w * el.added_mass_basis;
+    }
+    return b;
+  }
+  bool with_level_;
+  bool wet_only_;
+  SparseMatrix flagged_;
+};
+
+// Each support spring k in series with one c = exp(theta_0) times more
+// compliant: k -> k / (1 + c), dK = -k c / (1 + c) on its DOF.
+class SupportFlexibility : public Base {
+ public:
+  using Base::Base;
+  std::string kind() const override { return "support_flexibility"; }
+  std::vector<EffectParameter> Parameters() const override {
+    return {{"ln_compliance_ratio", "ln(added compliance / the support's own)",
+             std::log(1e-3), std::log(100.0), false}};
+  }
+  std::vector<Eigen::VectorXd> Starts() const override {
+    return {Vec({std::log(0.01)}), Vec({std::log(1.0)})};
+  }
+  ModelChange Change(const Eigen::VectorXd& t, Immersion) const override {
+    const double c = std::exp(t[0]);
+    return {Springs(-c / (1 + c)), {}};
+  }
+  ModelChange Derivative(const Eigen::VectorXd& t, int, Immersion) const override {
+    const double c = std::exp(t[0]);
+    return {Springs(-c / ((1 + c) * (1 + c))), {}};  // d/dtheta of -c/(1+c)
+  }
+  EffectLocation Location(const Eigen::VectorXd&) const override {
+    EffectLocation l;
+    l.x = s_.elements.empty() ? 0.0 : s_.elements.front().x0;
+    return l;
+  }
+  std::vector<EffectMagnitude> Magnitudes(const Eigen::VectorXd& t) const override {
+    const double c = std::exp(t[0]);
+    std::vector<EffectMagnitude> m = {{"compliance_ratio", "1", c}};
+    for (const SupportSpring& sp : s_.supports)
+      m.push_back({sp.name + " stiffness", "N/m or N m/rad", sp.stiffness / (1 + c)});
+    return m;
+  }
+
+ private:
+  SparseMatrix Springs(double factor) const {
+    std::vector<Eigen::Triplet<double>> t;
+    for (const SupportSpring& sp : s_.supports)
+      t.emplace_back(sp.dof, sp.dof, factor * sp.stiffness);
+    SparseMatrix k = Zero(n());
+    k.setFromTriplets(t.begin(), t.end());
+    return k;
+  }
+};
+
+}  // namespace
+
+std::vector<std::string> ModelEffectKinds() {
+  return {"added_mass", "support_flexibility", "attached_mass", "stiffness_loss",
+          "material_scaling"};
+}
+
+double ReferenceMass(const Structure& s) {
+  std::map<std::string, Eigen::VectorXd> rigid;  // component -> unit translation
+  const int n = static_cast<int>(s.dof_labels.size());
+  for (int i = 0; i < n; ++i) {
+    const auto [node, component] = SplitLabel(s.dof_labels[i]);
+    if (!IsTranslation(component)) continue;
+    auto it = rigid.try_emplace(component, Eigen::VectorXd::Zero(n)).first;
+    it->second[i] = 1.0;
+  }
+  double best = 0;
+  for (const auto& [component, u] : rigid) best = std::max(best, u.dot(s.mass * u));
+  return best;
+}
+
+std::vector<FamilyApplicability> ApplicableModelEffects(const Structure& s) {
+  const bool elements = HasElementMatrices(s);
+  const std::string no_elements =
+      "the model has no element matrices (a Matrix Market model needs `elements`)";
+  std::vector<FamilyApplicability> out;
+  for (const std::string& kind : ModelEffectKinds()) {
+    std::string why;
+    if (kind == "material_scaling" || kind == "stiffness_loss") {
+      if (!elements) why = no_elements;
+    } else if (kind == "added_mass") {
+      const bool any_wet = std::any_of(s.elements.begin(), s.elements.end(),
+                                       [](const ElementMatrices& e) { return e.wet; });
+      if (!elements) {
+        why = no_elements;
+      } else if (!HasHeights(s) && !any_wet) {
+        why = "no element is wet and the elements have no heights for a water level";
+      }
+    } else if (kind == "support_flexibility") {
+      if (s.supports.empty()) {
+        why =
+            "the model's supports are rigid (their DOFs are not in the model); give "
+            "them as springs to diagnose their flexibility";
+      }
+    } else if (kind == "attached_mass") {
+      if (!(ReferenceMass(s) > 0)) why = "the model has no translational DOF with mass";
+    }
+    out.push_back({kind, why});
+  }
+  return out;
+}
+
+std::vector<std::unique_ptr<ModelEffect>> CreateModelEffects(
+    const std::string& kind, const Structure& s, const ModelEffectOptions& options) {
+  const std::vector<std::string> kinds = ModelEffectKinds();
+  if (std::find(kinds.begin(), kinds.end(), kind) == kinds.end()) {
+    std::string list;
+    for (const auto& k : kinds) list += (list.empty() ? "" : ", ") + k;
+    throw InputError("effect", "unknown kind '" + kind + "' (known: " + list + ")");
+  }
+  for (const FamilyApplicability& a : ApplicableModelEffects(s)) {
+    if (a.kind == kind && !a.why_not.empty()) {
+      throw InputError("effect", kind + " does not apply to this " +
+                                     (s.type.empty() ? std::string("model") : s.type) +
+                                     " model: " + a.why_not);
+    }
+  }
+  std::vector<std::unique_ptr<ModelEffect>> out;
+  const int num_elements = static_cast<int>(s.elements.size());
+  if (kind == "material_scaling") {
+    EffectRegion r{"all elements", {}, {}};
+    for (int e = 0; e < num_elements; ++e) r.elements.push_back(e);
+    out.push_back(std::make_unique<MaterialScaling>(s, std::move(r)));
+  } else if (kind == "stiffness_loss") {
+    for (int e = 0; e < num_elements; ++e) {
+      out.push_back(std::make_unique<StiffnessLoss>(
+          s, EffectRegion{"element " + s.elements[e].label, {e}, {}}));
+    }
+  } else if (kind == "attached_mass") {
+    // One instance per node with translational DOFs, in DOF order.
+    const double m_ref = ReferenceMass(s);
+    std::vector<std::string> order;
+    std::map<std::string, std::vector<int>> dofs;
+    std::map<std::string, double> position;
+    for (int i = 0; i < static_cast<int>(s.dof_labels.size()); ++i) {
+      const auto [node, component] = SplitLabel(s.dof_labels[i]);
+      if (!IsTranslation(component)) continue;
+      if (!dofs.count(node)) {
+        order.push_back(node);
+        position[node] = i < static_cast<int>(s.dof_positions.size())
+                             ? s.dof_positions[i]
+                             : static_cast<double>(order.size());
+      }
+      dofs[node].push_back(i);
+    }
+    for (const std::string& node : order) {
+      out.push_back(std::make_unique<AttachedMass>(
+          s, EffectRegion{"node " + node, {}, dofs[node]}, m_ref, position[node]));
+    }
+  } else if (kind == "added_mass") {
+    const bool level = HasHeights(s);
+    EffectRegion r{level ? "below the water level" : "wet elements", {}, {}};
+    for (int e = 0; e < num_elements; ++e) {
+      if (level || s.elements[e].wet) r.elements.push_back(e);
+    }
+    out.push_back(
+        std::make_unique<AddedMass>(s, std::move(r), level, options.wet_only_added_mass));
+  } else if (kind == "support_flexibility") {
+    EffectRegion r{"supports", {}, {}};
+    for (const SupportSpring& sp : s.supports) r.dofs.push_back(sp.dof);
+    out.push_back(std::make_unique<SupportFlexibility>(s, std::move(r)));
+  }
+  return out;
+}
+
+void ApplyModelEffects(const Structure& structure,
+                       const std::vector<const ModelEffect*>& effects,
+                       const std::vector<Eigen::VectorXd>& thetas, Immersion immersion,
+                       SparseMatrix* stiffness, SparseMatrix* mass) {
+  if (effects.size() != thetas.size()) {
+    throw InputError("effects", std::to_string(effects.size()) + " effects but " +
+                                    std::to_string(thetas.size()) + " parameter vectors");
+  }
+  *stiffness = structure.stiffness;
+  *mass = structure.mass;
+  for (std::size_t k = 0; k < effects.size(); ++k) {
+    const ModelChange c = effects[k]->Change(thetas[k], immersion);
+    if (c.stiffness.size() > 0) *stiffness += c.stiffness;
+    if (c.mass.size() > 0) *mass += c.mass;
+  }
+}
+
+}  // namespace femup

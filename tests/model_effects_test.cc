@@ -1,0 +1,294 @@
+// Effects as changes of the model (model_effects.h), checked against closed
+// forms and other formulations: a two-mass chain's eigenvalues from the
+// quadratic formula, the continuous Euler-Bernoulli cantilever with a tip mass
+// (its transcendental frequency equation), the exact interval integral of
+// beam_modifications.h, the cantilever builder's own elastic base, and every
+// derivative against central differences.
+#include "femup/problems/model_effects.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "femup/beam_modifications.h"
+#include "femup/builders.h"
+#include "femup/errors.h"
+#include "femup/modal.h"
+
+namespace femup {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+Eigen::VectorXd Theta(std::initializer_list<double> v) {
+  Eigen::VectorXd out(static_cast<Eigen::Index>(v.size()));
+  Eigen::Index i = 0;
+  for (double x : v) out[i++] = x;
+  return out;
+}
+
+Eigen::VectorXd Eigenvalues(const SparseMatrix& k, const SparseMatrix& m) {
+  return SolveModes(k, m).eigenvalues;
+}
+
+// One instance of `kind` (the first, or the one whose region is `region`).
+std::unique_ptr<ModelEffect> One(const std::string& kind, const Structure& s,
+                                 const std::string& region = "",
+                                 const ModelEffectOptions& options = {}) {
+  auto all = CreateModelEffects(kind, s, options);
+  for (auto& e : all) {
+    if (region.empty() || e->region().name == region) return std::move(e);
+  }
+  ADD_FAILURE() << "no instance of " << kind << " at " << region;
+  return nullptr;
+}
+
+Structure TwoMassChain() {
+  return BuildSpringMassChain({{2.0, 1.0}, {300.0, 100.0}, {}});
+}
+
+// Eigenvalues of diag(m1, m2)^-1 [[k1 + k2, -k2], [-k2, k2]], by the quadratic
+// formula.
+std::pair<double, double> TwoMassEigenvalues(double m1, double m2, double k1, double k2) {
+  const double a = m1 * m2, b = -(m1 * k2 + m2 * (k1 + k2)), c = k1 * k2;
+  const double root = std::sqrt(b * b - 4 * a * c);
+  return {(-b - root) / (2 * a), (-b + root) / (2 * a)};
+}
+
+TEST(ModelEffects, StiffnessLossOfAStoreyMatchesTheQuadraticFormula) {
+  const Structure s = TwoMassChain();
+  auto loss = One("stiffness_loss", s, "element 2");
+  ASSERT_TRUE(loss);
+  SparseMatrix k, m;
+  ApplyModelEffects(s, {loss.get()}, {Theta({std::log(0.25)})}, Immersion::kDry, &k, &m);
+  const auto [l1, l2] = TwoMassEigenvalues(2.0, 1.0, 300.0, 75.0);
+  const Eigen::VectorXd lambda = Eigenvalues(k, m);
+  EXPECT_NEAR(lambda[0], l1, 1e-10 * l2);
+  EXPECT_NEAR(lambda[1], l2, 1e-10 * l2);
+  EXPECT_NEAR(loss->Magnitudes(Theta({std::log(0.25)}))[0].value, 0.25, 1e-15);
+}
+
+TEST(ModelEffects, SupportFlexibilityOfAChainSoftensTheGroundSpring) {
+  const Structure s = TwoMassChain();
+  auto support = One("support_flexibility", s);
+  ASSERT_TRUE(support);
+  SparseMatrix k, m;
+  const double c = 0.5;  // k1 -> 300 / 1.5 = 200
+  ApplyModelEffects(s, {support.get()}, {Theta({std::log(c)})}, Immersion::kDry, &k, &m);
+  const auto [l1, l2] = TwoMassEigenvalues(2.0, 1.0, 200.0, 100.0);
+  const Eigen::VectorXd lambda = Eigenvalues(k, m);
+  EXPECT_NEAR(lambda[0], l1, 1e-10 * l2);
+  EXPECT_NEAR(lambda[1], l2, 1e-10 * l2);
+}
+
+TEST(ModelEffects, MaterialScalingScalesEveryEigenvalue) {
+  CantileverSpec spec;
+  spec.node_heights = UniformHeights(2.0, 12);
+  spec.section = {206e9, 8.8e-4, 8.53e-8, 7850};
+  const Structure s = BuildCantilever(spec);
+  auto e = One("material_scaling", s);
+  ASSERT_TRUE(e);
+  SparseMatrix k, m;
+  ApplyModelEffects(s, {e.get()}, {Theta({std::log(0.9)})}, Immersion::kDry, &k, &m);
+  const Eigen::VectorXd before = Eigenvalues(s.stiffness, s.mass);
+  const Eigen::VectorXd after = Eigenvalues(k, m);
+  for (int i = 0; i < 6; ++i) EXPECT_NEAR(after[i] / before[i], 0.9, 1e-9) << i;
+}
+
+// The continuous Euler-Bernoulli cantilever with a tip mass mu rho A L: the
+// roots of 1 + cos b cosh b + mu b (cos b sinh b - sin b cosh b) = 0, b = beta L.
+double TipMassRoot(double mu, double lo, double hi) {
+  auto f = [mu](double b) {
+    return 1 + std::cos(b) * std::cosh(b) +
+           mu * b * (std::cos(b) * std::sinh(b) - std::sin(b) * std::cosh(b));
+  };
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (f(lo) * f(mid) <= 0 ? hi : lo) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+TEST(ModelEffects, AttachedMassAtTheTipMatchesTheContinuousBeam) {
+  CantileverSpec spec;
+  const double length = 1.9;
+  spec.node_heights = UniformHeights(length, 40);
+  spec.section = {206e9, 8.8e-4, 8.53e-8, 7850};
+  const Structure s = BuildCantilever(spec);
+  auto tip = One("attached_mass", s, "node n40");
+  ASSERT_TRUE(tip);
+  const double rho_a = spec.section.rho * spec.section.A;
+  const double mu = 0.3;
+  // theta such that the mass is mu rho A L.
+  const double ratio = mu * rho_a * length / ReferenceMass(s);
+  const Eigen::VectorXd theta = Theta({std::log(ratio)});
+  EXPECT_NEAR(tip->Magnitudes(theta)[0].value, mu * rho_a * length, 1e-12);
+  SparseMatrix k, m;
+  ApplyModelEffects(s, {tip.get()}, {theta}, Immersion::kDry, &k, &m);
+  const Eigen::VectorXd lambda = Eigenvalues(k, m);
+  const double ei = spec.section.E * spec.section.I;
+  // The two lowest modes are bending (the axial ones are far higher).
+  const double b1 = TipMassRoot(mu, 0.5, 1.8), b2 = TipMassRoot(mu, 3.0, 4.7);
+  for (auto [i, b] : {std::pair<int, double>{0, b1}, {1, b2}}) {
+    const double exact = std::pow(b / length, 4) * ei / rho_a;
+    EXPECT_NEAR(lambda[i] / exact, 1.0, 2e-4) << "mode " << i + 1;
+  }
+}
+
+TEST(ModelEffects, AddedMassOverTheWholeBeamScalesBendingModes) {
+  CantileverSpec spec;
+  spec.node_heights = UniformHeights(2.0, 10);
+  spec.section = {206e9, 8.8e-4, 8.53e-8, 7850};
+  spec.added_mass_basis = AddedMassBasis::kTransverse;
+  const Structure s = BuildCantilever(spec);
+  auto water = One("added_mass", s);
+  ASSERT_TRUE(water);
+  ASSERT_EQ(water->Parameters().size(), 2u);  // ratio and level
+  SparseMatrix k, m;
+  const double r = 0.8;
+  ApplyModelEffects(s, {water.get()}, {Theta({std::log(r), 2.0})}, Immersion::kWet, &k,
+                    &m);
+  const Eigen::VectorXd before = Eigenvalues(s.stiffness, s.mass);
+  const Eigen::VectorXd after = Eigenvalues(k, m);
+  // Transverse-only mass on bending modes: (1 + r) times their mass.
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(after[i] * (1 + r) / before[i], 1.0, 1e-9) << i;
+}
+
+TEST(ModelEffects, AddedMassBelowALevelAtANodeIsTheExactIntervalIntegral) {
+  CantileverSpec spec;
+  spec.node_heights = UniformHeights(2.0, 10);
+  spec.section = {206e9, 8.8e-4, 8.53e-8, 7850};
+  spec.added_mass_basis = AddedMassBasis::kTransverse;
+  const Structure s = BuildCantilever(spec);
+  auto water = One("added_mass", s);
+  ASSERT_TRUE(water);
+  const double r = 0.5, level = 1.2;  // a node
+  const ModelChange c = water->Change(Theta({std::log(r), level}), Immersion::kWet);
+  const double rho_a = spec.section.rho * spec.section.A;
+  const SparseMatrix exact = TransverseMassOverInterval(s, 0.0, level, r * rho_a);
+  EXPECT_LT((Eigen::MatrixXd(c.mass) - Eigen::MatrixXd(exact)).cwiseAbs().maxCoeff(),
+            1e-12 * Eigen::MatrixXd(exact).cwiseAbs().maxCoeff());
+}
+
+TEST(ModelEffects, AddedMassActsInWetStatesOnlyWhenAsked) {
+  const Structure s =
+      BuildSpringMassChain({{50, 50, 50}, {2e7, 2e7, 2e7}, {true, true, false}});
+  auto water = One("added_mass", s, "", ModelEffectOptions{true});
+  ASSERT_TRUE(water);
+  EXPECT_EQ(water->region().elements, (std::vector<int>{0, 1}));
+  const Eigen::VectorXd theta = Theta({std::log(0.2)});
+  EXPECT_EQ(water->Change(theta, Immersion::kDry).mass.size(), 0);
+  const SparseMatrix wet = water->Change(theta, Immersion::kWet).mass;
+  EXPECT_NEAR(wet.coeff(0, 0), 10.0, 1e-12);
+  EXPECT_NEAR(wet.coeff(1, 1), 10.0, 1e-12);
+  EXPECT_EQ(wet.coeff(2, 2), 0.0);
+  auto always = One("added_mass", s);
+  EXPECT_NEAR(always->Change(theta, Immersion::kDry).mass.coeff(0, 0), 10.0, 1e-12);
+}
+
+TEST(ModelEffects, ElasticBaseMatchesTheBuilderWithTheSoftenedSpring) {
+  CantileverSpec spec;
+  spec.node_heights = UniformHeights(2.0, 8);
+  spec.section = {206e9, 8.8e-4, 8.53e-8, 7850};
+  spec.support_rotation = 4e5;
+  spec.support_transverse = 5e7;
+  const Structure s = BuildCantilever(spec);
+  ASSERT_EQ(s.supports.size(), 2u);
+  auto support = One("support_flexibility", s);
+  ASSERT_TRUE(support);
+  const double c = 3.0;
+  SparseMatrix k, m;
+  ApplyModelEffects(s, {support.get()}, {Theta({std::log(c)})}, Immersion::kDry, &k, &m);
+  CantileverSpec softer = spec;
+  softer.support_rotation /= 1 + c;
+  softer.support_transverse /= 1 + c;
+  const Structure reference = BuildCantilever(softer);
+  EXPECT_LT(
+      (Eigen::MatrixXd(k) - Eigen::MatrixXd(reference.stiffness)).cwiseAbs().maxCoeff(),
+      1e-12 * Eigen::MatrixXd(reference.stiffness).cwiseAbs().maxCoeff());
+}
+
+// Every family's derivative against central differences of its change.
+TEST(ModelEffects, DerivativesMatchCentralDifferences) {
+  CantileverSpec spec;
+  spec.node_heights = UniformHeights(2.0, 10);
+  spec.section = {206e9, 8.8e-4, 8.53e-8, 7850};
+  spec.support_rotation = 4e5;
+  spec.added_mass_basis = AddedMassBasis::kTransverse;
+  const Structure s = BuildCantilever(spec);
+  for (const std::string& kind : ModelEffectKinds()) {
+    auto e = One(kind, s);
+    ASSERT_TRUE(e) << kind;
+    const auto params = e->Parameters();
+    Eigen::VectorXd theta(params.size());
+    for (std::size_t i = 0; i < params.size(); ++i)
+      theta[i] = params[i].lower + 0.37 * (params[i].upper - params[i].lower);
+    for (int i = 0; i < theta.size(); ++i) {
+      const double h = 1e-6 * (params[i].upper - params[i].lower);
+      Eigen::VectorXd up = theta, down = theta;
+      up[i] += h;
+      down[i] -= h;
+      const ModelChange d = e->Derivative(theta, i, Immersion::kWet);
+      const ModelChange a = e->Change(up, Immersion::kWet);
+      const ModelChange b = e->Change(down, Immersion::kWet);
+      auto check = [&](const SparseMatrix& da, const SparseMatrix& xa,
+                       const SparseMatrix& xb, const char* which) {
+        if (xa.size() == 0) {
+          EXPECT_EQ(da.size(), 0) << kind << " " << which;
+          return;
+        }
+        const Eigen::MatrixXd fd = (Eigen::MatrixXd(xa) - Eigen::MatrixXd(xb)) / (2 * h);
+        const double scale = std::max(fd.cwiseAbs().maxCoeff(), 1e-300);
+        EXPECT_LT((Eigen::MatrixXd(da) - fd).cwiseAbs().maxCoeff() / scale, 1e-6)
+            << kind << " " << which << " parameter " << i;
+      };
+      check(d.stiffness, a.stiffness, b.stiffness, "stiffness");
+      check(d.mass, a.mass, b.mass, "mass");
+    }
+  }
+}
+
+TEST(ModelEffects, SaysWhichFamiliesApplyAndWhyNot) {
+  CantileverSpec spec;
+  spec.node_heights = UniformHeights(2.0, 4);
+  spec.section = {206e9, 8.8e-4, 8.53e-8, 7850};
+  const Structure clamped = BuildCantilever(spec);
+  for (const FamilyApplicability& a : ApplicableModelEffects(clamped)) {
+    if (a.kind == "support_flexibility") {
+      EXPECT_NE(a.why_not.find("rigid"), std::string::npos) << a.why_not;
+    } else {
+      EXPECT_TRUE(a.why_not.empty()) << a.kind << ": " << a.why_not;
+    }
+  }
+  try {
+    CreateModelEffects("support_flexibility", clamped);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("cantilever"), std::string::npos) << e.what();
+  }
+  const Structure dry_chain = BuildSpringMassChain({{1, 1}, {10, 10}, {}});
+  for (const FamilyApplicability& a : ApplicableModelEffects(dry_chain)) {
+    EXPECT_EQ(a.why_not.empty(), a.kind != "added_mass") << a.kind << ": " << a.why_not;
+  }
+  EXPECT_EQ(CreateModelEffects("stiffness_loss", dry_chain).size(), 2u);
+  EXPECT_EQ(CreateModelEffects("attached_mass", dry_chain).size(), 2u);
+  try {
+    CreateModelEffects("corrosion", dry_chain);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("material_scaling"), std::string::npos);
+  }
+}
+
+TEST(ModelEffects, ReferenceMassIsTheRigidTranslationsMass) {
+  EXPECT_DOUBLE_EQ(ReferenceMass(TwoMassChain()), 3.0);
+  CantileverSpec spec;
+  spec.node_heights = UniformHeights(2.0, 4);
+  spec.section = {206e9, 8.8e-4, 8.53e-8, 7850};
+  spec.support_transverse = 1e9;  // the base node moves too: the whole beam's mass
+  const Structure s = BuildCantilever(spec);
+  EXPECT_NEAR(ReferenceMass(s), 7850 * 8.8e-4 * 2.0, 1e-9);
+}
+
+}  // namespace
+}  // namespace femup
