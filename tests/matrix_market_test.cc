@@ -379,6 +379,89 @@ std::string CaseName(const ::testing::TestParamInfo<MalformedCase>& param_info) 
 INSTANTIATE_TEST_SUITE_P(AllCases, MalformedFileTest,
                          ::testing::ValuesIn(kMalformedCases), CaseName);
 
+// ---------------------------------------------------------------------------
+// Size limits (fuzzing, issue 25): a size line is checked before anything is
+// allocated. The inputs are those of fuzz/regressions/matrix_market/.
+
+TEST(MatrixMarketSizeLimitsTest, DenseReadRefusesMoreThan2To26Entries) {
+  // Read dense, this allocated 8 GB; read sparse, it is a legitimate matrix.
+  const std::string text = BANNER "100000 10000 1\n1 1 1.5\n";
+  const InputError error =
+      CatchInputError([&] { ParseMatrixMarketDense(text, "big.mtx"); });
+  EXPECT_EQ(error.where(), "big.mtx:2");
+  ExpectContains(error.what(),
+                 "a 100000 x 10000 matrix read dense has 1000000000 entries");
+  ExpectContains(error.what(), "expected at most 67108864");
+  const SparseMatrix a = ParseMatrixMarket(text, "big.mtx");
+  EXPECT_EQ(a.rows(), 100000);
+  EXPECT_EQ(a.cols(), 10000);
+  EXPECT_EQ(a.nonZeros(), 1);
+  // Just above the limit (8192 x 8192 is the largest square matrix allowed).
+  ExpectContains(CatchInputError([] {
+                   ParseMatrixMarketDense(BANNER "8193 8192 0\n", "a.mtx");
+                 }).what(),
+                 "has 67117056 entries");
+}
+
+TEST(MatrixMarketSizeLimitsTest, SparseReadRefusesHugeDimensionsWithFewEntries) {
+  // Each allocated 8 GiB of indices (Eigen's outer index, or the transposed
+  // copy setFromTriplets makes).
+  for (const char* size : {"1 2147483647 0", "2147483647 1 0", "16777217 1 0"}) {
+    SCOPED_TRACE(size);
+    const std::string text = BANNER + std::string(size) + "\n";
+    // Read dense, 16777217 x 1 is within the dense limit (128 MiB).
+    const int reads = std::string(size) == "16777217 1 0" ? 1 : 2;
+    for (int dense = 0; dense < reads; ++dense) {
+      const InputError error = CatchInputError([&] {
+        if (dense) {
+          ParseMatrixMarketDense(text, "huge.mtx");
+        } else {
+          ParseMatrixMarket(text, "huge.mtx");
+        }
+      });
+      EXPECT_EQ(error.where(), "huge.mtx:2");
+      ExpectContains(error.what(), "size line: a ");
+    }
+  }
+  const InputError error =
+      CatchInputError([] { ParseMatrixMarket(BANNER "1 2147483647 0\n", "huge.mtx"); });
+  ExpectContains(error.what(),
+                 "a 1 x 2147483647 matrix with 0 entries would need 8 GiB of row and "
+                 "column indices; expected at most 16777216 (2^24) rows and columns, or "
+                 "more only with at least one entry per 16 rows (columns): here at least "
+                 "134217728");
+  // An array file with no entries (0 rows) says the same.
+  ExpectContains(CatchInputError([] {
+                   ParseMatrixMarket(ARRAY_BANNER "0 2147483647\n", "huge.mtx");
+                 }).what(),
+                 "a 0 x 2147483647 matrix with 0 entries");
+  // Through the file reader, the path is named.
+  const ScratchDir scratch;
+  const std::string path =
+      WriteText(scratch.path(), "huge.mtx", BANNER "2147483647 1 0\n");
+  EXPECT_EQ(CatchInputError([&] { ReadMatrixMarket(path); }).where(), path + ":2");
+  EXPECT_EQ(CatchInputError([&] { ReadMatrixMarketDense(path); }).where(), path + ":2");
+}
+
+TEST(MatrixMarketSizeLimitsTest, LargeSparseMatricesWithFewEntriesAreRead) {
+  // An element matrix of a 10^6-DOF model in global DOFs: a few entries.
+  const SparseMatrix a = ParseMatrixMarket(
+      "%%MatrixMarket matrix coordinate real symmetric\n"
+      "1000000 1000000 2\n1 1 4\n1000000 1 -1\n",
+      "element.mtx");
+  EXPECT_EQ(a.rows(), 1000000);
+  EXPECT_EQ(a.nonZeros(), 3);
+  EXPECT_EQ(a.coeff(0, 999999), -1.0);
+  // A dimension above 2^24 with at least one entry per 16 columns passes the
+  // size line (and the file must then hold the entries).
+  ExpectContains(
+      CatchInputError([] {
+        ParseMatrixMarket(BANNER "32 20000000 1250000\n", "b.mtx");
+      }).what(),
+      "b.mtx:2: the size line (line 2) declares 1250000 entries, the file ends "
+      "after 0");
+}
+
 #undef BANNER
 #undef ARRAY_BANNER
 

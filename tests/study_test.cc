@@ -207,5 +207,46 @@ measurements: [{state: air, frequencies_hz: [6.5]}]
               {"node_heights", "increase"});
 }
 
+// Fuzzing (issue 25): a key that is null, a list or a mapping escaped LoadStudy
+// as yaml-cpp's TypedBadConversion ("internal error", without the file's name).
+// The inputs of fuzz/regressions/study/ and the same at every depth.
+TEST(Study, KeysThatAreNotNamesAreInputErrors) {
+  ExpectError("list_key.yaml", "[a]: 1\n",
+              {"list_key.yaml:1:1", "expected each key to be a name, found a list"});
+  ExpectError("complex_key.yaml", "name: x\n? [a]\n: 1\n",
+              {"complex_key.yaml:2:3", "found a list"});
+  ExpectError("map_key.yaml", "{a: 1}: 2\n", {"found a mapping"});
+  ExpectError("null_key.yaml", "~: 1\nmodel: {type: chain}\n",
+              {"null_key.yaml:1:1", "found an empty (null) key"});
+  ExpectError("empty_key.yaml", "? \n: 1\n", {"empty_key.yaml:2:1", "found a mapping"});
+  ExpectError("truth_key.yaml", Replace(kChain, "{\"added_mass[1]\": 0.2}", "{[a]: 0.2}"),
+              {"truth_key.yaml:", "truth: expected each key to be a name, found a list"});
+  ExpectError("model_key.yaml", Replace(kChain, "  wet: [1]\n", "  wet: [1]\n  [x]: 1\n"),
+              {"model: expected each key to be a name"});
+  const std::string parameters = "parameters:\n  fix: {? [m]: 0.1}\n";
+  ExpectError("fix_key.yaml", kChain + parameters, {"parameters.fix: expected each key"});
+  ExpectError("bounds_key.yaml",
+              kChain + std::string("parameters:\n  bounds: {{a: 1}: [0, 1]}\n"),
+              {"parameters.bounds: expected each key to be a name, found a mapping"});
+  ExpectError(
+      "equality_key.yaml",
+      kChain + std::string("parameters:\n  equalities:\n    - coefficients: {[a]: 1}\n"),
+      {"parameters.equalities[1].coefficients: expected each key"});
+}
+
+// The text of a study, without a file: errors name the path given.
+TEST(Study, ParseStudyReadsTextAndNamesThePath) {
+  const Study s = ParseStudy(kChain, "in_memory/chain.yaml");
+  EXPECT_EQ(s.model.num_dofs(), 3);
+  EXPECT_EQ(s.path, "in_memory/chain.yaml");
+  try {
+    ParseStudy("model: [unclosed\n", "in_memory/bad.yaml");
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("in_memory/bad.yaml:"), std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace femup

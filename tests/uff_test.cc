@@ -587,12 +587,12 @@ TEST(UffRoundTrip, MixedFileKeepsOrderAndSkipsUnsupportedDatasetsWithANote) {
   const UffModeShape shape = MakeShape(UffAnalysisType::kNormalMode, false, 3);
   const UffFunction f = MakeFunction(UffOrdinateType::kRealDouble, true, true, 5);
   std::string text = FormatUff({nodes, shape}, "a.uff");
-  // An unsupported dataset (2411, double precision nodes), a 55 of a
-  // transient analysis, and an unsupported binary dataset skipped by its
-  // header counts, with blank lines between datasets.
+  // An unsupported dataset (2412, elements), a 55 of a transient analysis,
+  // and an unsupported binary dataset skipped by its header counts, with blank
+  // lines between datasets.
   text +=
-      "\n    -1\n  2411\n         1         1         1        11\n"
-      "   0.0000000000000000E+00   0.0000000000000000E+00   0.0000000000000000E+00\n"
+      "\n    -1\n  2412\n         1        91         1         1         0         3\n"
+      "         1         2         3\n"
       "    -1\n\n";
   text +=
       "    -1\n    55\nNONE\nNONE\nNONE\nNONE\nNONE\n"
@@ -613,10 +613,125 @@ TEST(UffRoundTrip, MixedFileKeepsOrderAndSkipsUnsupportedDatasetsWithANote) {
   ExpectSameFunction(f, *file.Functions()[0], 0.0, 0.0);
   ASSERT_EQ(file.notes.size(), 3u);
   EXPECT_NE(file.notes[0].find("mixed.uff: line"), std::string::npos) << file.notes[0];
-  EXPECT_NE(file.notes[0].find("dataset 2411 is not supported"), std::string::npos);
+  EXPECT_NE(file.notes[0].find("dataset 2412 is not supported"), std::string::npos);
   EXPECT_NE(file.notes[1].find("analysis type 4"), std::string::npos) << file.notes[1];
   EXPECT_NE(file.notes[2].find("dataset 2414b is not supported"), std::string::npos)
       << file.notes[2];
+  // Every dataset is listed with its line, read or skipped.
+  ASSERT_EQ(file.headers.size(), 6u);
+  const int numbers[6] = {15, 55, 2412, 55, 2414, 58};
+  const int indices[6] = {0, 1, -1, -1, -1, 2};
+  for (size_t i = 0; i < 6; ++i) {
+    EXPECT_EQ(file.headers[i].number, numbers[i]) << i;
+    EXPECT_EQ(file.headers[i].index, indices[i]) << i;
+  }
+  EXPECT_TRUE(file.headers[4].binary);
+  EXPECT_EQ(file.headers[0].line, 2);
+  EXPECT_EQ(std::get<UffNodes>(file.datasets[0]).line, 2);
+  EXPECT_EQ(std::get<UffNodes>(file.datasets[0]).nodes[1].line, 4);
+  EXPECT_EQ(std::get<UffModeShape>(file.datasets[1]).line, file.headers[1].line);
+  EXPECT_EQ(std::get<UffFunction>(file.datasets[2]).line, file.headers[5].line);
+  for (size_t i = 1; i < 6; ++i)
+    EXPECT_GT(file.headers[i].line, file.headers[i - 1].line);
+}
+
+TEST(UffRoundTrip, Nodes2411InDoublePrecision) {
+  UffNodes nodes;
+  nodes.dataset = 2411;
+  nodes.nodes = {{1, 0, 0, 11, {0.1, -171.1755676269531, 1.0 / 3.0}},
+                 {20000000, 1, 2, 8, {1.25e-30, 9.87654321012345e+20, -0.0}}};
+  const std::string text = FormatUff({nodes}, "n.unv");
+  const auto lines = Lines(text);
+  ASSERT_EQ(lines.size(), 7u);
+  EXPECT_EQ(lines[1].substr(0, 6), "  2411");
+  EXPECT_EQ(lines[2], "         1         0         0        11");
+  EXPECT_EQ(
+      lines[3],
+      "   1.0000000000000001E-01  -1.7117556762695310E+02   3.3333333333333331E-01");
+  const UffFile file = ParseUff(text, "n.unv");
+  ASSERT_EQ(file.Nodes().size(), 1u);
+  const UffNodes& read = *file.Nodes()[0];
+  EXPECT_EQ(read.dataset, 2411);
+  ASSERT_EQ(read.nodes.size(), 2u);
+  for (size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(read.nodes[i].label, nodes.nodes[i].label);
+    EXPECT_EQ(read.nodes[i].definition_cs, nodes.nodes[i].definition_cs);
+    EXPECT_EQ(read.nodes[i].displacement_cs, nodes.nodes[i].displacement_cs);
+    EXPECT_EQ(read.nodes[i].color, nodes.nodes[i].color);
+    for (size_t c = 0; c < 3; ++c) EXPECT_EQ(read.nodes[i].xyz[c], nodes.nodes[i].xyz[c]);
+  }
+  EXPECT_EQ(read.nodes[1].line, 5);
+  // Fortran D exponents, as Permas writes them; a truncated node.
+  const UffFile d = ParseUff(
+      "    -1\n  2411\n         7         0         0        11\n"
+      "   9.4999999999999996D-01   5.0000000000000003D-02   0.0000000000000000D+00\n"
+      "    -1\n",
+      "permas.unv");
+  ASSERT_EQ(d.Nodes().size(), 1u);
+  EXPECT_DOUBLE_EQ(d.Nodes()[0]->nodes[0].xyz[0], 0.95);
+  EXPECT_DOUBLE_EQ(d.Nodes()[0]->nodes[0].xyz[1], 0.05);
+  try {
+    ParseUff("    -1\n  2411\n         7         0         0        11\n    -1\n",
+             "t.unv");
+    ADD_FAILURE() << "truncated 2411 accepted";
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("t.unv: line 4: dataset 2411 record 2 (coordinates of node 7)"),
+              std::string::npos)
+        << msg;
+  }
+}
+
+TEST(UffRealData, VkiNodes2411AmongOtherDatasets) {
+  // tests/data/uff/vki_heat_engine_housing.unv (README there): datasets 151,
+  // 164, 2411 (10 nodes), 2412 and 2414, CRLF line endings. Node 1 at
+  // (-171.1755676269531, 103.6403427124023, 138.4829101562500), node 10 at
+  // (-147.6755676269531, 101.9969635009766, 147.4829101562500).
+  const UffFile file =
+      ReadUff(std::string(FEMUP_TEST_DATA_DIR) + "/uff/vki_heat_engine_housing.unv");
+  ASSERT_EQ(file.headers.size(), 5u);
+  const int numbers[5] = {151, 164, 2411, 2412, 2414};
+  const long long lines[5] = {2, 12, 18, 41, 60};
+  for (size_t i = 0; i < 5; ++i) {
+    EXPECT_EQ(file.headers[i].number, numbers[i]);
+    EXPECT_EQ(file.headers[i].line, lines[i]);
+    EXPECT_EQ(file.headers[i].index, i == 2 ? 0 : -1);
+  }
+  EXPECT_EQ(file.notes.size(), 4u);
+  ASSERT_EQ(file.Nodes().size(), 1u);
+  const UffNodes& n = *file.Nodes()[0];
+  EXPECT_EQ(n.dataset, 2411);
+  ASSERT_EQ(n.nodes.size(), 10u);
+  EXPECT_EQ(n.nodes[0].color, 11);
+  EXPECT_DOUBLE_EQ(n.nodes[0].xyz[0], -171.1755676269531);
+  EXPECT_DOUBLE_EQ(n.nodes[0].xyz[1], 103.6403427124023);
+  EXPECT_DOUBLE_EQ(n.nodes[0].xyz[2], 138.4829101562500);
+  EXPECT_EQ(n.nodes[9].label, 10);
+  EXPECT_DOUBLE_EQ(n.nodes[9].xyz[0], -147.6755676269531);
+  EXPECT_DOUBLE_EQ(n.nodes[9].xyz[2], 147.4829101562500);
+  EXPECT_EQ(n.nodes[9].line, 37);
+}
+
+TEST(UffRealData, ComplexModeWithValuesRunTogether) {
+  // tests/data/uff/pyuff_uff55_complex_mode.uff: analysis type 3, data type 5,
+  // 3 values per node, mode 1; record 8 "-1.111111E-01 4.111111E+01
+  // 4.111111E+03-3.111111E+03-1.111110E+05-2.111110E+05" (the last fields run
+  // together); a record 10 with "0.000000E+00-4.111111E-02".
+  const UffFile file =
+      ReadUff(std::string(FEMUP_TEST_DATA_DIR) + "/uff/pyuff_uff55_complex_mode.uff");
+  ASSERT_EQ(file.ModeShapes().size(), 1u);
+  const UffModeShape& m = *file.ModeShapes()[0];
+  EXPECT_EQ(m.analysis_type, UffAnalysisType::kComplexFirstOrder);
+  EXPECT_TRUE(m.complex_data);
+  EXPECT_EQ(m.mode_number, 1);
+  EXPECT_EQ(m.id_lines[0], "TESTTEST:Cfg=0:C1:trans:111121");
+  EXPECT_EQ(m.eigenvalue, std::complex<double>(-1.111111e-01, 4.111111e+01));
+  EXPECT_EQ(m.modal_a, std::complex<double>(4.111111e+03, -3.111111e+03));
+  EXPECT_EQ(m.modal_b, std::complex<double>(-1.111110e+05, -2.111110e+05));
+  EXPECT_EQ(m.nodes, (std::vector<int>{111111, 60101}));
+  EXPECT_EQ(m.node_lines, (std::vector<long long>{11, 13}));
+  EXPECT_EQ(m.values(0, 1), std::complex<double>(1.111111e-01, 9.111111e-02));
+  EXPECT_EQ(m.values(1, 2), std::complex<double>(-4.111111e-02, -1.111111e-02));
 }
 
 // ---------------------------------------------------------------------------

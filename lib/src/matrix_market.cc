@@ -165,12 +165,17 @@ struct Parsed {
   std::vector<double> values;     // array: as listed, column-major
 };
 
+// Which reader the text is for: the size limits differ (see the header).
+enum class Target { kSparse, kDense };
+
 class Reader {
  public:
-  explicit Reader(std::string path) : path_(std::move(path)) {}
+  Reader(std::string_view text, std::string name, Target target)
+      : text_(text), path_(std::move(name)), target_(target) {
+    position_ = internal::AfterByteOrderMark(text_);
+  }
 
   Parsed Read() {
-    Load();
     ReadBanner();
     ReadSizeLine();
     if (parsed_.format == Format::kCoordinate) {
@@ -187,27 +192,12 @@ class Reader {
     throw InputError(Where(line_number_), what);
   }
 
-  void Load() {
-    std::ifstream in(path_, std::ios::binary);
-    if (!in) {
-      std::error_code ec;
-      const bool exists = std::filesystem::exists(path_, ec);
-      throw InputError(path_, exists ? "cannot open the Matrix Market file for reading"
-                                     : "Matrix Market file not found");
-    }
-    std::ostringstream buffer;
-    buffer << in.rdbuf();
-    if (in.bad()) throw InputError(path_, "error while reading the Matrix Market file");
-    text_ = buffer.str();
-    if (text_.compare(0, 3, "\xEF\xBB\xBF") == 0) position_ = 3;  // UTF-8 BOM
-  }
-
   // Next line without its terminator; false at the end of the file.
   bool NextLine(std::string_view* line) {
     if (position_ >= text_.size()) return false;
     size_t end = text_.find('\n', position_);
-    if (end == std::string::npos) end = text_.size();
-    *line = std::string_view(text_).substr(position_, end - position_);
+    if (end == std::string_view::npos) end = text_.size();
+    *line = text_.substr(position_, end - position_);
     position_ = end + 1;
     ++line_number_;
     return true;
@@ -323,6 +313,48 @@ class Reader {
     } else {
       declared_ = parsed_.rows * parsed_.cols;
     }
+    CheckSizeLimits();
+  }
+
+  // The size limits of the header, before anything is allocated.
+  void CheckSizeLimits() const {
+    const std::string size =
+        std::to_string(parsed_.rows) + " x " + std::to_string(parsed_.cols);
+    if (target_ == Target::kDense) {
+      const long long entries = parsed_.rows * parsed_.cols;
+      if (entries > kMatrixMarketMaxDenseEntries) {
+        Fail("size line: a " + size + " matrix read dense has " +
+             std::to_string(entries) + " entries (" +
+             Bytes(8.0 * static_cast<double>(entries)) + "); expected at most " +
+             std::to_string(kMatrixMarketMaxDenseEntries) + " (2^26 doubles, 512 MiB)");
+      }
+      return;
+    }
+    const long long dimension = std::max(parsed_.rows, parsed_.cols);
+    const long long allowed =
+        std::max(kMatrixMarketFreeDimension, kMatrixMarketDimensionPerEntry * declared_);
+    if (dimension > allowed) {
+      Fail("size line: a " + size + " matrix with " + std::to_string(declared_) +
+           " entries would need " +
+           Bytes(4.0 * static_cast<double>(parsed_.rows + parsed_.cols)) +
+           " of row and column indices; expected at most " +
+           std::to_string(kMatrixMarketFreeDimension) +
+           " (2^24) rows and columns, or more only with at least one entry per " +
+           std::to_string(kMatrixMarketDimensionPerEntry) +
+           " rows (columns): here at least " +
+           std::to_string((dimension + kMatrixMarketDimensionPerEntry - 1) /
+                          kMatrixMarketDimensionPerEntry));
+    }
+  }
+
+  static std::string Bytes(double bytes) {
+    const char* units[] = {"bytes", "KiB", "MiB", "GiB", "TiB"};
+    int unit = 0;
+    while (bytes >= 1024 && unit < 4) bytes /= 1024, ++unit;
+    std::ostringstream out;
+    out.precision(3);
+    out << bytes << " " << units[unit];
+    return out.str();
   }
 
   // The capacity worth reserving for `declared_` entries of at least
@@ -452,8 +484,9 @@ class Reader {
     FailIfMore();
   }
 
+  std::string_view text_;
   std::string path_;
-  std::string text_;
+  Target target_;
   size_t position_ = 0;
   long long line_number_ = 0;
   long long size_line_ = 0;
@@ -543,7 +576,15 @@ enum ElementSlot { kStiffnessSlot, kMassSlot, kAddedMassSlot, kNumSlots };
 // ---------------------------------------------------------------------------
 
 SparseMatrix ReadMatrixMarket(const std::string& path) {
-  Parsed p = Reader(path).Read();
+  return ParseMatrixMarket(internal::ReadFileText(path, "Matrix Market file"), path);
+}
+
+Eigen::MatrixXd ReadMatrixMarketDense(const std::string& path) {
+  return ParseMatrixMarketDense(internal::ReadFileText(path, "Matrix Market file"), path);
+}
+
+SparseMatrix ParseMatrixMarket(std::string_view text, const std::string& name) {
+  Parsed p = Reader(text, name, Target::kSparse).Read();
   SparseMatrix a(p.rows, p.cols);
   if (p.format == Format::kCoordinate) {
     a.setFromTriplets(p.triplets.begin(), p.triplets.end());  // sums duplicates
@@ -561,8 +602,8 @@ SparseMatrix ReadMatrixMarket(const std::string& path) {
   return a;
 }
 
-Eigen::MatrixXd ReadMatrixMarketDense(const std::string& path) {
-  Parsed p = Reader(path).Read();
+Eigen::MatrixXd ParseMatrixMarketDense(std::string_view text, const std::string& name) {
+  Parsed p = Reader(text, name, Target::kDense).Read();
   Eigen::MatrixXd a = Eigen::MatrixXd::Zero(p.rows, p.cols);
   if (p.format == Format::kCoordinate) {
     for (const Triplet& t : p.triplets) a(t.row(), t.col()) += t.value();
@@ -753,6 +794,7 @@ Structure ImportMatrixMarketStructure(const MatrixMarketModelSpec& spec,
 
   // Elements in global DOFs.
   Structure structure;
+  structure.type = "matrix_market";
   std::map<int, int> ids;             // id -> position in spec.elements
   std::map<std::string, int> labels;  // label -> position
   for (int e = 0; e < num_elements; ++e) {

@@ -1,4 +1,4 @@
-// Universal File Format datasets 15, 55 and 58/58b: reader and writer.
+// Universal File Format datasets 15, 55, 58/58b and 2411: reader and writer.
 //
 // Reading works on the whole file in memory (binary 58b values may contain any
 // byte, so lines are cut from a byte position rather than by a line stream).
@@ -191,6 +191,15 @@ const std::vector<Field> kNodeFields = {{"node label", 10, true},
                                         {"Y coordinate", 13, false},
                                         {"Z coordinate", 13, false}};
 
+// Dataset 2411: record 1 of a node (record 2 is three coordinates, 3D25.16).
+const std::vector<Field> k2411Record1 = {{"node label", 10, true},
+                                         {"export coordinate system", 10, true},
+                                         {"displacement coordinate system", 10, true},
+                                         {"color", 10, true}};
+const std::vector<Field> k2411Record2 = {{"X coordinate", 25, false},
+                                         {"Y coordinate", 25, false},
+                                         {"Z coordinate", 25, false}};
+
 const std::vector<Field> k58Record7 = {
     {"ordinate data type", 10, true},  {"number of points", 10, true},
     {"abscissa spacing", 10, true},    {"abscissa minimum", 13, false},
@@ -375,21 +384,29 @@ class Reader {
   void ReadDataset() {
     const Header header = ReadHeader();
     dataset_ = "dataset " + std::to_string(header.number) + (header.binary ? "b" : "");
+    UffDatasetHeader entry;
+    entry.number = header.number;
+    entry.binary = header.binary;
+    entry.line = header.line;
+    const int index = static_cast<int>(file_.datasets.size());
     if (header.number == 58) {
-      file_.datasets.emplace_back(Read58(header));
-      return;
-    }
-    if (!header.binary && header.number == 15) {
-      file_.datasets.emplace_back(Read15());
-      return;
-    }
-    if (!header.binary && header.number == 55) {
+      UffFunction f = Read58(header);
+      f.line = header.line;
+      file_.datasets.emplace_back(std::move(f));
+    } else if (!header.binary && (header.number == 15 || header.number == 2411)) {
+      UffNodes nodes = header.number == 15 ? Read15() : Read2411();
+      nodes.line = header.line;
+      file_.datasets.emplace_back(std::move(nodes));
+    } else if (!header.binary && header.number == 55) {
       UffModeShape shape;
+      shape.line = header.line;
       if (Read55(&shape)) file_.datasets.emplace_back(std::move(shape));
-      return;
+    } else {
+      Note(header.line, dataset_ + " is not supported; skipped");
+      Skip(header);
     }
-    Note(header.line, dataset_ + " is not supported; skipped");
-    Skip(header);
+    if (static_cast<int>(file_.datasets.size()) > index) entry.index = index;
+    file_.headers.push_back(entry);
   }
 
   // Skips an unsupported dataset: by the counts of a binary header, else up to
@@ -593,6 +610,32 @@ class Reader {
       node.displacement_cs = v[2].integer;
       node.color = v[3].integer;
       node.xyz = {v[4].real, v[5].real, v[6].real};
+      node.line = line_;
+      out.nodes.push_back(node);
+    }
+    return out;
+  }
+
+  // --- Dataset 2411 -----------------------------------------------------------
+
+  UffNodes Read2411() {
+    UffNodes out;
+    out.dataset = 2411;
+    std::string_view line;
+    while (NextLineBeforeEnd(&line)) {
+      const std::string r1 =
+          "record 1 (node " + std::to_string(out.nodes.size() + 1) + ")";
+      const auto v1 = NumericRecord(line, k2411Record1, r1);
+      UffNode node;
+      node.label = v1[0].integer;
+      node.definition_cs = v1[1].integer;
+      node.displacement_cs = v1[2].integer;
+      node.color = v1[3].integer;
+      node.line = line_;
+      const std::string r2 =
+          "record 2 (coordinates of node " + std::to_string(node.label) + ")";
+      const auto v2 = NumericRecord(RecordLine(r2), k2411Record2, r2);
+      node.xyz = {v2[0].real, v2[1].real, v2[2].real};
       out.nodes.push_back(node);
     }
     return out;
@@ -681,6 +724,7 @@ class Reader {
       const std::string r9 = "record 9 (node " + std::to_string(rows.size() + 1) + ")";
       const auto v9 = NumericRecord(line, {{"node number", 10, true}}, r9);
       shape->nodes.push_back(v9[0].integer);
+      shape->node_lines.push_back(line_);
       const std::string r10 =
           "record 10 (values of node " + std::to_string(v9[0].integer) + ")";
       rows.push_back(ValueBlock(count, {13}, r10, "values"));
@@ -986,9 +1030,12 @@ class Writer {
     }
   }
 
-  // --- 15 ---
+  // --- 15 and 2411 ---
   void Write(const UffNodes& d) {
-    number_ = 15;
+    number_ = d.dataset;
+    if (d.dataset != 15 && d.dataset != 2411) {
+      Fail("dataset " + std::to_string(d.dataset) + ": nodes are written as 15 or 2411");
+    }
     for (size_t k = 0; k < d.nodes.size(); ++k) {
       const UffNode& node = d.nodes[k];
       const std::string where = "node " + std::to_string(k + 1);
@@ -999,12 +1046,18 @@ class Writer {
       for (int c = 0; c < 3; ++c)
         Real(node.xyz[static_cast<size_t>(c)], where + " coordinates");
     }
-    Begin(15);
+    Begin(d.dataset);
     out_ += std::string(74, ' ') + "\n";
     for (const UffNode& node : d.nodes) {
-      AppendF(&out_, "%10d%10d%10d%10d%13.5E%13.5E%13.5E\n", node.label,
-              node.definition_cs, node.displacement_cs, node.color, node.xyz[0],
-              node.xyz[1], node.xyz[2]);
+      if (d.dataset == 15) {
+        AppendF(&out_, "%10d%10d%10d%10d%13.5E%13.5E%13.5E\n", node.label,
+                node.definition_cs, node.displacement_cs, node.color, node.xyz[0],
+                node.xyz[1], node.xyz[2]);
+      } else {
+        AppendF(&out_, "%10d%10d%10d%10d\n%25.16E%25.16E%25.16E\n", node.label,
+                node.definition_cs, node.displacement_cs, node.color, node.xyz[0],
+                node.xyz[1], node.xyz[2]);
+      }
     }
     End();
   }

@@ -49,8 +49,22 @@ void ReadUffRecords(const std::string& file, IdentifyResult* r,
     if (f->function_type == 1 || f->function_type == 4) fs.push_back(f);
   }
   if (fs.empty()) {
+    const std::size_t shapes = uff.ModeShapes().size();
+    if (shapes > 0 && all.empty()) {
+      throw InputError(
+          file, "holds " + std::to_string(shapes) +
+                    " mode shape(s) (dataset 55) and no records (dataset 58): there is "
+                    "nothing to identify. Use the modes directly as a study "
+                    "measurement's modes_file (with uff_dofs or geometry_file to map "
+                    "the nodes to model DOFs; README, Study files); femup info " +
+                    file + " lists them");
+    }
     throw InputError(file,
-                     "no time history (function type 1) or FRF (type 4) in dataset 58");
+                     "no time history (function type 1) or FRF (type 4) in dataset 58" +
+                         (shapes > 0 ? " (it holds " + std::to_string(shapes) +
+                                           " mode shape(s), dataset 55: use them as a "
+                                           "study measurement's modes_file)"
+                                     : std::string()));
   }
   const int type = fs[0]->function_type;
   const Eigen::Index n = fs[0]->y.size();

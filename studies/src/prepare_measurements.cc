@@ -1,7 +1,7 @@
 // The measured states of a study, made ready for the solvers: simulated from
-// the truth, given, identified from a record file by ERA, or read from the
-// modes.json of `femup identify`; then expanded from the sensors to every DOF
-// where the study asks.
+// the truth, given, identified from a record file by ERA, read from the
+// modes.json of `femup identify` or from the modes of a UFF file (dataset 55);
+// then expanded from the sensors to every DOF where the study asks.
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -15,15 +15,15 @@
 #include "femup/expansion.h"
 #include "femup/modal.h"
 #include "femup/studies/study.h"
+#include "femup/uff.h"
+#include "femup/uff_modes.h"
+#include "modes_json.h"
 
 namespace femup {
 namespace {
 
-struct FileModes {
-  std::vector<std::string> channels;
-  std::vector<double> frequencies_hz;
-  std::vector<Eigen::VectorXd> shapes;
-};
+using internal::FileModes;
+using internal::ReadModesJson;
 
 FileModes ModesOfIdentify(const IdentifyResult& r) {
   FileModes out;
@@ -31,51 +31,6 @@ FileModes ModesOfIdentify(const IdentifyResult& r) {
   for (const StableMode& m : r.modes) {
     out.frequencies_hz.push_back(m.mode.frequency_hz);
     out.shapes.push_back(m.mode.shape);
-  }
-  return out;
-}
-
-// modes.json as `femup identify` writes it.
-FileModes ReadModesJson(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, std::string("cannot open: ") + std::strerror(errno));
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(path, std::string("not valid JSON: ") + e.what());
-  }
-  FileModes out;
-  try {
-    if (!j.contains("modes") || !j["modes"].is_array())
-      throw InputError(path,
-                       "modes: missing (expected the modes.json of femup identify)");
-    if (j.contains("data") && j["data"].contains("channels")) {
-      for (const auto& c : j["data"]["channels"])
-        out.channels.push_back(c.get<std::string>());
-    }
-    for (std::size_t k = 0; k < j["modes"].size(); ++k) {
-      const auto& m = j["modes"][k];
-      const std::string where = "modes[" + std::to_string(k + 1) + "]";
-      if (!m.contains("frequency_hz") || !m["frequency_hz"].is_number())
-        throw InputError(path, where + ".frequency_hz: expected a number");
-      if (!m.contains("shape") || !m["shape"].is_array())
-        throw InputError(path, where + ".shape: expected a list of numbers");
-      const double f = m["frequency_hz"].get<double>();
-      if (!(f > 0) || !std::isfinite(f))
-        throw InputError(path, where + ".frequency_hz: expected a positive frequency");
-      Eigen::VectorXd v(m["shape"].size());
-      for (std::size_t i = 0; i < m["shape"].size(); ++i) {
-        if (!m["shape"][i].is_number())
-          throw InputError(path, where + ".shape[" + std::to_string(i + 1) +
-                                     "]: expected a number (null is a lost value)");
-        v[static_cast<Eigen::Index>(i)] = m["shape"][i].get<double>();
-      }
-      out.frequencies_hz.push_back(f);
-      out.shapes.push_back(v);
-    }
-  } catch (const nlohmann::json::exception& e) {
-    throw InputError(path, std::string("unexpected content: ") + e.what());
   }
   return out;
 }
@@ -146,6 +101,34 @@ void FromFileModes(const MeasurementSpec& m, const FileModes& fm,
   d.Validate(num_dofs, source + " (" + m.field + ")");
 }
 
+// Modes of UFF dataset 55 at the DOFs the measurement's map gives (the
+// geometry read here, from the modes file itself or another UFF file).
+void FromUffModes(const Study& study, const MeasurementSpec& m, PreparedState* out) {
+  const UffFile file = ReadUff(m.modes_file);
+  UffDofMap map = *m.uff_map;
+  if (map.by_geometry) {
+    if (map.geometry_file == m.modes_file) {
+      map.geometry = UffNodeCoordinates(file, map.geometry_file);
+    } else {
+      map.geometry = UffNodeCoordinates(ReadUff(map.geometry_file), map.geometry_file);
+    }
+  }
+  UffModes u =
+      ExtractUffModes(file, m.modes_file, map, study.model.dof_labels(), m.use_modes);
+  ModalData& d = out->data;
+  d.state = m.state;
+  d.immersion = m.immersion;
+  for (const UffSensor& s : u.sensors) d.sensor_dofs.push_back(s.dof);
+  d.frequencies_hz.resize(static_cast<Eigen::Index>(u.modes.size()));
+  for (std::size_t j = 0; j < u.modes.size(); ++j)
+    d.frequencies_hz[static_cast<Eigen::Index>(j)] = u.modes[j].frequency_hz;
+  d.shapes = u.shapes;
+  out->identified_modes = u.used;
+  out->source = m.modes_file;
+  d.Validate(study.model.num_dofs(), m.modes_file + " (" + m.field + ")");
+  out->uff = std::move(u);
+}
+
 void Expand(const Study& study, const MeasurementSpec& m, PreparedState* out) {
   const ExpansionOptions& o = *m.expansion;
   const ParametrisedModel& model = study.model;
@@ -202,6 +185,8 @@ std::vector<PreparedState> PrepareMeasurements(const Study& study) {
       p.identified = RunIdentify(*m.identify);
       FromFileModes(m, ModesOfIdentify(*p.identified), m.identify->file,
                     study.model.num_dofs(), &p);
+    } else if (m.uff_map) {
+      FromUffModes(study, m, &p);
     } else if (!m.modes_file.empty()) {
       FromFileModes(m, ReadModesJson(m.modes_file), m.modes_file, study.model.num_dofs(),
                     &p);

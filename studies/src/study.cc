@@ -4,11 +4,14 @@
 
 #include <Eigen/SparseCholesky>
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <set>
 #include <sstream>
+#include <string_view>
 
 #include "femup/builders.h"
 #include "femup/errors.h"
@@ -49,7 +52,7 @@ class Field {
   void ExpectKeys(std::initializer_list<const char*> allowed) const {
     if (!node_.IsMap()) Fail("expected a mapping of keys to values");
     for (const auto& kv : node_) {
-      const std::string key = kv.first.as<std::string>();
+      const std::string key = Key(kv.first);
       bool ok = false;
       for (const char* a : allowed) ok = ok || key == a;
       if (!ok) {
@@ -59,6 +62,19 @@ class Field {
             .Fail("unknown key (expected one of: " + list + ")");
       }
     }
+  }
+  // The text of `key`, a key of this mapping. A key that is not a plain value
+  // (YAML allows null, a list or a mapping as a key: "? [a, b]: 1", "[a]: 1")
+  // fails with this field's path.
+  std::string Key(const YAML::Node& key) const {
+    if (key.IsScalar()) return key.Scalar();
+    const char* found = key.IsNull()       ? "an empty (null) key"
+                        : key.IsSequence() ? "a list"
+                        : key.IsMap()      ? "a mapping"
+                                           : "an undefined key";
+    Field(key, file_, path_)
+        .Fail(std::string("expected each key to be a name, found ") + found +
+              (key.IsNull() ? " (quote it, \"null\", to mean the word)" : ""));
   }
   bool Has(const std::string& key) const { return node_.IsMap() && node_[key]; }
   Field operator[](const std::string& key) const {
@@ -445,6 +461,7 @@ ParametrisedModel ReadSpaceFrame(const Field& m, Structure* structure) {
   d << "space frame, " << spec.bays_x << " x " << spec.bays_y << " bays, " << spec.levels
     << " levels of " << spec.level_height << " m, " << ToString(spec.bracing)
     << " bracing, water " << spec.water_depth << " m";
+  structure->type = "space_frame";
   structure->description = d.str();
   structure->dof_labels = model.dof_labels();
   const SpaceFrameGeometryData geometry = SpaceFrameGeometry(spec);
@@ -452,6 +469,8 @@ ParametrisedModel ReadSpaceFrame(const Field& m, Structure* structure) {
   for (const Eigen::Vector3d& node : geometry.nodes) {
     for (int k = 0; k < 6; ++k) structure->dof_positions.push_back(node.z());
   }
+  for (std::size_t k = 0; k < geometry.nodes.size(); ++k)
+    structure->nodes.push_back({"n" + std::to_string(k + 1), geometry.nodes[k]});
   structure->length = spec.levels * spec.level_height;
   // Shape plots: the sway (ux) of the corner leg at X = Y = 0, bottom to top.
   std::vector<std::pair<double, int>> leg;
@@ -694,10 +713,179 @@ RecordsSpec ReadRecords(const Field& f, const ParametrisedModel& model) {
   return r;
 }
 
+// A UFF modes_file (.uff, .unv): which model DOF each node component is.
+//   uff_dofs: {"101:+Y": n3:ux, "102:-Y": n5:ux, "7": skip, "*": skip}
+//     "<node>:<direction>" (X, Y, Z, RX, RY, RZ with an optional sign, or the
+//     UFF codes 1..6) to a DOF label ("-label": the DOF points against the
+//     direction), "<node>": skip for a node not used, "*": skip to leave out
+//     every node nothing else maps (otherwise such a node is an error);
+//   geometry_file: the nodes named by neither are matched to model nodes by
+//     their coordinates (datasets 15 / 2411 of this file), within
+//     geometry_tolerance (m; default 1 % of the model's largest extent), along
+//     uff_directions (default: every direction of the data the model node has).
+bool IsUffFile(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".uff" || ext == ".unv";
+}
+
+const char* const kUffKeys[] = {"uff_dofs", "geometry_file", "geometry_tolerance",
+                                "uff_directions"};
+
+UffDofMap ReadUffMap(const Field& f, const ParametrisedModel& model,
+                     const std::vector<ModelNode>& nodes) {
+  if (f.Has("sensors")) {
+    f["sensors"].Fail(
+        "a UFF modes_file names its nodes: map them with uff_dofs ({\"101:+Y\": "
+        "n3:ux}) or place them by their coordinates with geometry_file, not with "
+        "sensors");
+  }
+  if (!f.Has("uff_dofs") && !f.Has("geometry_file")) {
+    f["modes_file"].Fail(
+        "a UFF modes_file needs uff_dofs ({\"101:+Y\": n3:ux, \"7\": skip}) or "
+        "geometry_file (nodes matched to the model's by coordinates) to say which "
+        "model DOF each node component is");
+  }
+  UffDofMap map;
+  if (f.Has("uff_dofs")) {
+    const Field uf = f["uff_dofs"];
+    if (!uf.IsMap() || uf.node().size() == 0) {
+      uf.Fail(
+          "expected a mapping of \"node:direction\" to model DOF labels, e.g. "
+          "{\"101:+Y\": n3:ux, \"102:-Y\": n5:ux, \"7\": skip}");
+    }
+    std::set<std::pair<int, int>> components;
+    std::set<int> dofs;
+    for (const auto& kv : uf.node()) {
+      const std::string key = uf.Key(kv.first);
+      const Field value(kv.second, uf.file(), uf.path() + "." + key);
+      const Field key_field(kv.first, uf.file(), uf.path() + "." + key);
+      if (key == "*") {
+        if (value.Str() != "skip")
+          value.Fail(
+              "\"*\" takes skip: the nodes no other entry (or geometry_file) "
+              "maps are left out");
+        map.skip_unmapped = true;
+        continue;
+      }
+      const std::size_t colon = key.find(':');
+      const std::string node_text = key.substr(0, colon);
+      int node = 0;
+      std::size_t used = 0;
+      try {
+        node = std::stoi(node_text, &used);
+      } catch (...) {
+        used = 0;
+      }
+      int direction = 0;
+      if (used == 0 || used != node_text.size() ||
+          (colon != std::string::npos &&
+           !ParseUffDirection(key.substr(colon + 1), &direction))) {
+        key_field.Fail(
+            "expected \"<node>:<direction>\" (a UFF node number; X, Y, Z, RX, RY or RZ "
+            "with an optional sign, or 1..6) or \"<node>\" with skip, found '" +
+            key + "'");
+      }
+      const std::string source = value.Where() + ": " + value.path();
+      const std::string label = value.Str();
+      if (label == "skip") {
+        if (colon != std::string::npos) {
+          value.Fail("skip leaves out a whole node: write \"" + node_text +
+                     "\": skip (components of a mapped node that are not listed are "
+                     "not used anyway)");
+        }
+        map.skipped.push_back({node, source});
+        continue;
+      }
+      if (colon == std::string::npos) {
+        key_field.Fail("a node without a direction takes skip; map a component as \"" +
+                       node_text + ":+X\": <DOF label>");
+      }
+      if (!components.insert({node, std::abs(direction)}).second) {
+        key_field.Fail("node " + node_text + " direction " +
+                       UffDirectionName(std::abs(direction)) + " is listed twice");
+      }
+      std::string dof_label = label;
+      if (!dof_label.empty() && (dof_label[0] == '-' || dof_label[0] == '+')) {
+        if (dof_label[0] == '-') direction = -direction;
+        dof_label.erase(0, 1);
+      }
+      const int dof = model.FindDof(dof_label);
+      if (dof < 0) {
+        std::string some;
+        for (int i = 0; i < std::min(model.num_dofs(), 6); ++i)
+          some += (i ? ", " : "") + model.dof_labels()[i];
+        value.Fail("no model DOF is labelled '" + dof_label + "' (labels look like: " +
+                   some + (model.num_dofs() > 6 ? ", ..." : "") +
+                   "; '-label' for a DOF pointing against the direction, or skip)");
+      }
+      if (!dofs.insert(dof).second) value.Fail("DOF '" + dof_label + "' is listed twice");
+      UffSensor sensor;
+      sensor.node = node;
+      sensor.direction = direction;
+      sensor.dof = dof;
+      sensor.source = source;
+      map.sensors.push_back(sensor);
+    }
+    std::set<int> mapped;
+    for (const UffSensor& s : map.sensors) mapped.insert(s.node);
+    for (const UffSkippedNode& k : map.skipped) {
+      if (mapped.count(k.node)) {
+        throw InputError(k.source, "node " + std::to_string(k.node) +
+                                       " is skipped and also mapped; expected one or the "
+                                       "other");
+      }
+    }
+  }
+  if (f.Has("geometry_file")) {
+    if (nodes.empty()) {
+      f["geometry_file"].Fail(
+          "this model has no node coordinates (a chain or a Matrix Market model); map "
+          "the UFF nodes with uff_dofs");
+    }
+    map.by_geometry = true;
+    map.geometry_file = RelativeToStudy(f["geometry_file"]);
+    map.model_nodes = nodes;
+    if (f.Has("geometry_tolerance")) {
+      map.tolerance = f["geometry_tolerance"].Positive();
+    } else {
+      Eigen::Vector3d lo = nodes[0].xyz, hi = nodes[0].xyz;
+      for (const ModelNode& n : nodes) {
+        lo = lo.cwiseMin(n.xyz);
+        hi = hi.cwiseMax(n.xyz);
+      }
+      map.tolerance = 0.01 * (hi - lo).maxCoeff();
+      if (!(map.tolerance > 0)) map.tolerance = 1e-3;
+    }
+    if (f.Has("uff_directions")) {
+      std::set<int> seen;
+      for (const Field& item : f["uff_directions"].Items()) {
+        int d = 0;
+        if (!ParseUffDirection(item.Str(), &d))
+          item.Fail(
+              "expected a direction: X, Y, Z, RX, RY or RZ (optionally signed) or "
+              "1..6, found '" +
+              item.Str() + "'");
+        if (!seen.insert(std::abs(d)).second) item.Fail("direction is listed twice");
+        map.directions.push_back(d);
+      }
+      if (map.directions.empty()) f["uff_directions"].Fail("expected at least one");
+    }
+  } else {
+    for (const char* key : {"geometry_tolerance", "uff_directions"}) {
+      if (f.Has(key))
+        f[key].Fail(
+            "applies to nodes placed by their coordinates: it needs geometry_file");
+    }
+  }
+  return map;
+}
+
 MeasurementSpec ReadMeasurement(const Field& f, const ParametrisedModel& model,
-                                bool have_truth) {
+                                bool have_truth, const std::vector<ModelNode>& nodes) {
   f.ExpectKeys({"state", "immersion", "simulate_modes", "frequencies_hz", "shapes",
-                "sensors", "identify", "modes_file", "modes", "expansion"});
+                "sensors", "identify", "modes_file", "modes", "expansion", "uff_dofs",
+                "geometry_file", "geometry_tolerance", "uff_directions"});
   MeasurementSpec m;
   m.field = f.path();
   m.state = f["state"].Str();
@@ -728,7 +916,17 @@ MeasurementSpec ReadMeasurement(const Field& f, const ParametrisedModel& model,
     } else {
       m.modes_file = RelativeToStudy(f["modes_file"]);
     }
-    ReadChannelSensors(f["sensors"], model, &m);
+    if (!m.modes_file.empty() && IsUffFile(m.modes_file)) {
+      m.uff_map = ReadUffMap(f, model, nodes);
+    } else {
+      for (const char* key : kUffKeys) {
+        if (f.Has(key))
+          f[key].Fail(
+              "maps the nodes of a UFF modes_file (.uff, .unv); this "
+              "measurement has none");
+      }
+      ReadChannelSensors(f["sensors"], model, &m);
+    }
     if (f.Has("modes")) {
       const Field mf = f["modes"];
       if (mf.IsScalar()) {
@@ -752,6 +950,12 @@ MeasurementSpec ReadMeasurement(const Field& f, const ParametrisedModel& model,
   }
   if (f.Has("modes")) {
     f["modes"].Fail("modes selects identified modes; it needs identify or modes_file");
+  }
+  for (const char* key : kUffKeys) {
+    if (f.Has(key))
+      f[key].Fail(
+          "maps the nodes of a UFF modes_file (.uff, .unv); this measurement "
+          "has none");
   }
   if (m.expansion && f.Has("simulate_modes")) {
     f["expansion"].Fail("simulated modes are known at every DOF; nothing to expand");
@@ -822,7 +1026,7 @@ void ForEachParameterKey(const Field& f, const ParametrisedModel& model, Read re
   if (!f.IsMap()) f.Fail("expected a mapping of parameter names or kinds to values");
   for (int pass = 0; pass < 2; ++pass) {
     for (const auto& kv : f.node()) {
-      const std::string key = kv.first.as<std::string>();
+      const std::string key = f.Key(kv.first);
       const Field value(kv.second, f.file(), f.path() + "." + key);
       ParameterKind kind;
       const bool is_kind = ParameterKindFromString(key, &kind);
@@ -956,17 +1160,18 @@ void CheckMassPositiveDefinite(const Field& model_field, const ParametrisedModel
 
 }  // namespace
 
-Study LoadStudy(const std::string& path) {
-  if (!fs::exists(path)) throw InputError(path, "study file not found");
-  if (!fs::is_regular_file(path)) throw InputError(path, "is not a file");
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(path);
-  } catch (const YAML::Exception& e) {
-    std::ostringstream w;
-    w << path << ":" << e.mark.line + 1 << ":" << e.mark.column + 1;
-    throw InputError(w.str(), "not valid YAML/JSON: " + e.msg);
-  }
+namespace {
+
+// "study.yaml:3:7" for a yaml-cpp error (the file alone without a position).
+std::string WhereIn(const std::string& path, const YAML::Exception& e) {
+  std::ostringstream w;
+  w << path;
+  if (!e.mark.is_null()) w << ":" << e.mark.line + 1 << ":" << e.mark.column + 1;
+  return w.str();
+}
+
+// The study whose parsed YAML is `root`.
+Study ReadStudy(const YAML::Node& root, const std::string& path) {
   const Field top(root, path, "");
   top.ExpectKeys({"name", "description", "model", "parameters", "truth", "measurements",
                   "system", "solver", "noise_study", "output", "records", "diagnosis"});
@@ -1003,10 +1208,11 @@ Study LoadStudy(const std::string& path) {
       }
     }
   }
-  if (!top.Has("parameters") &&
+  if (!(top.Has("parameters") && top["parameters"].Has("added_mass")) &&
       std::none_of(study.structure.elements.begin(), study.structure.elements.end(),
                    [](const ElementMatrices& e) { return e.wet; })) {
-    // The paper's plan without water: no added-mass factors to attach.
+    // Nothing is wet and the study asks for no added mass: the default is none
+    // (asked for explicitly, it is still an error below).
     plan.added_mass.scope = ParameterFamily::Scope::kNone;
   }
   if (top.Has("parameters")) {
@@ -1039,7 +1245,7 @@ Study LoadStudy(const std::string& path) {
     const Field ff = top["parameters"]["fix"];
     if (!ff.IsMap()) ff.Fail("expected a mapping of parameter names to known values");
     for (const auto& kv : ff.node()) {
-      const std::string name = kv.first.as<std::string>();
+      const std::string name = ff.Key(kv.first);
       const Field value(kv.second, ff.file(), ff.path() + "." + name);
       parameter_index(value, name);
       study.fixed[name] = value.Num();
@@ -1078,7 +1284,7 @@ Study LoadStudy(const std::string& path) {
       const Field cf = rows[r]["coefficients"];
       if (!cf.IsMap()) cf.Fail("expected a mapping of parameter names to coefficients");
       for (const auto& kv : cf.node()) {
-        const std::string name = kv.first.as<std::string>();
+        const std::string name = cf.Key(kv.first);
         const Field value(kv.second, cf.file(), cf.path() + "." + name);
         study.equality_matrix(r, parameter_index(value, name)) = value.Num();
       }
@@ -1098,7 +1304,7 @@ Study LoadStudy(const std::string& path) {
 
   for (const Field& f : top["measurements"].Items()) {
     study.measurements.push_back(
-        ReadMeasurement(f, study.model, study.truth.has_value()));
+        ReadMeasurement(f, study.model, study.truth.has_value(), study.structure.nodes));
   }
   if (study.measurements.empty()) top["measurements"].Fail("expected at least one state");
   {
@@ -1181,6 +1387,34 @@ Study LoadStudy(const std::string& path) {
     if (of.Has("plots")) study.plots = of["plots"].Bool();
   }
   return study;
+}
+
+}  // namespace
+
+Study ParseStudy(std::string_view text, const std::string& path) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(std::string(text));
+  } catch (const YAML::Exception& e) {
+    throw InputError(WhereIn(path, e), "not valid YAML/JSON: " + e.msg);
+  }
+  try {
+    return ReadStudy(root, path);
+  } catch (const YAML::Exception& e) {
+    // Every read goes through Field, which checks a node's type first; should
+    // yaml-cpp still object, it is the file's content, never an internal error.
+    throw InputError(WhereIn(path, e), "unexpected YAML content: " + e.msg);
+  }
+}
+
+Study LoadStudy(const std::string& path) {
+  if (!fs::exists(path)) throw InputError(path, "study file not found");
+  if (!fs::is_regular_file(path)) throw InputError(path, "is not a file");
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (!in || in.bad()) throw InputError(path, "cannot read the study file");
+  return ParseStudy(text.str(), path);
 }
 
 }  // namespace femup

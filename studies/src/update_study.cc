@@ -352,6 +352,31 @@ void WriteUpdateOutputs(const UpdateResult& r, bool plots, OutputDir* out,
       }
       mj["identified"] = used;
     }
+    if (p.uff) {
+      // Modes read from UFF dataset 55: where each came from, and each sensor.
+      nlohmann::json modes = nlohmann::json::array(), sensors = nlohmann::json::array();
+      for (std::size_t k = 0; k < p.uff->modes.size(); ++k) {
+        const UffMode& m = p.uff->modes[k];
+        modes.push_back({{"mode", p.uff->used[k]},
+                         {"line", m.line},
+                         {"mode_number", m.mode_number},
+                         {"analysis_type", static_cast<int>(m.analysis_type)},
+                         {"complex", m.analysis_type != UffAnalysisType::kNormalMode},
+                         {"frequency_hz", m.frequency_hz},
+                         {"damping_ratio", m.damping_ratio},
+                         {"mpc", m.mpc},
+                         {"imaginary_fraction", m.imaginary_fraction}});
+      }
+      for (const UffSensor& sensor : p.uff->sensors) {
+        sensors.push_back({{"node", sensor.node},
+                           {"direction", UffDirectionName(sensor.direction)},
+                           {"dof", sensor.label},
+                           {"from", sensor.source}});
+      }
+      mj["uff"] = {{"modes_in_file", p.uff->all_frequencies_hz.size()},
+                   {"modes", modes},
+                   {"sensors", sensors}};
+    }
     if (!p.expansion_method.empty()) {
       mj["expansion"] = {{"method", p.expansion_method},
                          {"model_modes", p.expansion_modes},
@@ -360,14 +385,21 @@ void WriteUpdateOutputs(const UpdateResult& r, bool plots, OutputDir* out,
     }
     j["measurements"].push_back(mj);
   }
-  j["files"] = {"added_mass.mtx", "updated_stiffness.mtx", "updated_dry_mass.mtx",
-                "system_Z.mtx", "system_F.mtx"};
+  // A dry study (no added-mass factor) has no added-mass matrix to write.
+  const bool has_added_mass =
+      std::any_of(r.parameters.begin(), r.parameters.end(),
+                  [](const Parameter& p) { return p.kind == ParameterKind::kAddedMass; });
+  j["files"] = nlohmann::json::array();
+  if (has_added_mass) j["files"].push_back("added_mass.mtx");
+  for (const char* f :
+       {"updated_stiffness.mtx", "updated_dry_mass.mtx", "system_Z.mtx", "system_F.mtx"})
+    j["files"].push_back(f);
   for (const PreparedState& p : r.sources) {
     if (p.identified)
       WriteIdentifyOutputs(*p.identified, plots, out, warnings, p.data.state + "_");
   }
   out->WriteText("result.json", j.dump(2) + "\n");
-  WriteMatrixMarket(out->Stage("added_mass.mtx"), r.added_mass, true);
+  if (has_added_mass) WriteMatrixMarket(out->Stage("added_mass.mtx"), r.added_mass, true);
   WriteMatrixMarket(out->Stage("updated_stiffness.mtx"), r.updated_stiffness, true);
   WriteMatrixMarket(out->Stage("updated_dry_mass.mtx"), r.updated_dry_mass, true);
   WriteMatrixMarket(out->Stage("system_Z.mtx"), r.problem.A);
@@ -580,6 +612,17 @@ std::string UpdateReport(const UpdateResult& r) {
           o << " " << std::setprecision(3) << m.mode.frequency_hz << " Hz (damping "
             << std::setprecision(2) << 100 * m.mode.damping_ratio << " %, MPC "
             << std::setprecision(3) << m.mode.mpc << ")";
+        }
+        o << "\n";
+      } else if (p.uff) {
+        o << "  " << p.uff->modes.size() << " of " << p.uff->all_frequencies_hz.size()
+          << " mode(s) of UFF dataset 55 in " << p.source << " at "
+          << p.uff->sensors.size() << " DOF(s);";
+        for (const UffMode& m : p.uff->modes) {
+          o << " " << std::setprecision(4) << m.frequency_hz << " Hz";
+          if (m.analysis_type != UffAnalysisType::kNormalMode)
+            o << " (complex, damping " << std::setprecision(2) << 100 * m.damping_ratio
+              << " %, MPC " << std::setprecision(4) << m.mpc << ")";
         }
         o << "\n";
       } else if (!p.source.empty()) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "femup/model.h"
@@ -11,13 +12,35 @@
 
 namespace femup {
 
+// Size limits, checked on the size line before anything is allocated (so that a
+// mistyped or damaged size line is an error rather than gigabytes of memory):
+//  * Read dense, a matrix has at most kMatrixMarketMaxDenseEntries = 2^26 entries
+//    (rows x cols; 512 MiB of doubles, e.g. 8192 x 8192), whatever the format.
+//  * Read sparse, rows and columns are at most 2^31 - 1 (Eigen's index), and at
+//    most kMatrixMarketFreeDimension = 2^24 (16,777,216) unless the file lists at
+//    least one entry per kMatrixMarketDimensionPerEntry = 16 rows (or columns, the
+//    larger of the two). A sparse matrix keeps one 4-byte index per column, and
+//    assembling it one per row too, whether or not the rows hold entries: so a
+//    file of a few lines costs at most 2 x 64 MiB of indices, and a matrix with
+//    more rows than that has its entries to show for them (a stiffness or mass
+//    matrix has its diagonal). A 10^6-DOF element matrix with a few entries is
+//    read; "1 2147483647 0" (8 GiB of indices for nothing) is refused. For an
+//    array file the entries are rows x cols (the lower triangle for symmetric).
+inline constexpr long long kMatrixMarketMaxDenseEntries = 1LL << 26;
+inline constexpr long long kMatrixMarketFreeDimension = 1LL << 24;
+inline constexpr long long kMatrixMarketDimensionPerEntry = 16;
+
 // Reads a real or integer matrix, "coordinate" or "array", general or symmetric
 // (the symmetric half is mirrored). Throws InputError naming the file and line
 // on a missing file, a bad banner, a count mismatch, an index out of range, a
-// non-finite value, or a field (complex, pattern) that is not supported.
+// non-finite value, a field (complex, pattern) that is not supported, or a size
+// beyond the limits above.
 SparseMatrix ReadMatrixMarket(const std::string& path);
 // The same, returned dense (handy for right-hand sides and small systems).
 Eigen::MatrixXd ReadMatrixMarketDense(const std::string& path);
+// The same for text already in memory; `name` stands for the file in messages.
+SparseMatrix ParseMatrixMarket(std::string_view text, const std::string& name);
+Eigen::MatrixXd ParseMatrixMarketDense(std::string_view text, const std::string& name);
 
 // Writes coordinate real; `symmetric` stores the lower triangle only. Writes to a
 // temporary file and renames it, so a failed write leaves nothing behind.

@@ -1,6 +1,7 @@
 // Universal File Format (UFF, also "universal file", .uff/.unv): read and write
-// the three datasets that carry vibration test data:
-//   15  nodes (label, coordinate systems, colour, coordinates),
+// the datasets that carry vibration test data:
+//   15  nodes (label, coordinate systems, colour, coordinates), single precision,
+//   2411 nodes, double precision (the newer node dataset of FE and test codes),
 //   55  data at nodes: mode shapes (normal and complex modes, frequency-response
 //       shapes) with their frequency, modal mass and damping,
 //   58  function at a nodal DOF: time histories, spectra, FRFs, coherences...,
@@ -13,8 +14,8 @@
 // tolerant: LF or CRLF line endings, trailing blanks or blanks trimmed, a
 // short last line of values, Fortran 'D' exponents (1.0D+03), numbers written
 // wider than their field as long as blanks separate them, text columns
-// counted in characters for UTF-8 labels. Datasets other than 15, 55 and 58
-// (and 55 analysis types other than normal mode, complex mode and frequency
+// counted in characters for UTF-8 labels. Datasets other than 15, 55, 58 and
+// 2411 (and 55 analysis types other than normal mode, complex mode and frequency
 // response) are skipped and named in UffFile::notes. Anything else that does
 // not fit the layout throws InputError naming the file, the line, the
 // dataset, the record and the field.
@@ -39,7 +40,9 @@
 namespace femup {
 
 // ---------------------------------------------------------------------------
-// Dataset 15: nodes. One record "4I10,3E13.5" per node (single precision).
+// Nodes. Dataset 15: one record "4I10,3E13.5" per node (single precision).
+// Dataset 2411: two records per node, "4I10" (label, export coordinate system,
+// displacement coordinate system, colour) and "1P3D25.16" (the coordinates).
 
 struct UffNode {
   int label = 0;
@@ -47,10 +50,13 @@ struct UffNode {
   int displacement_cs = 0;  // coordinate system of the node's DOFs
   int color = 0;
   std::array<double, 3> xyz{0.0, 0.0, 0.0};
+  long long line = 0;  // set on reading: the line of its (first) record
 };
 
 struct UffNodes {
   std::vector<UffNode> nodes;
+  int dataset = 15;    // 15 or 2411: how it is written, set on reading
+  long long line = 0;  // set on reading: the line of the dataset number
 };
 
 // ---------------------------------------------------------------------------
@@ -94,6 +100,9 @@ struct UffModeShape {
   // 6 with rotations). Real data have zero imaginary parts.
   std::vector<int> nodes;
   Eigen::MatrixXcd values;
+  // Set on reading: the line of the dataset number and of each node's record 9.
+  long long line = 0;
+  std::vector<long long> node_lines;
 };
 
 // ---------------------------------------------------------------------------
@@ -158,6 +167,7 @@ struct UffFunction {
   // Written as 58b (binary, little-endian IEEE) rather than ASCII; set on
   // reading when the dataset was binary.
   bool binary = false;
+  long long line = 0;  // set on reading: the line of the dataset number
 
   bool IsComplex() const {
     return ordinate_type == UffOrdinateType::kComplexSingle ||
@@ -174,8 +184,17 @@ struct UffFunction {
 
 using UffDataset = std::variant<UffNodes, UffModeShape, UffFunction>;
 
+// Where a dataset of a file begins, read or skipped.
+struct UffDatasetHeader {
+  int number = 0;       // 15, 55, 58, 2411, 2412, ...
+  bool binary = false;  // "58b"
+  long long line = 0;   // the line of the dataset number (after the opening "-1")
+  int index = -1;       // its place in UffFile::datasets; -1: skipped
+};
+
 struct UffFile {
-  std::vector<UffDataset> datasets;  // in file order
+  std::vector<UffDataset> datasets;       // in file order
+  std::vector<UffDatasetHeader> headers;  // every dataset of the file, in order
   // One line per dataset that was skipped (unsupported dataset number or
   // analysis type) or read with a tolerated irregularity, e.g.
   // "data.uff: line 120: dataset 2411 is not supported; skipped".
@@ -195,7 +214,8 @@ UffFile ParseUff(std::string_view contents, const std::string& name);
 
 // Writes the datasets with the record layouts of the format (LF line endings,
 // 80-column id lines; double precision function values in 20 columns with 12
-// significant digits, the format's E20.12; single precision values, the
+// significant digits, the format's E20.12; 2411 coordinates in 25 columns with
+// 17 significant digits, E25.16; single precision values, the
 // abscissa of uneven functions and all dataset 15/55 values in 13 columns with
 // 6 significant digits, E13.5), binary functions as 58b little-endian IEEE
 // with the end marker right after the values, as pyuff writes and reads them. The file is

@@ -8,6 +8,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "femup/builders.h"
@@ -21,13 +22,15 @@
 #include "femup/solvers/nonlinear_solver.h"
 #include "femup/structure.h"
 #include "femup/studies/identify_study.h"
+#include "femup/uff_modes.h"
 
 namespace femup {
 
 // Where a measured state's modes come from: simulated from the truth, given in
-// the study file, identified from a record file (UFF 58 / CSV) by ERA, or read
-// from the modes.json that `femup identify` wrote. Shapes known at sensors only
-// can be expanded to every model DOF before the factors are found.
+// the study file, identified from a record file (UFF 58 / CSV) by ERA, read
+// from the modes.json that `femup identify` wrote, or read from the mode shapes
+// (dataset 55) of a UFF file. Shapes known at sensors only can be expanded to
+// every model DOF before the factors are found.
 struct MeasurementSpec {
   std::string state;  // "air", "water"
   Immersion immersion = Immersion::kDry;
@@ -35,7 +38,11 @@ struct MeasurementSpec {
   ModalData data;          // given modes (no simulate_modes, identify or modes_file)
 
   std::optional<IdentifyOptions> identify;  // ERA on this record file
-  std::string modes_file;                   // or modes.json of `femup identify`
+  std::string modes_file;  // or modes.json of `femup identify`, or UFF 55 modes
+  // A UFF modes_file (.uff, .unv): which model DOF each node component is
+  // (uff_dofs; geometry_file, geometry_tolerance, uff_directions). Its
+  // `geometry` is read with the modes (PrepareMeasurements).
+  std::optional<UffDofMap> uff_map;
   // Identified modes used, 1-based in ascending frequency; empty = all.
   std::vector<int> use_modes;
   // Per record channel: the model DOF it measures (-1: channel not used) and a
@@ -53,6 +60,7 @@ struct PreparedState {
   ModalData data;        // what the factors are fitted to (expanded if asked)
   ModalData at_sensors;  // as measured, before expansion (== data without it)
   std::optional<IdentifyResult> identified;  // when identified from a record file
+  std::optional<UffModes> uff;               // when read from UFF dataset 55
   std::vector<int> identified_modes;         // 1-based indices of the modes used
   std::string source;                        // file the modes came from, if any
   // Expansion quality per mode (empty without expansion).
@@ -181,11 +189,16 @@ struct Study {
 // NaN, a non-positive-definite mass, shapes that do not match the sensors, or
 // a name that matches no parameter.
 Study LoadStudy(const std::string& path);
+// The same for a study's text already in memory. `path` stands for the file in
+// messages, and file names in the study are relative to its folder.
+Study ParseStudy(std::string_view text, const std::string& path);
 
 // The measured states: given ones as they are, simulated ones from the truth,
-// identified ones from their files; expanded where the study asks. Throws
-// InputError naming the file and field for unreadable records, too few
-// identified modes, channel/sensor count mismatches or a failed expansion.
+// identified ones from their files, UFF 55 modes at the DOFs their map gives
+// (femup/uff_modes.h); expanded where the study asks. Throws InputError naming
+// the file and field for unreadable records, too few identified modes,
+// channel/sensor count mismatches, UFF nodes that do not map, or a failed
+// expansion.
 std::vector<PreparedState> PrepareMeasurements(const Study& study);
 // The `data` of each prepared state.
 std::vector<ModalData> MeasuredStates(const Study& study);
