@@ -3,9 +3,13 @@
 # example (the reference paper's numerical study), writing out/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source scripts/stages.sh
+stage "set-up"
 bash scripts/setup.sh
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DFEMUP_BUILD_TESTS=OFF \
-  -DFEMUP_BUILD_BENCHMARKS=OFF > /dev/null
-cmake --build build --target femup_cli
+stage "build (femup)"
+bash scripts/build.sh build -- femup_cli
+stage "the paper's study"
 ./build/femup run examples/paper_chain_masses_1-3_wet.yaml -o out/paper_chain_masses_1-3_wet
 ./build/femup noise examples/paper_chain_noise.yaml -o out/paper_chain_noise
+stage_end
+echo "results: out/paper_chain_masses_1-3_wet/ and out/paper_chain_noise/"
