@@ -1,0 +1,69 @@
+// Which unmodelled effect explains the gap, on any structure: every instance of
+// every candidate family (model_effects.h: a stiffness loss in each storey, an
+// attached mass at each node, ...) is fitted to the measured modes by the one
+// output-error engine (model_effect_pencil.h) from each of its starts, scored by
+// its Laplace evidence (model_evidence.h), and given a posterior probability.
+//
+// Prior: "none" and each candidate family share equally (the benchmark's class
+// prior); a family's share is split equally among its instances, so a family
+// with many possible places pays for the choice (the discrete part of its
+// Occam factor). When even the best class leaves a chi2 the stated noise cannot
+// explain (upper-tail p < 0.01), the noise is scaled by chi2 / dof of that class
+// (a noise temperature) before the probabilities are formed, and the result
+// says so.
+//
+// This is the step `femup diagnose` will run for every model type; today the
+// command runs it for models other than the cantilever (whose diagnosis keeps
+// its own pipeline, diagnose_study.h, until it moves here).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "femup/measurement.h"
+#include "femup/problems/model_effects.h"
+#include "femup/solvers/model_evidence.h"
+#include "femup/structure.h"
+
+namespace femup {
+
+struct EffectRankingOptions {
+  std::vector<std::string> kinds;  // candidate families; empty: every one that applies
+  double frequency_sigma = 0.002;  // relative, of a measured eigenvalue's frequency
+  double shape_sigma = 0.02;       // of a shape entry, relative to the largest
+  bool use_shapes = true;
+  std::string solver = "ceres";  // a NonlinearSolver name
+  // Empty when valid, else "<field>: what is wrong".
+  std::string Validate() const;
+};
+
+struct RankedClass {
+  std::string kind;    // "none" or a family
+  std::string region;  // the instance's region ("" for none)
+  std::vector<std::string> names;
+  Eigen::VectorXd theta;
+  double chi2 = 0;
+  ModelEvidence evidence;  // at the final temperature
+  double log_prior = 0;
+  double probability = 0;
+  bool converged = true;
+  EffectLocation location;
+  std::vector<EffectMagnitude> magnitudes;
+};
+
+struct EffectRanking {
+  std::vector<RankedClass> classes;                                // most probable first
+  std::vector<std::pair<std::string, double>> kind_probabilities;  // most probable first
+  double temperature = 1;
+  double best_chi2_p_value = 1;
+  int num_residuals = 0;
+  std::vector<std::string> skipped;  // "<kind>: why it does not apply"
+};
+
+// Throws InputError for invalid options, an unknown family, a named family that
+// does not apply to the structure, or states the engine refuses.
+EffectRanking RankModelEffects(const Structure& structure,
+                               const std::vector<ModalData>& states,
+                               const EffectRankingOptions& options);
+
+}  // namespace femup

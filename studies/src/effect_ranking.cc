@@ -1,0 +1,190 @@
+#include "femup/studies/effect_ranking.h"
+
+#include <algorithm>
+#include <boost/math/special_functions/gamma.hpp>
+#include <cmath>
+#include <map>
+#include <memory>
+
+#include "femup/errors.h"
+#include "femup/problems/model_effect_pencil.h"
+#include "femup/solvers/nonlinear_solver.h"
+
+namespace femup {
+
+namespace {
+
+// One instance's best fit over its starts.
+struct Fit {
+  bool ok = false;
+  bool converged = false;
+  Eigen::VectorXd theta;
+  Eigen::MatrixXd jacobian;
+  double chi2 = 0;
+};
+
+Fit FitInstance(const std::shared_ptr<const Structure>& structure,
+                const std::shared_ptr<const ModelEffect>& effect,
+                const std::vector<ModalData>& states,
+                const EigenSensitivityOptions& options, const NonlinearSolver& solver) {
+  Fit best;
+  for (const Eigen::VectorXd& start : effect->Starts()) {
+    const NonlinearProblem problem =
+        BuildModelEffectFitProblem(structure, {effect}, states, options, start);
+    const NonlinearSolution sol = solver.Solve(problem);
+    if (sol.residual.size() != problem.num_residuals || !sol.residual.allFinite() ||
+        sol.jacobian.rows() != problem.num_residuals) {
+      continue;
+    }
+    const double chi2 = sol.residual.squaredNorm();
+    if (!best.ok || chi2 < best.chi2) {
+      best = {true, sol.summary.usable(), sol.x, sol.jacobian, chi2};
+    }
+  }
+  return best;
+}
+
+// chi2 of the nominal model (no effect): the residuals at the nominal structure,
+// through a do-nothing material scaling (theta 0 leaves K unchanged).
+double NominalChi2(const std::shared_ptr<const Structure>& structure,
+                   const std::vector<ModalData>& states,
+                   const EigenSensitivityOptions& options, int* num_residuals) {
+  std::shared_ptr<const ModelEffect> identity(
+      CreateModelEffects("material_scaling", *structure).front().release());
+  const NonlinearProblem problem = BuildModelEffectFitProblem(
+      structure, {identity}, states, options, Eigen::VectorXd::Zero(1));
+  Eigen::VectorXd r;
+  std::string why;
+  if (!problem.evaluate(Eigen::VectorXd::Zero(1), &r, nullptr, &why)) {
+    throw InputError("measurements",
+                     "the nominal model cannot be compared with the data: " + why);
+  }
+  *num_residuals = problem.num_residuals;
+  return r.squaredNorm();
+}
+
+}  // namespace
+
+std::string EffectRankingOptions::Validate() const {
+  if (!(frequency_sigma > 0) || !std::isfinite(frequency_sigma))
+    return "frequency_sigma: must be positive and finite";
+  if (!(shape_sigma > 0) || !std::isfinite(shape_sigma))
+    return "shape_sigma: must be positive and finite";
+  const auto names = AvailableNonlinearSolvers();
+  if (std::find(names.begin(), names.end(), solver) == names.end())
+    return "solver: unknown nonlinear solver '" + solver + "'";
+  return "";
+}
+
+EffectRanking RankModelEffects(const Structure& structure_in,
+                               const std::vector<ModalData>& states,
+                               const EffectRankingOptions& options) {
+  const std::string invalid = options.Validate();
+  if (!invalid.empty()) {
+    const auto colon = invalid.find(':');
+    throw InputError("diagnosis." + invalid.substr(0, colon), invalid.substr(colon + 2));
+  }
+  auto structure = std::make_shared<const Structure>(structure_in);
+  const bool any_wet = std::any_of(states.begin(), states.end(), [](const ModalData& d) {
+    return d.immersion == Immersion::kWet;
+  });
+  ModelEffectOptions effect_options;
+  effect_options.wet_only_added_mass = any_wet;
+
+  EffectRanking out;
+  std::vector<std::string> kinds = options.kinds;
+  if (kinds.empty()) {
+    for (const FamilyApplicability& a : ApplicableModelEffects(*structure)) {
+      if (a.why_not.empty()) {
+        kinds.push_back(a.kind);
+      } else {
+        out.skipped.push_back(a.kind + ": " + a.why_not);
+      }
+    }
+  }
+
+  EigenSensitivityOptions fit;
+  fit.frequency_sigma = 2 * options.frequency_sigma;  // of lambda = (2 pi f)^2
+  fit.shape_sigma = options.shape_sigma;
+  fit.use_shapes = options.use_shapes;
+  const auto solver = CreateNonlinearSolver(options.solver);
+
+  int shape_modes = 0;
+  for (const ModalData& d : states)
+    shape_modes += options.use_shapes && d.HasShapes() ? d.num_modes() : 0;
+  const double log_family_prior = -std::log(static_cast<double>(kinds.size() + 1));
+
+  // "none", then every instance of every family.
+  RankedClass none;
+  none.kind = "none";
+  none.chi2 = NominalChi2(structure, states, fit, &out.num_residuals);
+  none.log_prior = log_family_prior;
+  std::vector<RankedClass> classes = {none};
+  std::vector<Eigen::MatrixXd> jacobians = {Eigen::MatrixXd(out.num_residuals, 0)};
+  std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>> boxes = {{}};
+  for (const std::string& kind : kinds) {
+    std::vector<std::unique_ptr<ModelEffect>> made =
+        CreateModelEffects(kind, *structure, effect_options);
+    const double log_prior =
+        log_family_prior - std::log(static_cast<double>(made.size()));
+    for (auto& instance : made) {
+      std::shared_ptr<const ModelEffect> effect(std::move(instance));
+      const Fit f = FitInstance(structure, effect, states, fit, *solver);
+      if (!f.ok) continue;
+      RankedClass c;
+      c.kind = kind;
+      c.region = effect->region().name;
+      for (const EffectParameter& p : effect->Parameters()) c.names.push_back(p.name);
+      c.theta = f.theta;
+      c.chi2 = f.chi2;
+      c.log_prior = log_prior;
+      c.converged = f.converged;
+      c.location = effect->Location(f.theta);
+      c.magnitudes = effect->Magnitudes(f.theta);
+      Eigen::VectorXd lower(c.names.size()), upper(c.names.size());
+      const auto params = effect->Parameters();
+      for (std::size_t i = 0; i < params.size(); ++i) {
+        lower[i] = params[i].lower;
+        upper[i] = params[i].upper;
+      }
+      classes.push_back(std::move(c));
+      jacobians.push_back(f.jacobian);
+      boxes.push_back({lower, upper});
+    }
+  }
+
+  // The noise temperature from the best fit.
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < classes.size(); ++i)
+    if (classes[i].chi2 < classes[best].chi2) best = i;
+  const int dof = std::max(
+      1, out.num_residuals - shape_modes - static_cast<int>(classes[best].theta.size()));
+  out.best_chi2_p_value = boost::math::gamma_q(0.5 * dof, 0.5 * classes[best].chi2);
+  out.temperature = out.best_chi2_p_value < 0.01 ? classes[best].chi2 / dof : 1.0;
+
+  Eigen::VectorXd log_evidence(classes.size()), prior(classes.size());
+  for (std::size_t i = 0; i < classes.size(); ++i) {
+    classes[i].evidence =
+        LaplaceEvidence(classes[i].chi2, jacobians[i], classes[i].theta, boxes[i].first,
+                        boxes[i].second, out.temperature);
+    log_evidence[i] = classes[i].evidence.log_evidence;
+    prior[i] = std::exp(classes[i].log_prior);
+  }
+  const Eigen::VectorXd p = PosteriorProbabilities(log_evidence, prior);
+  std::map<std::string, double> by_kind;
+  for (std::size_t i = 0; i < classes.size(); ++i) {
+    classes[i].probability = p[i];
+    by_kind[classes[i].kind] += p[i];
+  }
+  std::stable_sort(classes.begin(), classes.end(),
+                   [](const RankedClass& a, const RankedClass& b) {
+                     return a.probability > b.probability;
+                   });
+  out.classes = std::move(classes);
+  out.kind_probabilities.assign(by_kind.begin(), by_kind.end());
+  std::stable_sort(out.kind_probabilities.begin(), out.kind_probabilities.end(),
+                   [](const auto& a, const auto& b) { return a.second > b.second; });
+  return out;
+}
+
+}  // namespace femup
