@@ -20,6 +20,7 @@
 #include "femup/studies/noise_study.h"
 #include "femup/studies/simulate_study.h"
 #include "femup/studies/solve_study.h"
+#include "femup/studies/structure_diagnosis.h"
 #include "femup/studies/study.h"
 #include "femup/studies/update_study.h"
 
@@ -299,6 +300,17 @@ int main(int argc, char** argv) {
     if (*diagnose) {
       const femup::Study study = femup::LoadStudy(diag_opts.study);
       RequireMeasurements(study);
+      if (!study.cantilever) {
+        // Every other model type: effects as changes of the model itself.
+        const femup::StructureDiagnosisResult result =
+            femup::RunStructureDiagnosis(study);
+        femup::OutputDir dir(OutputFolder(diag_opts, study));
+        femup::WriteStructureDiagnosisOutputs(result, study.plots && !diag_opts.no_plots,
+                                              &dir, &warnings);
+        if (!diag_opts.quiet) std::cout << femup::StructureDiagnosisReport(result);
+        Finish(&dir, warnings, diag_opts);
+        return 0;
+      }
       const femup::DiagnosisResult result = femup::RunDiagnosis(study);
       femup::OutputDir dir(OutputFolder(diag_opts, study));
       femup::WriteDiagnosisOutputs(result, study.plots && !diag_opts.no_plots, &dir,

@@ -116,7 +116,7 @@ Structure BuildSpringMassChain(const ChainSpec& spec) {
   s.type = "chain";
   s.description =
       "spring-mass chain of " + std::to_string(n) + " masses, fixed at x1's end";
-  s.supports.push_back({0, spec.springs[0], "ground spring"});
+  s.supports.push_back({0, spec.springs[0], "ground spring", "N/m"});
   Triplets kt, mt;
   for (int e = 0; e < n; ++e) {
     ElementMatrices el;
@@ -261,11 +261,13 @@ Structure BuildCantilever(const CantileverSpec& spec) {
     mt.insert(mt.end(), tm.begin(), tm.end());
     s.elements.push_back(std::move(el));
   }
-  static const char* kSupportNames[3] = {"base transverse", "base axial", "base rotation"};
+  static const char* kSupportNames[3] = {"base transverse", "base axial",
+                                         "base rotation"};
   for (int k = 0; k < 3; ++k) {
     if (supports[k] > 0) {
       kt.emplace_back(dof[0][k], dof[0][k], supports[k]);
-      s.supports.push_back({dof[0][k], supports[k], kSupportNames[k]});
+      s.supports.push_back(
+          {dof[0][k], supports[k], kSupportNames[k], k < 2 ? "N/m" : "N m/rad"});
     }
   }
   for (std::size_t i = 0; i < spec.lumped_masses.size(); ++i) {

@@ -269,7 +269,7 @@ class SupportFlexibility : public Base {
     const double c = std::exp(t[0]);
     std::vector<EffectMagnitude> m = {{"compliance_ratio", "1", c}};
     for (const SupportSpring& sp : s_.supports)
-      m.push_back({sp.name + " stiffness", "N/m or N m/rad", sp.stiffness / (1 + c)});
+      m.push_back({sp.name + " stiffness", sp.unit, sp.stiffness / (1 + c)});
     return m;
   }
 

@@ -18,7 +18,8 @@
 #     ceiling; an unknown --sizes, --evidence or --oracle, a --form-error of
 #     1.5, or --oracle on the mixed suite, exits 1 naming it before any case is
 #     written.
-#  3. Bad input: an unknown effect among the candidates, a chain model and
+#  3. Bad input: an unknown effect among the candidates, added mass on a dry
+#     chain (and the shear-building example diagnosed: storey 3), and
 #     frequencies listed out of order exit 1 with a message naming the problem,
 #     and leave no diagnosis.json behind.
 source "$(dirname "$0")/lib.sh"
@@ -215,6 +216,8 @@ refused() {
 { sed -e '/^diagnosis:/,$d' "$ROOT/examples/diagnosis/added_mass.yaml"
   echo "diagnosis: {candidates: [added_mass, corrosion]}"; } > unknown.yaml
 refused "unknown effect" unknown.yaml "diagnosis.candidates" "corrosion"
+# A chain (shear building) is diagnosed with the families that apply to it; a
+# family named in the study that does not apply is refused before any fit.
 cat > chain.yaml <<'EOF'
 name: chain_diagnosis
 model:
@@ -224,8 +227,18 @@ model:
 measurements:
   - state: air
     frequencies_hz: [60, 170, 245]
+diagnosis: {candidates: [stiffness_loss, added_mass]}
 EOF
-refused "chain model" chain.yaml "cantilever"
+refused "added mass on a dry chain" chain.yaml "diagnosis.candidates" "added_mass" "wet"
+"$FEMUP" diagnose "$ROOT/examples/diagnosis/shear_building.yaml" -o shear > shear.txt \
+  || fail "diagnose shear_building exit $?: $(cat shear.txt)"
+[ "$(json shear/diagnosis.json "(j['verdict']['kind'], j['verdict']['region'])")" \
+  = "('stiffness_loss', 'element 3')" ] || fail "shear verdict: $(json shear/diagnosis.json "j['verdict']")"
+[ "$(json shear/diagnosis.json "abs(sum(c['probability'] for c in j['classes']) - 1) < 1e-9")" \
+  = True ] || fail "shear probabilities do not sum to 1"
+[ "$(json shear/diagnosis.json "abs(j['classes'][0]['magnitudes'][0]['value'] - 0.25) < 0.03")" \
+  = True ] || fail "shear loss: $(json shear/diagnosis.json "j['classes'][0]['magnitudes']")"
+grep -q "verdict: stiffness_loss at element 3" shear.txt || fail "shear report: $(cat shear.txt)"
 sed -e 's/^    frequencies_hz: \[\([^,]*\), \([^,]*\),/    frequencies_hz: [\2, \1,/' \
   "$ROOT/examples/diagnosis/frequencies_only.yaml" > swapped.yaml
 grep -q "frequencies_hz: \[17" swapped.yaml || fail "swapped.yaml: $(grep frequencies_hz swapped.yaml)"

@@ -31,9 +31,10 @@ struct ModelNode {
 // A support modelled as a spring to the ground on one free DOF (a chain's
 // ground spring, a cantilever's elastic base): what support flexibility softens.
 struct SupportSpring {
-  int dof = -1;            // index into dof_labels
-  double stiffness = 0;    // N/m or N m/rad, > 0
-  std::string name;        // "ground spring", "base rotation"
+  int dof = -1;          // index into dof_labels
+  double stiffness = 0;  // N/m or N m/rad, > 0
+  std::string name;      // "ground spring", "base rotation"
+  std::string unit;      // of the stiffness: "N/m" or "N m/rad"
 };
 
 struct Structure {

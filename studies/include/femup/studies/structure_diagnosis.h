@@ -1,0 +1,43 @@
+// `femup diagnose` on models other than the cantilever (a chain or shear
+// building, a Matrix Market model with element matrices): which unmodelled
+// effect, where and how large, from the study's measured modes, by
+// RankModelEffects (effect_ranking.h) over the families that apply to the
+// model. The cantilever keeps its own pipeline (diagnose_study.h) until it
+// moves onto the same step.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "femup/output_dir.h"
+#include "femup/studies/effect_ranking.h"
+#include "femup/studies/study.h"
+
+namespace femup {
+
+struct StructureDiagnosisResult {
+  std::string study_name;
+  std::string description;
+  std::string model_type;
+  std::vector<ModalData> measured;  // at the sensors
+  std::vector<std::string> dof_labels;
+  EffectRanking ranking;
+  double confidence = 0.9;
+};
+
+// Throws InputError (naming the study file and field) for a study without
+// measurements, a candidate family that does not apply to the model (before
+// any fit runs), or data the fit cannot use.
+StructureDiagnosisResult RunStructureDiagnosis(const Study& study);
+
+// diagnosis.json (every class with kind, region, probability, chi2, evidence,
+// parameters and magnitudes; the families' probabilities; the noise
+// temperature; the families that do not apply and why) and effects.png (the
+// families' probabilities).
+void WriteStructureDiagnosisOutputs(const StructureDiagnosisResult& r, bool plots,
+                                    OutputDir* out, std::vector<std::string>* warnings);
+
+// The terminal report: the verdict and the ranked classes.
+std::string StructureDiagnosisReport(const StructureDiagnosisResult& r);
+
+}  // namespace femup

@@ -1,0 +1,156 @@
+#include "femup/studies/structure_diagnosis.h"
+
+#include <algorithm>
+#include <iomanip>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "femup/errors.h"
+#include "json_util.h"
+#include "render_staged.h"
+
+namespace femup {
+
+StructureDiagnosisResult RunStructureDiagnosis(const Study& study) {
+  if (study.measurements.empty())
+    throw InputError(study.path, "measurements: missing (nothing to diagnose)");
+  const DiagnosisSpec spec = study.diagnosis.value_or(DiagnosisSpec());
+  StructureDiagnosisResult r;
+  r.study_name = study.name;
+  r.description = study.description;
+  r.model_type = study.structure.type;
+  r.dof_labels = study.model.dof_labels();
+  r.confidence = spec.confidence;
+
+  EffectRankingOptions options;
+  options.kinds = spec.candidates;
+  options.frequency_sigma = spec.frequency_noise;
+  options.shape_sigma = spec.shape_noise;
+  options.use_shapes = spec.use_shapes;
+  options.solver = spec.solver;
+  // A named family that does not apply is the study's error, before any fit.
+  for (const std::string& kind : options.kinds) {
+    const auto known = ModelEffectKinds();
+    if (std::find(known.begin(), known.end(), kind) == known.end()) {
+      std::string list;
+      for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
+      throw InputError(study.path, "diagnosis.candidates: '" + kind +
+                                       "' is not a family a " + r.model_type +
+                                       " model knows (" + list + ")");
+    }
+    for (const FamilyApplicability& a : ApplicableModelEffects(study.structure)) {
+      if (a.kind == kind && !a.why_not.empty()) {
+        throw InputError(study.path, "diagnosis.candidates: " + kind +
+                                         " does not apply to this " + r.model_type +
+                                         " model: " + a.why_not);
+      }
+    }
+  }
+  for (const PreparedState& p : PrepareMeasurements(study))
+    r.measured.push_back(p.at_sensors);
+  r.ranking = RankModelEffects(study.structure, r.measured, options);
+  return r;
+}
+
+namespace {
+
+std::string Label(const RankedClass& c) {
+  return c.region.empty() ? c.kind : c.kind + " at " + c.region;
+}
+
+}  // namespace
+
+void WriteStructureDiagnosisOutputs(const StructureDiagnosisResult& r, bool plots,
+                                    OutputDir* out, std::vector<std::string>* warnings) {
+  nlohmann::json j;
+  j["study"] = r.study_name;
+  j["model_type"] = r.model_type;
+  const EffectRanking& k = r.ranking;
+  const RankedClass& top = k.classes.front();
+  j["verdict"] = {{"kind", top.kind},
+                  {"region", top.region},
+                  {"probability", top.probability},
+                  {"kind_probability", k.kind_probabilities.front().second},
+                  {"separated", top.probability >= r.confidence}};
+  j["temperature"] = k.temperature;
+  j["best_chi2_p_value"] = k.best_chi2_p_value;
+  j["residuals"] = k.num_residuals;
+  j["kinds"] = nlohmann::json::array();
+  for (const auto& [kind, p] : k.kind_probabilities)
+    j["kinds"].push_back({{"kind", kind}, {"probability", p}});
+  j["classes"] = nlohmann::json::array();
+  for (const RankedClass& c : k.classes) {
+    nlohmann::json cj = {{"kind", c.kind},
+                         {"region", c.region},
+                         {"probability", c.probability},
+                         {"chi2", c.chi2},
+                         {"log_evidence", c.evidence.log_evidence},
+                         {"log_occam", c.evidence.log_occam},
+                         {"log_prior", c.log_prior},
+                         {"converged", c.converged}};
+    cj["parameters"] = nlohmann::json::array();
+    for (std::size_t i = 0; i < c.names.size(); ++i)
+      cj["parameters"].push_back({{"name", c.names[i]}, {"value", c.theta[i]}});
+    cj["magnitudes"] = nlohmann::json::array();
+    for (const EffectMagnitude& m : c.magnitudes)
+      cj["magnitudes"].push_back(
+          {{"name", m.name}, {"unit", m.unit}, {"value", m.value}});
+    j["classes"].push_back(cj);
+  }
+  j["not_applicable"] = k.skipped;
+  out->WriteText("diagnosis.json", j.dump(2) + "\n");
+  if (!plots) return;
+  Figure f;
+  Plot p;
+  p.title = "Which effect: posterior probability of each family";
+  p.y_label = "probability";
+  PlotSeries bars;
+  bars.style = PlotSeries::Style::kBars;
+  for (std::size_t i = 0; i < k.kind_probabilities.size(); ++i) {
+    p.x_tick_labels.push_back(k.kind_probabilities[i].first);
+    bars.x.push_back(static_cast<double>(i + 1));
+    bars.y.push_back(k.kind_probabilities[i].second);
+  }
+  p.series.push_back(bars);
+  f.panels.push_back(p);
+  RenderStaged(f, "effects", out, warnings);
+}
+
+std::string StructureDiagnosisReport(const StructureDiagnosisResult& r) {
+  std::ostringstream o;
+  const EffectRanking& k = r.ranking;
+  const RankedClass& top = k.classes.front();
+  o << "diagnosis of " << r.study_name << " (" << r.model_type << " model)\n";
+  if (top.kind == "none") {
+    o << "verdict: no significant gap (P " << std::fixed << std::setprecision(2)
+      << top.probability << ")\n";
+  } else {
+    o << "verdict: " << Label(top) << " (P " << std::fixed << std::setprecision(2)
+      << top.probability << "; family " << k.kind_probabilities.front().first << " P "
+      << k.kind_probabilities.front().second << ")";
+    if (top.probability < r.confidence) o << ", not separated at " << r.confidence;
+    o << "\n";
+  }
+  if (k.temperature > 1) {
+    o << "note: no class fits within the stated noise (best p " << std::scientific
+      << std::setprecision(1) << k.best_chi2_p_value << "); noise scaled by "
+      << std::fixed << std::setprecision(2) << k.temperature << "\n";
+  }
+  o << "classes (most probable first):\n";
+  const std::size_t shown = std::min<std::size_t>(k.classes.size(), 8);
+  for (std::size_t i = 0; i < shown; ++i) {
+    const RankedClass& c = k.classes[i];
+    o << "  " << std::left << std::setw(40) << Label(c) << std::right << " P "
+      << std::fixed << std::setprecision(3) << c.probability << "  chi2 "
+      << std::setprecision(1) << c.chi2;
+    for (const EffectMagnitude& m : c.magnitudes) {
+      o << "  " << m.name << " " << std::setprecision(4) << std::defaultfloat << m.value;
+      if (!m.unit.empty() && m.unit.front() != '1') o << " " << m.unit;
+    }
+    o << "\n";
+  }
+  for (const std::string& s : k.skipped) o << "not applicable: " << s << "\n";
+  return o.str();
+}
+
+}  // namespace femup
