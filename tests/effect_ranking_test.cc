@@ -6,11 +6,14 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <random>
 
 #include "femup/builders.h"
 #include "femup/errors.h"
 #include "femup/modal.h"
+#include "femup/studies/structure_diagnosis.h"
+#include "scratch_dir.h"
 
 namespace femup {
 namespace {
@@ -100,6 +103,42 @@ TEST(EffectRanking, RefusesBadOptionsAndFamiliesThatDoNotApply) {
     FAIL() << "expected an InputError";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("wet"), std::string::npos) << e.what();
+  }
+}
+
+// The pipeline on the bundled example (data made by numpy, not femup).
+TEST(StructureDiagnosis, ShearBuildingExampleEndToEnd) {
+  const Study study =
+      LoadStudy(std::string(FEMUP_EXAMPLES_DIR) + "/diagnosis/shear_building.yaml");
+  const StructureDiagnosisResult r = RunStructureDiagnosis(study);
+  EXPECT_EQ(r.model_type, "chain");
+  ASSERT_FALSE(r.ranking.classes.empty());
+  EXPECT_EQ(r.ranking.classes[0].region, "element 3");
+  const std::string report = StructureDiagnosisReport(r);
+  EXPECT_NE(report.find("verdict: stiffness_loss at element 3"), std::string::npos)
+      << report;
+  testing::ScratchDir dir;
+  {
+    OutputDir out(dir.File("diag"));
+    std::vector<std::string> warnings;
+    WriteStructureDiagnosisOutputs(r, false, &out, &warnings);
+    out.Commit();
+  }
+  EXPECT_TRUE(std::filesystem::is_regular_file(dir.File("diag/diagnosis.json")));
+}
+
+TEST(StructureDiagnosis, RefusesAFamilyThatDoesNotApplyBeforeAnyFit) {
+  Study study =
+      LoadStudy(std::string(FEMUP_EXAMPLES_DIR) + "/diagnosis/shear_building.yaml");
+  DiagnosisSpec spec = study.diagnosis.value_or(DiagnosisSpec());
+  spec.candidates = {"added_mass"};
+  study.diagnosis = spec;
+  try {
+    RunStructureDiagnosis(study);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("diagnosis.candidates"), std::string::npos)
+        << e.what();
   }
 }
 
