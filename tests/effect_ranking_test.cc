@@ -80,6 +80,34 @@ TEST(EffectRanking, NamesAnAttachedMassOnTheRoof) {
   EXPECT_NEAR(r.classes[0].magnitudes[0].value, 1.5e4, 0.2e4);
 }
 
+// A chain's ground spring softened in series and its first storey's loss are
+// the same change: named equivalent, their probability stated together.
+TEST(EffectRanking, NamesObservationallyEquivalentClasses) {
+  ChainSpec truth = ShearBuilding();
+  truth.springs[0] *= 0.8;
+  EffectRankingOptions o = Options();
+  o.kinds = {"support_flexibility", "stiffness_loss", "attached_mass"};
+  const EffectRanking r =
+      RankModelEffects(BuildSpringMassChain(ShearBuilding()), {Measured(truth, 5)}, o);
+  const RankedClass& top = r.classes[0];
+  ASSERT_TRUE(top.kind == "support_flexibility" || top.region == "element 1")
+      << top.kind << " " << top.region;
+  ASSERT_EQ(top.equivalent.size(), 1u);
+  const std::string other = top.kind == "support_flexibility"
+                                ? "stiffness_loss at element 1"
+                                : "support_flexibility at supports";
+  EXPECT_EQ(top.equivalent[0], other);
+  EXPECT_NEAR(top.group_probability, r.classes[0].probability + r.classes[1].probability,
+              1e-12);
+  EXPECT_GT(top.group_probability, 0.99);
+  // An attached mass is not equivalent to either.
+  for (const RankedClass& c : r.classes) {
+    if (c.kind == "attached_mass") {
+      EXPECT_TRUE(c.equivalent.empty()) << c.region;
+    }
+  }
+}
+
 TEST(EffectRanking, NoGapWhenTheNoiseExplainsTheData) {
   const EffectRanking r = RankModelEffects(BuildSpringMassChain(ShearBuilding()),
                                            {Measured(ShearBuilding(), 3)}, Options());

@@ -1,5 +1,7 @@
 #include "femup/studies/effect_ranking.h"
 
+#include <Eigen/QR>
+#include <Eigen/SVD>
 #include <algorithm>
 #include <boost/math/special_functions/gamma.hpp>
 #include <cmath>
@@ -20,8 +22,21 @@ struct Fit {
   bool converged = false;
   Eigen::VectorXd theta;
   Eigen::MatrixXd jacobian;
+  Eigen::VectorXd residual;
   double chi2 = 0;
 };
+
+// True when the column spaces of a and b coincide: same rank and every cosine
+// of their principal angles at least `cosine`.
+bool SameSpan(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, double cosine) {
+  if (a.cols() == 0 || b.cols() == 0 || a.cols() != b.cols()) return false;
+  const Eigen::MatrixXd qa =
+      a.householderQr().householderQ() * Eigen::MatrixXd::Identity(a.rows(), a.cols());
+  const Eigen::MatrixXd qb =
+      b.householderQr().householderQ() * Eigen::MatrixXd::Identity(b.rows(), b.cols());
+  const Eigen::VectorXd s = (qa.transpose() * qb).jacobiSvd().singularValues();
+  return s.minCoeff() >= cosine;
+}
 
 Fit FitInstance(const std::shared_ptr<const Structure>& structure,
                 const std::shared_ptr<const ModelEffect>& effect,
@@ -38,17 +53,17 @@ Fit FitInstance(const std::shared_ptr<const Structure>& structure,
     }
     const double chi2 = sol.residual.squaredNorm();
     if (!best.ok || chi2 < best.chi2) {
-      best = {true, sol.summary.usable(), sol.x, sol.jacobian, chi2};
+      best = {true, sol.summary.usable(), sol.x, sol.jacobian, sol.residual, chi2};
     }
   }
   return best;
 }
 
-// chi2 of the nominal model (no effect): the residuals at the nominal structure,
+// The residuals of the nominal model (no effect): the residuals at the nominal structure,
 // through a do-nothing material scaling (theta 0 leaves K unchanged).
-double NominalChi2(const std::shared_ptr<const Structure>& structure,
-                   const std::vector<ModalData>& states,
-                   const EigenSensitivityOptions& options, int* num_residuals) {
+Eigen::VectorXd NominalResidual(const std::shared_ptr<const Structure>& structure,
+                                const std::vector<ModalData>& states,
+                                const EigenSensitivityOptions& options) {
   std::shared_ptr<const ModelEffect> identity(
       CreateModelEffects("material_scaling", *structure).front().release());
   const NonlinearProblem problem = BuildModelEffectFitProblem(
@@ -59,8 +74,7 @@ double NominalChi2(const std::shared_ptr<const Structure>& structure,
     throw InputError("measurements",
                      "the nominal model cannot be compared with the data: " + why);
   }
-  *num_residuals = problem.num_residuals;
-  return r.squaredNorm();
+  return r;
 }
 
 }  // namespace
@@ -117,10 +131,13 @@ EffectRanking RankModelEffects(const Structure& structure_in,
   // "none", then every instance of every family.
   RankedClass none;
   none.kind = "none";
-  none.chi2 = NominalChi2(structure, states, fit, &out.num_residuals);
+  const Eigen::VectorXd nominal = NominalResidual(structure, states, fit);
+  out.num_residuals = static_cast<int>(nominal.size());
+  none.chi2 = nominal.squaredNorm();
   none.log_prior = log_family_prior;
   std::vector<RankedClass> classes = {none};
   std::vector<Eigen::MatrixXd> jacobians = {Eigen::MatrixXd(out.num_residuals, 0)};
+  std::vector<Eigen::VectorXd> residuals = {nominal};
   std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>> boxes = {{}};
   for (const std::string& kind : kinds) {
     std::vector<std::unique_ptr<ModelEffect>> made =
@@ -149,6 +166,7 @@ EffectRanking RankModelEffects(const Structure& structure_in,
       }
       classes.push_back(std::move(c));
       jacobians.push_back(f.jacobian);
+      residuals.push_back(f.residual);
       boxes.push_back({lower, upper});
     }
   }
@@ -175,6 +193,20 @@ EffectRanking RankModelEffects(const Structure& structure_in,
   for (std::size_t i = 0; i < classes.size(); ++i) {
     classes[i].probability = p[i];
     by_kind[classes[i].kind] += p[i];
+  }
+  auto label = [](const RankedClass& c) {
+    return c.region.empty() ? c.kind : c.kind + " at " + c.region;
+  };
+  for (std::size_t i = 0; i < classes.size(); ++i) {
+    classes[i].group_probability = classes[i].probability;
+    for (std::size_t k = 0; k < classes.size(); ++k) {
+      if (k == i || (residuals[i] - residuals[k]).squaredNorm() > 1.0 ||
+          !SameSpan(jacobians[i], jacobians[k], 0.999)) {
+        continue;
+      }
+      classes[i].equivalent.push_back(label(classes[k]));
+      classes[i].group_probability += classes[k].probability;
+    }
   }
   std::stable_sort(classes.begin(), classes.end(),
                    [](const RankedClass& a, const RankedClass& b) {

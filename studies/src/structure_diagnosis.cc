@@ -71,7 +71,9 @@ void WriteStructureDiagnosisOutputs(const StructureDiagnosisResult& r, bool plot
                   {"region", top.region},
                   {"probability", top.probability},
                   {"kind_probability", k.kind_probabilities.front().second},
-                  {"separated", top.probability >= r.confidence}};
+                  {"separated", top.probability >= r.confidence},
+                  {"equivalent", top.equivalent},
+                  {"group_probability", top.group_probability}};
   j["temperature"] = k.temperature;
   j["best_chi2_p_value"] = k.best_chi2_p_value;
   j["residuals"] = k.num_residuals;
@@ -87,7 +89,9 @@ void WriteStructureDiagnosisOutputs(const StructureDiagnosisResult& r, bool plot
                          {"log_evidence", c.evidence.log_evidence},
                          {"log_occam", c.evidence.log_occam},
                          {"log_prior", c.log_prior},
-                         {"converged", c.converged}};
+                         {"converged", c.converged},
+                         {"equivalent", c.equivalent},
+                         {"group_probability", c.group_probability}};
     cj["parameters"] = nlohmann::json::array();
     for (std::size_t i = 0; i < c.names.size(); ++i)
       cj["parameters"].push_back({{"name", c.names[i]}, {"value", c.theta[i]}});
@@ -130,6 +134,12 @@ std::string StructureDiagnosisReport(const StructureDiagnosisResult& r) {
       << k.kind_probabilities.front().second << ")";
     if (top.probability < r.confidence) o << ", not separated at " << r.confidence;
     o << "\n";
+    if (!top.equivalent.empty()) {
+      o << "  these data cannot tell it from:";
+      for (const std::string& e : top.equivalent) o << " " << e << ";";
+      o << " together P " << std::fixed << std::setprecision(2) << top.group_probability
+        << "\n";
+    }
   }
   if (k.temperature > 1) {
     o << "note: no class fits within the stated noise (best p " << std::scientific

@@ -12,6 +12,15 @@
 // (a noise temperature) before the probabilities are formed, and the result
 // says so.
 //
+// Observational equivalence: two classes whose fits predict the data alike
+// (their whitened residuals differ by at most 1 in squared norm: less than one
+// standard deviation in all) and whose Jacobians at the fits span the same
+// directions of the data (every cosine of their principal angles >= 0.999)
+// cannot be told apart by these data, e.g. a chain's ground-spring flexibility
+// and its first storey's stiffness loss. Each class lists the ones equivalent to
+// it, and their summed probability is stated with them rather than read as a
+// split between them.
+//
 // This is the step `femup diagnose` will run for every model type; today the
 // command runs it for models other than the cantilever (whose diagnosis keeps
 // its own pipeline, diagnose_study.h, until it moves here).
@@ -47,6 +56,10 @@ struct RankedClass {
   double log_prior = 0;
   double probability = 0;
   bool converged = true;
+  // "<kind> at <region>" of the classes observationally equivalent to this one
+  // (see above), and the probability of the group (this class's included).
+  std::vector<std::string> equivalent;
+  double group_probability = 0;
   EffectLocation location;
   std::vector<EffectMagnitude> magnitudes;
 };
