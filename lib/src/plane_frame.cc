@@ -1,6 +1,7 @@
 #include "femup/plane_frame.h"
 
 #include <Eigen/SparseCore>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <sstream>
@@ -188,6 +189,125 @@ ParametrisedModel BuildPlaneFrame(const PlaneFrameSpec& spec) {
     }
   }
   return model;
+}
+
+}  // namespace femup
+
+namespace femup {
+
+Structure BuildPlaneFrameStructure(const PlaneFrameSpec& spec) {
+  const std::string invalid = spec.Validate();
+  if (!invalid.empty()) {
+    const auto colon = invalid.find(':');
+    throw InputError("model." + invalid.substr(0, colon), invalid.substr(colon + 2));
+  }
+  const int lines = spec.bays + 1;
+  const int per_member = spec.elements_per_member;
+  std::vector<double> x, y;  // free nodes: the joints, then the members' inner nodes
+  auto joint = [&](int c, int s) { return s == 0 ? -1 : c * spec.storeys + (s - 1); };
+  for (int c = 0; c < lines; ++c) {
+    for (int s = 1; s <= spec.storeys; ++s) {
+      x.push_back(c * spec.bay_width);
+      y.push_back(s * spec.storey_height);
+    }
+  }
+  struct Member {
+    int a, b;
+    double xa, ya, xb, yb;
+    bool column;
+    int storey, index;  // index: column line or bay, 1-based
+  };
+  std::vector<Member> members;
+  for (int s = 1; s <= spec.storeys; ++s) {
+    for (int c = 0; c < lines; ++c) {
+      members.push_back({joint(c, s - 1), joint(c, s), c * spec.bay_width,
+                         (s - 1) * spec.storey_height, c * spec.bay_width,
+                         s * spec.storey_height, true, s, c + 1});
+    }
+    for (int c = 0; c < spec.bays; ++c) {
+      members.push_back({joint(c, s), joint(c + 1, s), c * spec.bay_width,
+                         s * spec.storey_height, (c + 1) * spec.bay_width,
+                         s * spec.storey_height, false, s, c + 1});
+    }
+  }
+  // Each member's elements: (a, b, coordinates), inner nodes appended.
+  struct Piece {
+    int a, b;
+    double xa, ya, xb, yb;
+  };
+  std::vector<std::vector<Piece>> pieces(members.size());
+  for (std::size_t m = 0; m < members.size(); ++m) {
+    const Member& mb = members[m];
+    int prev = mb.a;
+    double px = mb.xa, py = mb.ya;
+    for (int k = 1; k <= per_member; ++k) {
+      const double t = static_cast<double>(k) / per_member;
+      const double qx = mb.xa + t * (mb.xb - mb.xa), qy = mb.ya + t * (mb.yb - mb.ya);
+      int next = mb.b;
+      if (k < per_member) {
+        next = static_cast<int>(x.size());
+        x.push_back(qx);
+        y.push_back(qy);
+      }
+      pieces[m].push_back({prev, next, px, py, qx, qy});
+      prev = next;
+      px = qx;
+      py = qy;
+    }
+  }
+  const int n = 3 * static_cast<int>(x.size());
+  Structure s;
+  s.type = "plane_frame";
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    const std::string name = "n" + std::to_string(k + 1);
+    for (const char* d : {":ux", ":uy", ":rz"}) {
+      s.dof_labels.push_back(name + d);
+      s.dof_positions.push_back(y[k]);
+    }
+    s.nodes.push_back({name, Eigen::Vector3d(x[k], y[k], 0.0)});
+  }
+  Triplets kt, mt;
+  for (std::size_t m = 0; m < members.size(); ++m) {
+    const Member& mb = members[m];
+    const BeamSection& sec = mb.column ? spec.column : spec.beam;
+    Triplets ke, me, we;
+    for (const Piece& p : pieces[m]) {
+      const std::array<int, 6> d = {p.a < 0 ? -1 : 3 * p.a,
+                                    p.a < 0 ? -1 : 3 * p.a + 1,
+                                    p.a < 0 ? -1 : 3 * p.a + 2,
+                                    3 * p.b,
+                                    3 * p.b + 1,
+                                    3 * p.b + 2};
+      Scatter(Frame2dStiffness(sec, p.xa, p.ya, p.xb, p.yb), d, &ke);
+      Scatter(Frame2dConsistentMass(sec, p.xa, p.ya, p.xb, p.yb), d, &me);
+      if (mb.column && mb.storey <= spec.wet_storeys) {
+        Scatter(Frame2dTransverseMass(sec.rho * sec.A, p.xa, p.ya, p.xb, p.yb), d, &we);
+      }
+    }
+    ElementMatrices el;
+    el.id = static_cast<int>(m) + 1;
+    el.label = "s" + std::to_string(mb.storey) + (mb.column ? ":col" : ":beam") +
+               std::to_string(mb.index);
+    el.stiffness = FromTriplets(n, ke);
+    el.mass = FromTriplets(n, me);
+    el.added_mass_basis = FromTriplets(n, we);
+    el.wet = mb.column && mb.storey <= spec.wet_storeys;
+    // Heights of its ends (a beam: x0 == x1): where it applies along the height.
+    el.x0 = std::min(mb.ya, mb.yb);
+    el.x1 = std::max(mb.ya, mb.yb);
+    kt.insert(kt.end(), ke.begin(), ke.end());
+    mt.insert(mt.end(), me.begin(), me.end());
+    s.elements.push_back(std::move(el));
+  }
+  s.stiffness = FromTriplets(n, kt);
+  s.mass = FromTriplets(n, mt);
+  s.length = spec.storeys * spec.storey_height;
+  std::ostringstream desc;
+  desc << "2D plane frame, " << spec.storeys << " storeys x " << spec.bays << " bays ("
+       << spec.storey_height << " m x " << spec.bay_width << " m), " << members.size()
+       << " members of " << per_member << " elements, columns clamped";
+  s.description = desc.str();
+  return s;
 }
 
 }  // namespace femup

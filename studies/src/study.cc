@@ -16,6 +16,7 @@
 #include "femup/builders.h"
 #include "femup/errors.h"
 #include "femup/matrix_market.h"
+#include "femup/plane_frame.h"
 #include "femup/problems/effects.h"
 #include "femup/space_frame.h"
 
@@ -23,6 +24,21 @@ namespace femup {
 namespace {
 
 namespace fs = std::filesystem;
+
+// The largest built-in models a study may describe. A cantilever keeps each
+// element's matrices at the size of the whole model, so its memory grows with
+// the square of the element count (measured: 0.45 GB at 3000 elements, 1.5 GB at
+// 5000). Builds for fuzzing (scripts/fuzz.sh defines the usual macro
+// FUZZING_BUILD_MODE_UNSAFE_FOR_PRODUCTION) accept small models only, so that
+// the study fuzzer spends its time in the reader rather than in building
+// legitimate large models under the sanitizers (a 1000-element cantilever takes
+// 7 s there).
+#ifdef FUZZING_BUILD_MODE_UNSAFE_FOR_PRODUCTION
+constexpr int kMaxCantileverElements = 100;
+constexpr long long kFuzzingMaxSpaceFrameDofs = 3000;  // otherwise Validate's 5e7
+#else
+constexpr int kMaxCantileverElements = 5000;
+#endif
 
 // A YAML node with its field path, for messages like
 // "study.yaml:12:5: model.section.E: expected a number, found 'abc'".
@@ -195,9 +211,21 @@ Structure ReadCantilever(const Field& m, CantileverSpec* out) {
       m.Fail("give either node_heights or length and elements, not both");
     }
     spec.node_heights = m["node_heights"].Numbers();
+    if (spec.node_heights.size() > kMaxCantileverElements + 1u) {
+      m["node_heights"].Fail("has " + std::to_string(spec.node_heights.size()) +
+                             " nodes; expected at most " +
+                             std::to_string(kMaxCantileverElements + 1) + " (" +
+                             std::to_string(kMaxCantileverElements) + " elements)");
+    }
   } else {
     const int elements = m["elements"].Int();
     if (elements < 1) m["elements"].Fail("expected at least one element");
+    if (elements > kMaxCantileverElements) {
+      m["elements"].Fail("expected at most " + std::to_string(kMaxCantileverElements) +
+                         " elements, found " + std::to_string(elements) +
+                         " (the memory of a cantilever grows with the square of its "
+                         "element count)");
+    }
     spec.node_heights = UniformHeights(m["length"].Positive(), elements);
   }
   const Field s = m["section"];
@@ -416,6 +444,34 @@ FrameSection3d ReadTube(const Field& f, const FrameSection3d& defaults) {
 // A jacket-like space frame (space_frame.h): the model and its factors come
 // from the generator; `structure` gets the description, labels and, for
 // plots, each DOF's height.
+// A 2D plane frame (portal, multi-bay, multi-storey) as a Structure of members.
+Structure ReadPlaneFrame(const Field& m) {
+  m.ExpectKeys({"type", "storeys", "bays", "storey_height", "bay_width",
+                "elements_per_member", "wet_storeys", "column", "beam"});
+  PlaneFrameSpec spec;
+  spec.storeys = m["storeys"].Int();
+  spec.bays = m["bays"].Int();
+  spec.storey_height = m["storey_height"].Positive();
+  spec.bay_width = m["bay_width"].Positive();
+  if (m.Has("elements_per_member"))
+    spec.elements_per_member = m["elements_per_member"].Int();
+  if (m.Has("wet_storeys")) spec.wet_storeys = m["wet_storeys"].Int();
+  for (const char* which : {"column", "beam"}) {
+    const Field s = m[which];
+    s.ExpectKeys({"E", "A", "I", "rho"});
+    const BeamSection section{s["E"].Positive(), s["A"].Positive(), s["I"].Positive(),
+                              s["rho"].Positive()};
+    (std::string(which) == "column" ? spec.column : spec.beam) = section;
+  }
+  spec.blocks_per_storey = 1;
+  const std::string invalid = spec.Validate();
+  if (!invalid.empty()) {
+    const auto colon = invalid.find(':');
+    m[invalid.substr(0, colon)].Fail(invalid.substr(colon + 2));
+  }
+  return BuildPlaneFrameStructure(spec);
+}
+
 ParametrisedModel ReadSpaceFrame(const Field& m, Structure* structure) {
   m.ExpectKeys({"type", "levels", "bays_x", "bays_y", "level_height", "bay_width_x",
                 "bay_width_y", "elements_per_member", "blocks_per_level", "bracing",
@@ -451,6 +507,22 @@ ParametrisedModel ReadSpaceFrame(const Field& m, Structure* structure) {
       rest.erase(0, 1);
     m[key].Fail(rest);
   }
+#ifdef FUZZING_BUILD_MODE_UNSAFE_FOR_PRODUCTION
+  {
+    // SpaceFrameSpec::Validate's estimate of the DOFs, at once (the exact count,
+    // SpaceFrameModelSize, takes seconds for a large frame under the sanitizers).
+    const double nx = spec.bays_x + 1.0, ny = spec.bays_y + 1.0;
+    const double faces = 2.0 * (spec.bays_x + spec.bays_y);
+    const double members = nx * ny + (nx - 1) * ny + nx * (ny - 1) + 4 * faces;
+    const double dofs =
+        6.0 * spec.levels * (nx * ny + faces + (spec.elements_per_member - 1) * members);
+    if (dofs > kFuzzingMaxSpaceFrameDofs) {
+      m.Fail("has about " + std::to_string(static_cast<long long>(dofs)) +
+             " DOFs; a build for fuzzing takes at most " +
+             std::to_string(kFuzzingMaxSpaceFrameDofs));
+    }
+  }
+#endif
   ParametrisedModel model;
   try {
     model = BuildSpaceFrame(spec);
@@ -932,6 +1004,11 @@ MeasurementSpec ReadMeasurement(const Field& f, const ParametrisedModel& model,
       if (mf.IsScalar()) {
         const int n = mf.Int();
         if (n < 1) mf.Fail("expected the number of lowest modes to use (>= 1)");
+        if (n > model.num_dofs()) {
+          mf.Fail("expected at most " + std::to_string(model.num_dofs()) +
+                  " modes (the model has " + std::to_string(model.num_dofs()) +
+                  " DOFs), found " + std::to_string(n));
+        }
         for (int i = 1; i <= n; ++i) m.use_modes.push_back(i);
       } else {
         std::set<int> seen;
@@ -1192,9 +1269,12 @@ Study ReadStudy(const YAML::Node& root, const std::string& path) {
     study.structure = ReadMatrixMarketModel(mf);
   } else if (type == "space_frame") {
     study.model = ReadSpaceFrame(mf, &study.structure);
+  } else if (type == "plane_frame") {
+    study.structure = ReadPlaneFrame(mf);
   } else {
     mf["type"].Fail("unknown model type '" + type +
-                    "' (expected chain, cantilever, matrix_market or space_frame)");
+                    "' (expected chain, cantilever, plane_frame, matrix_market or "
+                    "space_frame)");
   }
   const bool generated = type == "space_frame";  // the generator sets the factors
 

@@ -19,6 +19,7 @@
 
 #include "femup/fe.h"
 #include "femup/model.h"
+#include "femup/structure.h"
 
 namespace femup {
 
@@ -38,5 +39,17 @@ struct PlaneFrameSpec {
 
 // Throws InputError naming the field for an invalid spec.
 ParametrisedModel BuildPlaneFrame(const PlaneFrameSpec& spec);
+
+// The same frame as a Structure whose elements are its members (the study
+// model type `plane_frame`: portal frames, multi-bay, multi-storey): each member,
+// split into `elements_per_member` beam-column elements, keeps its own stiffness,
+// mass and (columns of the lowest `wet_storeys` storeys) transverse added-mass
+// basis, so correction factors and unmodelled effects act per member. Members
+// are numbered storey by storey, columns left to right then beams left to right;
+// labels "s<storey>:col<line>" and "s<storey>:beam<bay>" (1-based). DOFs and
+// node names as BuildPlaneFrame; Structure::nodes holds every free node's
+// coordinates (x along the bays, y up). blocks_per_storey is not used. Throws
+// InputError naming the field for an invalid spec.
+Structure BuildPlaneFrameStructure(const PlaneFrameSpec& spec);
 
 }  // namespace femup
