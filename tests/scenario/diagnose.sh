@@ -239,6 +239,14 @@ refused "added mass on a dry chain" chain.yaml "diagnosis.candidates" "added_mas
 [ "$(json shear/diagnosis.json "abs(j['classes'][0]['magnitudes'][0]['value'] - 0.25) < 0.03")" \
   = True ] || fail "shear loss: $(json shear/diagnosis.json "j['classes'][0]['magnitudes']")"
 grep -q "verdict: stiffness_loss at element 3" shear.txt || fail "shear report: $(cat shear.txt)"
+# A plane frame (study model type plane_frame) with an unmodelled 2 t machine on
+# the first-floor beam's middle node (data made by numpy's own frame elements).
+"$FEMUP" diagnose "$ROOT/examples/diagnosis/portal_frame.yaml" -o portal --no-plots > portal.txt \
+  || fail "diagnose portal_frame exit $?: $(cat portal.txt)"
+[ "$(json portal/diagnosis.json "(j['verdict']['kind'], j['verdict']['region'])")" \
+  = "('attached_mass', 'node n7')" ] || fail "portal verdict: $(json portal/diagnosis.json "j['verdict']")"
+[ "$(json portal/diagnosis.json "abs(j['classes'][0]['magnitudes'][0]['value'] - 2000) < 300")" \
+  = True ] || fail "portal mass: $(json portal/diagnosis.json "j['classes'][0]['magnitudes']")"
 sed -e 's/^    frequencies_hz: \[\([^,]*\), \([^,]*\),/    frequencies_hz: [\2, \1,/' \
   "$ROOT/examples/diagnosis/frequencies_only.yaml" > swapped.yaml
 grep -q "frequencies_hz: \[17" swapped.yaml || fail "swapped.yaml: $(grep frequencies_hz swapped.yaml)"
