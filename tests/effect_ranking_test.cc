@@ -108,6 +108,21 @@ TEST(EffectRanking, NamesObservationallyEquivalentClasses) {
   }
 }
 
+// A model brought as global matrices only (Matrix Market without elements):
+// only the families that need no element matrices are tried.
+TEST(EffectRanking, GlobalMatricesOnlyGetTheFamiliesThatNeedNoElements) {
+  Structure s = BuildSpringMassChain(ShearBuilding());
+  s.type = "matrix_market";
+  s.elements.clear();
+  s.supports.clear();
+  ChainSpec truth = ShearBuilding();
+  truth.masses[3] += 2e4;
+  const EffectRanking r = RankModelEffects(s, {Measured(truth, 13)}, Options());
+  EXPECT_EQ(r.classes[0].kind, "attached_mass");
+  EXPECT_EQ(r.classes[0].region, "node x4");
+  EXPECT_EQ(r.skipped.size(), 4u);  // the four that need elements or supports
+}
+
 TEST(EffectRanking, NoGapWhenTheNoiseExplainsTheData) {
   const EffectRanking r = RankModelEffects(BuildSpringMassChain(ShearBuilding()),
                                            {Measured(ShearBuilding(), 3)}, Options());

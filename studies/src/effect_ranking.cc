@@ -59,15 +59,21 @@ Fit FitInstance(const std::shared_ptr<const Structure>& structure,
   return best;
 }
 
-// The residuals of the nominal model (no effect): the residuals at the nominal structure,
-// through a do-nothing material scaling (theta 0 leaves K unchanged).
+// The residuals of the nominal model (no effect).
 Eigen::VectorXd NominalResidual(const std::shared_ptr<const Structure>& structure,
                                 const std::vector<ModalData>& states,
                                 const EigenSensitivityOptions& options) {
-  std::shared_ptr<const ModelEffect> identity(
-      CreateModelEffects("material_scaling", *structure).front().release());
-  const NonlinearProblem problem = BuildModelEffectFitProblem(
-      structure, {identity}, states, options, Eigen::VectorXd::Zero(1));
+  // One unknown whose basis is zero: the nominal matrices whatever its value
+  // (the engine needs an unknown; any structure has this one).
+  ParametrisedModel model(structure->stiffness, structure->mass, structure->dof_labels);
+  Parameter unused;
+  unused.name = "nominal";
+  unused.kind = ParameterKind::kStiffness;
+  unused.basis = BasisMatrix(SparseMatrix(model.num_dofs(), model.num_dofs()));
+  model.AddParameter(std::move(unused));
+  const NonlinearProblem problem =
+      BuildOutputErrorProblem(std::make_shared<const ModelPencil>(std::move(model)),
+                              states, options, Eigen::VectorXd::Zero(1));
   Eigen::VectorXd r;
   std::string why;
   if (!problem.evaluate(Eigen::VectorXd::Zero(1), &r, nullptr, &why)) {
