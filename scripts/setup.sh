@@ -5,7 +5,7 @@ PACKAGES=(build-essential cmake ninja-build pkg-config python3 clang-format
           libeigen3-dev libsuitesparse-dev libspectra-dev libyaml-cpp-dev
           nlohmann-json3-dev libcli11-dev libgtest-dev libbenchmark-dev gnuplot-nox
           libceres-dev coinor-libipopt-dev libboost-dev librandom123-dev liblapack-dev ccache python3-numpy
-          python3-scipy)
+          python3-scipy clang libclang-rt-14-dev)
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg -s "$p" > /dev/null 2>&1 || missing+=("$p")

@@ -2,8 +2,8 @@
 # The README's second command (and CI's): set up, build (Release, in the same
 # build/ folder and with the same flags as the first command, so that one build
 # serves both; a compiler warning fails the run), run every test; then the same
-# tests under ASan/UBSan; then check the formatting of the sources. Prints each
-# stage's time.
+# tests under ASan/UBSan; then fuzz each parser briefly; then check the
+# formatting of the sources. Prints each stage's time.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/stages.sh
@@ -32,6 +32,11 @@ bash scripts/build.sh build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFEMUP_SANIT
 stage "sanitizer tests"
 (cd build-asan && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
    ctest --output-on-failure -j "$JOBS")
+
+stage "fuzzing (short)"
+# Each parser's libFuzzer harness (fuzz/) for 12 s from its seeds, in
+# build-fuzz/ (clang, ASan + UBSan); docs/fuzzing.md has the long campaign.
+FEMUP_FUZZ_JOBS="$JOBS" bash scripts/fuzz.sh 12
 
 stage "clang-format check"
 files=$(git ls-files '*.cc' '*.h' 2>/dev/null || find lib problems solvers studies app tests bench fuzz -name '*.cc' -o -name '*.h')

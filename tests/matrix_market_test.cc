@@ -406,11 +406,11 @@ TEST(MatrixMarketSizeLimitsTest, DenseReadRefusesMoreThan2To26Entries) {
 TEST(MatrixMarketSizeLimitsTest, SparseReadRefusesHugeDimensionsWithFewEntries) {
   // Each allocated 8 GiB of indices (Eigen's outer index, or the transposed
   // copy setFromTriplets makes).
-  for (const char* size : {"1 2147483647 0", "2147483647 1 0", "16777217 1 0"}) {
+  for (const char* size : {"1 2147483647 0", "2147483647 1 0", "4194305 1 0"}) {
     SCOPED_TRACE(size);
     const std::string text = BANNER + std::string(size) + "\n";
-    // Read dense, 16777217 x 1 is within the dense limit (128 MiB).
-    const int reads = std::string(size) == "16777217 1 0" ? 1 : 2;
+    // Read dense, 4194305 x 1 is within the dense limit (32 MiB).
+    const int reads = std::string(size) == "4194305 1 0" ? 1 : 2;
     for (int dense = 0; dense < reads; ++dense) {
       const InputError error = CatchInputError([&] {
         if (dense) {
@@ -427,7 +427,7 @@ TEST(MatrixMarketSizeLimitsTest, SparseReadRefusesHugeDimensionsWithFewEntries) 
       CatchInputError([] { ParseMatrixMarket(BANNER "1 2147483647 0\n", "huge.mtx"); });
   ExpectContains(error.what(),
                  "a 1 x 2147483647 matrix with 0 entries would need 8 GiB of row and "
-                 "column indices; expected at most 16777216 (2^24) rows and columns, or "
+                 "column indices; expected at most 4194304 (2^22) rows and columns, or "
                  "more only with at least one entry per 16 rows (columns): here at least "
                  "134217728");
   // An array file with no entries (0 rows) says the same.
@@ -452,7 +452,7 @@ TEST(MatrixMarketSizeLimitsTest, LargeSparseMatricesWithFewEntriesAreRead) {
   EXPECT_EQ(a.rows(), 1000000);
   EXPECT_EQ(a.nonZeros(), 3);
   EXPECT_EQ(a.coeff(0, 999999), -1.0);
-  // A dimension above 2^24 with at least one entry per 16 columns passes the
+  // A dimension above 2^22 with at least one entry per 16 columns passes the
   // size line (and the file must then hold the entries).
   ExpectContains(
       CatchInputError([] {

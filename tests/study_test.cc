@@ -234,6 +234,39 @@ TEST(Study, KeysThatAreNotNamesAreInputErrors) {
       {"parameters.equalities[1].coefficients: expected each key"});
 }
 
+// Fuzzing (issue 25): counts that allocate before any check. A cantilever of
+// 10^9 elements allocated 8 GB of node heights (std::bad_alloc, "internal
+// error"); "modes: 1000000000" a list of 10^9 mode numbers.
+// fuzz/regressions/study/.
+TEST(Study, CountsThatWouldExhaustMemoryAreInputErrors) {
+  const std::string beam = R"(
+model:
+  type: cantilever
+  length: 1.9
+  elements: 1000000000
+  section: {E: 206e9, A: 8.8e-4, I: 8.53e-8, rho: 7850}
+measurements:
+  - {state: air, frequencies_hz: [6.5]}
+)";
+  ExpectError(
+      "elements.yaml", beam,
+      {"elements.yaml:5:13: model.elements: expected at most 5000 elements, found "
+       "1000000000"});
+  std::string heights = "[0";
+  for (int i = 1; i <= 5001; ++i) heights += ", " + std::to_string(i);
+  ExpectError(
+      "heights.yaml",
+      Replace(Replace(beam, "  length: 1.9\n", ""), "elements: 1000000000",
+              "node_heights: " + heights + "]"),
+      {"model.node_heights: has 5002 nodes; expected at most 5001 (5000 elements)"});
+  ExpectError("modes.yaml",
+              Replace(kChain, "{state: water, simulate_modes: 2}",
+                      "{state: water, modes_file: m.json, sensors: [x1, x2, "
+                      "x3], modes: 1000000000}"),
+              {"measurements[2].modes: expected at most 3 modes (the model has 3 DOFs), "
+               "found 1000000000"});
+}
+
 // The text of a study, without a file: errors name the path given.
 TEST(Study, ParseStudyReadsTextAndNamesThePath) {
   const Study s = ParseStudy(kChain, "in_memory/chain.yaml");

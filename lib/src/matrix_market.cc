@@ -339,7 +339,7 @@ class Reader {
            Bytes(4.0 * static_cast<double>(parsed_.rows + parsed_.cols)) +
            " of row and column indices; expected at most " +
            std::to_string(kMatrixMarketFreeDimension) +
-           " (2^24) rows and columns, or more only with at least one entry per " +
+           " (2^22) rows and columns, or more only with at least one entry per " +
            std::to_string(kMatrixMarketDimensionPerEntry) +
            " rows (columns): here at least " +
            std::to_string((dimension + kMatrixMarketDimensionPerEntry - 1) /

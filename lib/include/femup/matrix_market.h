@@ -17,17 +17,18 @@ namespace femup {
 //  * Read dense, a matrix has at most kMatrixMarketMaxDenseEntries = 2^26 entries
 //    (rows x cols; 512 MiB of doubles, e.g. 8192 x 8192), whatever the format.
 //  * Read sparse, rows and columns are at most 2^31 - 1 (Eigen's index), and at
-//    most kMatrixMarketFreeDimension = 2^24 (16,777,216) unless the file lists at
+//    most kMatrixMarketFreeDimension = 2^22 (4,194,304) unless the file lists at
 //    least one entry per kMatrixMarketDimensionPerEntry = 16 rows (or columns, the
 //    larger of the two). A sparse matrix keeps one 4-byte index per column, and
-//    assembling it one per row too, whether or not the rows hold entries: so a
-//    file of a few lines costs at most 2 x 64 MiB of indices, and a matrix with
-//    more rows than that has its entries to show for them (a stiffness or mass
-//    matrix has its diagonal). A 10^6-DOF element matrix with a few entries is
-//    read; "1 2147483647 0" (8 GiB of indices for nothing) is refused. For an
+//    assembling it one per row too, whether or not the rows hold entries, and
+//    the assembly walks them all: so a file of a few lines costs at most
+//    2 x 16 MiB of indices, and a matrix with more rows than that has its
+//    entries to show for them (a stiffness or mass matrix has its diagonal).
+//    An element matrix of a 10^6-DOF model in global DOFs, with a few entries,
+//    is read; "1 2147483647 0" (8 GiB of indices for nothing) is refused. For an
 //    array file the entries are rows x cols (the lower triangle for symmetric).
 inline constexpr long long kMatrixMarketMaxDenseEntries = 1LL << 26;
-inline constexpr long long kMatrixMarketFreeDimension = 1LL << 24;
+inline constexpr long long kMatrixMarketFreeDimension = 1LL << 22;
 inline constexpr long long kMatrixMarketDimensionPerEntry = 16;
 
 // Reads a real or integer matrix, "coordinate" or "array", general or symmetric
