@@ -110,7 +110,8 @@ std::string LinearProblem::Validate() const {
         return msg.str();
       }
       if (std::isinf((*bound)[i]) && ((*bound)[i] > 0) == (bound == &lower)) {
-        msg << which << " bound of " << label(i) << " is " << ((*bound)[i] > 0 ? "+" : "-")
+        msg << which << " bound of " << label(i) << " is "
+            << ((*bound)[i] > 0 ? "+" : "-")
             << "inf: no value satisfies it (a missing bound is "
             << (bound == &lower ? "-inf" : "+inf") << ")";
         return msg.str();
