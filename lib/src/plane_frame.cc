@@ -28,6 +28,73 @@ std::string CheckSection(const BeamSection& s, const std::string& field) {
   return "";
 }
 
+// The frame's geometry, shared by both builders: free nodes (the joints, column
+// line by column line bottom up, then each member's inner nodes, member by
+// member), members storey by storey (columns left to right, then beams), and
+// each member's elements in order along it.
+struct FrameMember {
+  int a, b;  // end nodes (-1 = base, clamped)
+  double xa, ya, xb, yb;
+  bool column;
+  int storey;  // 1-based
+  int index;   // column line or bay, 0-based
+};
+struct FramePiece {
+  int a, b;
+  double xa, ya, xb, yb;
+  std::size_t member;
+};
+struct FrameLayout {
+  std::vector<double> x, y;
+  std::vector<FrameMember> members;
+  std::vector<FramePiece> pieces;  // grouped by member, in member order
+};
+
+FrameLayout LayOut(const PlaneFrameSpec& spec) {
+  FrameLayout f;
+  const int lines = spec.bays + 1;
+  const int e = spec.elements_per_member;
+  auto joint = [&](int c, int s) { return s == 0 ? -1 : c * spec.storeys + (s - 1); };
+  for (int c = 0; c < lines; ++c) {
+    for (int s = 1; s <= spec.storeys; ++s) {
+      f.x.push_back(c * spec.bay_width);
+      f.y.push_back(s * spec.storey_height);
+    }
+  }
+  for (int s = 1; s <= spec.storeys; ++s) {
+    for (int c = 0; c < lines; ++c) {
+      f.members.push_back({joint(c, s - 1), joint(c, s), c * spec.bay_width,
+                           (s - 1) * spec.storey_height, c * spec.bay_width,
+                           s * spec.storey_height, true, s, c});
+    }
+    for (int c = 0; c < spec.bays; ++c) {
+      f.members.push_back({joint(c, s), joint(c + 1, s), c * spec.bay_width,
+                           s * spec.storey_height, (c + 1) * spec.bay_width,
+                           s * spec.storey_height, false, s, c});
+    }
+  }
+  for (std::size_t m = 0; m < f.members.size(); ++m) {
+    const FrameMember& mb = f.members[m];
+    int prev = mb.a;
+    double px = mb.xa, py = mb.ya;
+    for (int k = 1; k <= e; ++k) {
+      const double t = static_cast<double>(k) / e;
+      const double qx = mb.xa + t * (mb.xb - mb.xa), qy = mb.ya + t * (mb.yb - mb.ya);
+      int next = mb.b;
+      if (k < e) {
+        next = static_cast<int>(f.x.size());
+        f.x.push_back(qx);
+        f.y.push_back(qy);
+      }
+      f.pieces.push_back({prev, next, px, py, qx, qy, m});
+      prev = next;
+      px = qx;
+      py = qy;
+    }
+  }
+  return f;
+}
+
 }  // namespace
 
 std::string PlaneFrameSpec::Validate() const {
@@ -59,67 +126,13 @@ ParametrisedModel BuildPlaneFrame(const PlaneFrameSpec& spec) {
     throw InputError("model." + invalid.substr(0, colon), invalid.substr(colon + 2));
   }
   const int lines = spec.bays + 1;
-  const int e = spec.elements_per_member;
-  // Joint (c, s): column line c, level s (0 = base, clamped).
-  std::vector<double> x, y;  // free node coordinates
-  auto joint = [&](int c, int s) { return s == 0 ? -1 : c * spec.storeys + (s - 1); };
-  for (int c = 0; c < lines; ++c) {
-    for (int s = 1; s <= spec.storeys; ++s) {
-      x.push_back(c * spec.bay_width);
-      y.push_back(s * spec.storey_height);
-    }
-  }
+  const FrameLayout layout = LayOut(spec);
+  const std::vector<double>& x = layout.x;
   // Block of bay/column line c: consecutive lines share a block.
   auto block = [&](int c) {
     return std::min(spec.blocks_per_storey - 1, c * spec.blocks_per_storey / lines);
   };
   auto beam_block = [&](int bay) { return bay * spec.blocks_per_storey / spec.bays; };
-
-  struct Member {
-    int a, b;  // end nodes (-1 = base)
-    double xa, ya, xb, yb;
-    bool column;
-    int storey, blk;
-  };
-  std::vector<Member> members;
-  for (int s = 1; s <= spec.storeys; ++s) {
-    for (int c = 0; c < lines; ++c) {
-      members.push_back({joint(c, s - 1), joint(c, s), c * spec.bay_width,
-                         (s - 1) * spec.storey_height, c * spec.bay_width,
-                         s * spec.storey_height, true, s, block(c)});
-    }
-    for (int c = 0; c < spec.bays; ++c) {
-      members.push_back({joint(c, s), joint(c + 1, s), c * spec.bay_width,
-                         s * spec.storey_height, (c + 1) * spec.bay_width,
-                         s * spec.storey_height, false, s, beam_block(c)});
-    }
-  }
-  // Internal nodes, then the DOF count.
-  struct Element {
-    int a, b;
-    double xa, ya, xb, yb;
-    std::size_t member;
-  };
-  std::vector<Element> elements;
-  for (std::size_t m = 0; m < members.size(); ++m) {
-    const Member& mb = members[m];
-    int prev = mb.a;
-    double px = mb.xa, py = mb.ya;
-    for (int k = 1; k <= e; ++k) {
-      const double t = static_cast<double>(k) / e;
-      const double qx = mb.xa + t * (mb.xb - mb.xa), qy = mb.ya + t * (mb.yb - mb.ya);
-      int next = mb.b;
-      if (k < e) {
-        next = static_cast<int>(x.size());
-        x.push_back(qx);
-        y.push_back(qy);
-      }
-      elements.push_back({prev, next, px, py, qx, qy, m});
-      prev = next;
-      px = qx;
-      py = qy;
-    }
-  }
   const int n = 3 * static_cast<int>(x.size());
   std::vector<std::string> labels;
   labels.reserve(n);
@@ -135,8 +148,9 @@ ParametrisedModel BuildPlaneFrame(const PlaneFrameSpec& spec) {
   std::vector<Triplets> k_col(spec.storeys * blocks), k_beam(spec.storeys * blocks),
       m_storey(spec.storeys), w_col(spec.wet_storeys * blocks);
   Triplets kt, mt;
-  for (const Element& el : elements) {
-    const Member& mb = members[el.member];
+  for (const FramePiece& el : layout.pieces) {
+    const FrameMember& mb = layout.members[el.member];
+    const int blk = mb.column ? block(mb.index) : beam_block(mb.index);
     const BeamSection& sec = mb.column ? spec.column : spec.beam;
     const std::array<int, 6> d = {el.a < 0 ? -1 : 3 * el.a,
                                   el.a < 0 ? -1 : 3 * el.a + 1,
@@ -146,15 +160,15 @@ ParametrisedModel BuildPlaneFrame(const PlaneFrameSpec& spec) {
                                   3 * el.b + 2};
     const Matrix6 ke = Frame2dStiffness(sec, el.xa, el.ya, el.xb, el.yb);
     const Matrix6 me = Frame2dConsistentMass(sec, el.xa, el.ya, el.xb, el.yb);
-    Triplets& kg = mb.column ? k_col[col_index(mb.storey, mb.blk)]
-                             : k_beam[col_index(mb.storey, mb.blk)];
+    Triplets& kg =
+        mb.column ? k_col[col_index(mb.storey, blk)] : k_beam[col_index(mb.storey, blk)];
     Scatter(ke, d, &kg);
     Scatter(ke, d, &kt);
     Scatter(me, d, &m_storey[mb.storey - 1]);
     Scatter(me, d, &mt);
     if (mb.column && mb.storey <= spec.wet_storeys) {
       Scatter(Frame2dTransverseMass(sec.rho * sec.A, el.xa, el.ya, el.xb, el.yb), d,
-              &w_col[col_index(mb.storey, mb.blk)]);
+              &w_col[col_index(mb.storey, blk)]);
     }
   }
 
@@ -201,60 +215,11 @@ Structure BuildPlaneFrameStructure(const PlaneFrameSpec& spec) {
     const auto colon = invalid.find(':');
     throw InputError("model." + invalid.substr(0, colon), invalid.substr(colon + 2));
   }
-  const int lines = spec.bays + 1;
+  const FrameLayout layout = LayOut(spec);
+  const std::vector<double>& x = layout.x;
+  const std::vector<double>& y = layout.y;
+  const auto& members = layout.members;
   const int per_member = spec.elements_per_member;
-  std::vector<double> x, y;  // free nodes: the joints, then the members' inner nodes
-  auto joint = [&](int c, int s) { return s == 0 ? -1 : c * spec.storeys + (s - 1); };
-  for (int c = 0; c < lines; ++c) {
-    for (int s = 1; s <= spec.storeys; ++s) {
-      x.push_back(c * spec.bay_width);
-      y.push_back(s * spec.storey_height);
-    }
-  }
-  struct Member {
-    int a, b;
-    double xa, ya, xb, yb;
-    bool column;
-    int storey, index;  // index: column line or bay, 1-based
-  };
-  std::vector<Member> members;
-  for (int s = 1; s <= spec.storeys; ++s) {
-    for (int c = 0; c < lines; ++c) {
-      members.push_back({joint(c, s - 1), joint(c, s), c * spec.bay_width,
-                         (s - 1) * spec.storey_height, c * spec.bay_width,
-                         s * spec.storey_height, true, s, c + 1});
-    }
-    for (int c = 0; c < spec.bays; ++c) {
-      members.push_back({joint(c, s), joint(c + 1, s), c * spec.bay_width,
-                         s * spec.storey_height, (c + 1) * spec.bay_width,
-                         s * spec.storey_height, false, s, c + 1});
-    }
-  }
-  // Each member's elements: (a, b, coordinates), inner nodes appended.
-  struct Piece {
-    int a, b;
-    double xa, ya, xb, yb;
-  };
-  std::vector<std::vector<Piece>> pieces(members.size());
-  for (std::size_t m = 0; m < members.size(); ++m) {
-    const Member& mb = members[m];
-    int prev = mb.a;
-    double px = mb.xa, py = mb.ya;
-    for (int k = 1; k <= per_member; ++k) {
-      const double t = static_cast<double>(k) / per_member;
-      const double qx = mb.xa + t * (mb.xb - mb.xa), qy = mb.ya + t * (mb.yb - mb.ya);
-      int next = mb.b;
-      if (k < per_member) {
-        next = static_cast<int>(x.size());
-        x.push_back(qx);
-        y.push_back(qy);
-      }
-      pieces[m].push_back({prev, next, px, py, qx, qy});
-      prev = next;
-      px = qx;
-      py = qy;
-    }
-  }
   const int n = 3 * static_cast<int>(x.size());
   Structure s;
   s.type = "plane_frame";
@@ -268,10 +233,11 @@ Structure BuildPlaneFrameStructure(const PlaneFrameSpec& spec) {
   }
   Triplets kt, mt;
   for (std::size_t m = 0; m < members.size(); ++m) {
-    const Member& mb = members[m];
+    const FrameMember& mb = members[m];
     const BeamSection& sec = mb.column ? spec.column : spec.beam;
     Triplets ke, me, we;
-    for (const Piece& p : pieces[m]) {
+    for (std::size_t k = m * per_member; k < (m + 1) * per_member; ++k) {
+      const FramePiece& p = layout.pieces[k];
       const std::array<int, 6> d = {p.a < 0 ? -1 : 3 * p.a,
                                     p.a < 0 ? -1 : 3 * p.a + 1,
                                     p.a < 0 ? -1 : 3 * p.a + 2,
@@ -287,7 +253,7 @@ Structure BuildPlaneFrameStructure(const PlaneFrameSpec& spec) {
     ElementMatrices el;
     el.id = static_cast<int>(m) + 1;
     el.label = "s" + std::to_string(mb.storey) + (mb.column ? ":col" : ":beam") +
-               std::to_string(mb.index);
+               std::to_string(mb.index + 1);
     el.stiffness = FromTriplets(n, ke);
     el.mass = FromTriplets(n, me);
     el.added_mass_basis = FromTriplets(n, we);
