@@ -1,0 +1,37 @@
+# The blind structure suites (validation/blind_structures): the independent
+# plane-frame code against closed forms, then a small shear-building suite end
+# to end (cases, truths kept apart, diagnoses, scores, summary, plot).
+source "$(dirname "$0")/lib.sh"
+PY=""
+for p in python3 /usr/bin/python3; do
+  if command -v "$p" > /dev/null && "$p" -c 'import numpy, scipy' 2> /dev/null; then PY="$p"; break; fi
+done
+[ -n "$PY" ] || fail "no python3 with numpy and scipy (scripts/setup.sh installs python3-numpy, python3-scipy)"
+SUITE="$ROOT/validation/blind_structures"
+(cd "$SUITE" && "$PY" -B -m unittest -q test_frame2d 2>&1) || fail "frame2d against closed forms"
+
+"$PY" -B "$SUITE/run_suite.py" --suite shear_building --cases 8 --seed 7 --threads 2 \
+  --femup "$FEMUP" -o blind > blind.txt 2> blind.err || { cat blind.err; fail "the suite did not run"; }
+grep -q "top-1 kind, all" blind.txt || fail "no summary table"
+[ "$(ls blind/cases/*.yaml | wc -l)" = 8 ] || fail "8 study files"
+[ "$(ls blind/truth/*.json | wc -l)" = 8 ] || fail "8 truths"
+[ "$(wc -l < blind/results.jsonl)" = 8 ] || fail "8 scored cases"
+# The study files give nothing of the truth away.
+! grep -qiE "stiffness_loss|attached_mass|support_flex|material_scal|damage|storey [0-9]" blind/cases/*.yaml \
+  || fail "a study file names its effect"
+[ "$(json blind/summary.json 'j["cases"]')" = 8 ] || fail "summary: cases"
+json blind/summary.json '0 <= j["top1_kind"] <= 1 and 0 <= j["bic_top1_kind"] <= 1 and sum(b["cases"] for b in j["reliability_class"]) == 8' \
+  | grep -q True || fail "summary: figures out of range"
+if command -v gnuplot > /dev/null; then [ -s blind/reliability.png ] || fail "reliability.png"; fi
+
+# Bad arguments: a clear message, nothing run.
+if "$PY" -B "$SUITE/run_suite.py" --cases 0 --femup "$FEMUP" -o bad > /dev/null 2> bad.err; then
+  fail "--cases 0 accepted"
+fi
+grep -q "cases must be at least 1" bad.err || fail "--cases 0 message"
+if "$PY" -B "$SUITE/run_suite.py" --cases 2 --femup /nonexistent/femup -o bad > /dev/null 2> bad.err; then
+  fail "a missing femup accepted"
+fi
+grep -q "/nonexistent/femup: not an executable" bad.err || fail "missing femup message"
+[ ! -e bad ] || fail "output written for bad arguments"
+echo "blind_structures: ok"

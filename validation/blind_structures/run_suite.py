@@ -1,0 +1,271 @@
+#!/usr/bin/env python3
+"""Blind suites of `femup diagnose` on structures other than the cantilever.
+
+Generates cases (study files; the truth kept in a separate folder the diagnosis
+never reads), runs `femup diagnose` on each, scores every verdict against its
+truth and writes:
+  OUT/cases/<case>.yaml     the study files (what the diagnosis sees)
+  OUT/truth/<case>.json     the truths
+  OUT/runs/<case>/          each diagnosis's output
+  OUT/results.jsonl         one line per case: truth, verdict, scores
+  OUT/summary.json          the suite's figures (below)
+  OUT/reliability.png       stated probability against fraction right
+  OUT/summary.md            the figures as a table a person reads
+
+Figures: top-1 kind (overall, where the data are informative: >= 3 modes with
+shapes and a largest shift >= 5 sigma, and where they are weak), top-1 class
+(kind and region), false alarms on `none`, and calibration: the verdicts binned
+by their stated probability against the fraction right. A flat information
+criterion (BIC: chi2 + parameters x ln residuals, equal prior on every class)
+is scored on the same fits, side by side.
+
+Observational equivalence: on a chain, the ground spring's flexibility and the
+first storey's stiffness loss are the same change of the model; a verdict
+naming either, for a truth of either, is right (and counted apart as such).
+
+Usage:
+  python3 validation/blind_structures/run_suite.py --suite shear_building \
+      --cases 100 --seed 20261126 --femup build/femup -o out/blind_shear_building
+"""
+import argparse
+import concurrent.futures as cf
+import json
+import math
+import os
+import shutil
+import subprocess
+import sys
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import shear_building  # noqa: E402
+
+SUITES = {"shear_building": shear_building}
+# Classes that these models cannot tell apart (kind, region) -> group name.
+EQUIVALENT = {
+    ("support_flexibility", "supports"): "base",
+    ("stiffness_loss", "element 1"): "base",
+}
+
+
+def group(kind, region):
+    return EQUIVALENT.get((kind, region), kind + "@" + region)
+
+
+def diagnose(femup, case_file, out_dir):
+    if os.path.exists(out_dir):
+        shutil.rmtree(out_dir)
+    r = subprocess.run([femup, "diagnose", case_file, "-o", out_dir, "-q", "--no-plots"],
+                       capture_output=True, text=True)
+    if r.returncode != 0:
+        return None, r.stderr.strip()
+    with open(os.path.join(out_dir, "diagnosis.json")) as f:
+        return json.load(f), ""
+
+
+def score(truth, d):
+    """The case's line of results.jsonl."""
+    v = d["verdict"]
+    kind_right = v["kind"] == truth["kind"]
+    class_right = kind_right and v["region"] == truth["region"]
+    # Equivalence-aware: the verdict's group (its equivalent classes) holds the truth.
+    tg = group(truth["kind"], truth["region"])
+    eq_right = class_right or (truth["kind"] != "none" and group(v["kind"], v["region"]) == tg)
+    kind_eq_right = kind_right or eq_right
+    # Flat BIC over the same fits.
+    n = max(d["residuals"], 1)
+    best = min(d["classes"], key=lambda c: c["chi2"] + len(c["parameters"]) * math.log(n))
+    bic_kind_right = best["kind"] == truth["kind"] or (
+        truth["kind"] != "none" and group(best["kind"], best["region"]) == tg)
+    informative = (truth["modes"] >= 3 and truth["shapes"] and
+                   (truth["kind"] == "none" or truth["shift_in_noise"] >= 5))
+    return dict(
+        name=truth["name"], truth_kind=truth["kind"], truth_region=truth["region"],
+        truth=truth["description"], shift_in_noise=truth["shift_in_noise"],
+        modes=truth["modes"], shapes=truth["shapes"], sensors=truth["sensors"],
+        frequency_noise=truth["frequency_noise"], nominal_gap=truth["nominal_gap"],
+        storeys=truth["building"]["storeys"], informative=informative,
+        verdict_kind=v["kind"], verdict_region=v["region"], probability=v["probability"],
+        kind_probability=v["kind_probability"],
+        group_probability=v.get("group_probability", v["probability"]),
+        equivalent=v.get("equivalent", []), temperature=d["temperature"],
+        kind_right=kind_eq_right, class_right=eq_right, strict_class_right=class_right,
+        bic_kind=best["kind"], bic_region=best["region"], bic_kind_right=bic_kind_right)
+
+
+def fraction(rows, key):
+    return (sum(1 for r in rows if r[key]) / len(rows)) if rows else float("nan")
+
+
+def reliability(rows, prob_key, right_key, edges=(0.0, 0.5, 0.7, 0.9, 1.0001)):
+    bins = []
+    for lo, hi in zip(edges[:-1], edges[1:]):
+        sel = [r for r in rows if lo <= r[prob_key] < hi]
+        bins.append(dict(lower=lo, upper=min(hi, 1.0), cases=len(sel),
+                         mean_stated=float(np.mean([r[prob_key] for r in sel])) if sel else None,
+                         fraction_right=fraction(sel, right_key) if sel else None))
+    return bins
+
+
+def summarise(rows, args):
+    inf = [r for r in rows if r["informative"]]
+    weak = [r for r in rows if not r["informative"]]
+    none = [r for r in rows if r["truth_kind"] == "none"]
+    s = dict(
+        suite=args.suite, cases=len(rows), seed=args.seed, noise_free=args.noise_free,
+        floors=args.floors, design=args.design,
+        top1_kind=fraction(rows, "kind_right"), top1_class=fraction(rows, "class_right"),
+        informative_cases=len(inf), top1_kind_informative=fraction(inf, "kind_right"),
+        top1_class_informative=fraction(inf, "class_right"),
+        weak_cases=len(weak), top1_kind_weak=fraction(weak, "kind_right"),
+        bic_top1_kind=fraction(rows, "bic_kind_right"),
+        bic_top1_kind_informative=fraction(inf, "bic_kind_right"),
+        bic_top1_kind_weak=fraction(weak, "bic_kind_right"),
+        none_cases=len(none),
+        false_alarms_on_none=(sum(1 for r in none if r["verdict_kind"] != "none") / len(none))
+        if none else float("nan"),
+        noise_scaled=sum(1 for r in rows if r["temperature"] > 1),
+        reliability_class=reliability(rows, "probability", "class_right"),
+        reliability_kind=reliability(rows, "kind_probability", "kind_right"),
+        per_kind={k: dict(cases=len([r for r in rows if r["truth_kind"] == k]),
+                          top1_kind=fraction([r for r in rows if r["truth_kind"] == k],
+                                             "kind_right"))
+                  for k in sorted(set(r["truth_kind"] for r in rows))},
+        confusion={},
+        median_nominal_gap=float(np.median([r["nominal_gap"] for r in rows])))
+    for r in rows:
+        s["confusion"].setdefault(r["truth_kind"], {}).setdefault(r["verdict_kind"], 0)
+        s["confusion"][r["truth_kind"]][r["verdict_kind"]] += 1
+    return s
+
+
+def plot(summary, out):
+    if shutil.which("gnuplot") is None:
+        return "gnuplot not found: reliability.png not drawn"
+    data = os.path.join(out, "reliability.dat")
+    with open(data, "w") as f:
+        for key in ("reliability_class", "reliability_kind"):
+            for b in summary[key]:
+                if b["cases"]:
+                    f.write("%g %g %d\n" % (b["mean_stated"], b["fraction_right"], b["cases"]))
+            f.write("\n\n")
+    script = """set terminal pngcairo size 720,600
+set output '%s'
+set title "%s: stated probability against fraction right (%d cases)"
+set xlabel 'stated probability of the verdict'
+set ylabel 'fraction right'
+set xrange [0:1]; set yrange [0:1.05]; set key left top; set grid
+plot x title 'calibrated' lt 0, \\
+  '%s' index 0 using 1:2 with linespoints pt 7 ps 1.5 title 'class (kind and region)', \\
+  '' index 0 using 1:2:3 with labels offset 1.5,-0.8 notitle, \\
+  '' index 1 using 1:2 with linespoints pt 5 ps 1.5 title 'kind'
+""" % (os.path.join(out, "reliability.png"), summary["suite"], summary["cases"], data)
+    r = subprocess.run(["gnuplot"], input=script, capture_output=True, text=True)
+    return "" if r.returncode == 0 else "gnuplot: " + r.stderr.strip()
+
+
+def table(s):
+    pct = lambda x: "n/a" if x != x else "%.1f %%" % (100 * x)
+    lines = [
+        "# Blind suite %s: %d cases (seed %d, %s design, %s floors%s)" % (
+            s["suite"], s["cases"], s["seed"], s["design"], s["floors"],
+            ", noise-free" if s["noise_free"] else ""),
+        "",
+        "| figure | femup diagnose | flat BIC |",
+        "|---|---|---|",
+        "| top-1 kind, all | %s | %s |" % (pct(s["top1_kind"]), pct(s["bic_top1_kind"])),
+        "| top-1 kind, informative (%d) | %s | %s |" % (
+            s["informative_cases"], pct(s["top1_kind_informative"]),
+            pct(s["bic_top1_kind_informative"])),
+        "| top-1 kind, weak (%d) | %s | %s |" % (s["weak_cases"], pct(s["top1_kind_weak"]),
+                                                pct(s["bic_top1_kind_weak"])),
+        "| top-1 class (kind and region) | %s | |" % pct(s["top1_class"]),
+        "| false alarms on none (%d) | %s | |" % (s["none_cases"],
+                                                 pct(s["false_alarms_on_none"])),
+        "",
+        "Calibration (the verdict's stated probability, class level):",
+        "",
+        "| stated | cases | mean stated | fraction right |",
+        "|---|---|---|---|",
+    ]
+    for b in s["reliability_class"]:
+        lines.append("| %.1f-%.1f | %d | %s | %s |" % (
+            b["lower"], b["upper"], b["cases"],
+            "" if b["mean_stated"] is None else "%.2f" % b["mean_stated"],
+            "" if b["fraction_right"] is None else pct(b["fraction_right"])))
+    lines += ["", "Confusion (truth -> verdict kind):", ""]
+    for t, row in sorted(s["confusion"].items()):
+        lines.append("- %s: %s" % (t, ", ".join("%s %d" % kv for kv in sorted(row.items()))))
+    lines += ["", "Median nominal gap (rms relative frequency error of the chain against the "
+              "undamaged frame, measured modes): %.2f %%" % (100 * s["median_nominal_gap"]),
+              "Cases where the diagnosis scaled the noise: %d" % s["noise_scaled"]]
+    return "\n".join(lines) + "\n"
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--suite", default="shear_building", choices=sorted(SUITES))
+    ap.add_argument("--cases", type=int, default=100)
+    ap.add_argument("--seed", type=int, default=20261126)
+    ap.add_argument("--design", default="mixed", choices=["mixed", "informative"])
+    ap.add_argument("--floors", default="flexible", choices=["flexible", "stiff"],
+                    help="shear_building: beam-to-column stiffness 10-100 or 1000-10000")
+    ap.add_argument("--noise-free", action="store_true",
+                    help="draw the noise but do not add it (the studies state it)")
+    ap.add_argument("--femup", default="build/femup")
+    ap.add_argument("--threads", type=int, default=os.cpu_count() or 2)
+    ap.add_argument("-o", "--out", default=None)
+    args = ap.parse_args()
+    if args.cases < 1:
+        ap.error("--cases must be at least 1")
+    if not (os.path.isfile(args.femup) and os.access(args.femup, os.X_OK)):
+        ap.error("--femup %s: not an executable file (build femup first)" % args.femup)
+    out = args.out or os.path.join("out", "blind_" + args.suite)
+    for sub in ("cases", "truth", "runs"):
+        os.makedirs(os.path.join(out, sub), exist_ok=True)
+    gen = SUITES[args.suite]
+    rng = np.random.default_rng(args.seed)
+    truths = []
+    for i in range(args.cases):
+        name = "%s_%03d" % (args.suite, i)
+        study, truth = gen.make_case(rng, name, args.design, args.noise_free, args.floors)
+        with open(os.path.join(out, "cases", name + ".yaml"), "w") as f:
+            f.write(gen.study_yaml(study))
+        with open(os.path.join(out, "truth", name + ".json"), "w") as f:
+            json.dump(truth, f, indent=1)
+        truths.append(truth)
+    rows, failures = [], []
+    with cf.ThreadPoolExecutor(max_workers=max(1, args.threads)) as pool:
+        futures = {pool.submit(diagnose, args.femup, os.path.join(out, "cases", t["name"] + ".yaml"),
+                               os.path.join(out, "runs", t["name"])): t for t in truths}
+        for fut in cf.as_completed(futures):
+            t = futures[fut]
+            d, err = fut.result()
+            if d is None:
+                failures.append((t["name"], err))
+            else:
+                rows.append(score(t, d))
+    rows.sort(key=lambda r: r["name"])
+    with open(os.path.join(out, "results.jsonl"), "w") as f:
+        for r in rows:
+            f.write(json.dumps(r) + "\n")
+    if failures:
+        for name, err in failures:
+            print("%s: femup diagnose failed: %s" % (name, err), file=sys.stderr)
+        return 1
+    s = summarise(rows, args)
+    with open(os.path.join(out, "summary.json"), "w") as f:
+        json.dump(s, f, indent=1)
+    note = plot(s, out)
+    text = table(s)
+    with open(os.path.join(out, "summary.md"), "w") as f:
+        f.write(text)
+    print(text, end="")
+    if note:
+        print(note, file=sys.stderr)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
