@@ -6,7 +6,7 @@
 # written into the repository). Prints per parser the executions, exec/s, wall
 # time and crashes, and exits non-zero on any crash (a crash is an uncaught
 # exception other than femup::InputError, an abort, a sanitizer report, a hang
-# of more than 10 s or an allocation of 1 GiB or more); the work folder of a
+# of more than 10 s (FEMUP_FUZZ_TIMEOUT) or an allocation of 1 GiB or more); the work folder of a
 # crash is kept and its reproducing command printed.
 #
 #   scripts/fuzz.sh            12 s per parser (scripts/test.sh runs this)
@@ -17,6 +17,9 @@
 # FEMUP_FUZZ_JOBS sets the build's parallel jobs (default: all cores).
 # FEMUP_FUZZ_PARSERS="uff csv_series" runs only those.
 # FEMUP_FUZZ_KEEP=1 keeps every work folder (log, corpus), not only a crash's.
+# FEMUP_FUZZ_TIMEOUT=S: an input running longer than S seconds is a hang
+# (default 10). Raise it for a campaign on a machine busy with other work: a
+# starved process (nice, other jobs) then shows as a hang that is not one.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -59,7 +62,7 @@ if ! cmake --build "$build" -j "$jobs" --target "${targets[@]}" > "$build/fuzz-b
   exit 1
 fi
 
-limits=(-rss_limit_mb=2048 -malloc_limit_mb=1024 -timeout=10)
+limits=(-rss_limit_mb=2048 -malloc_limit_mb=1024 -timeout="${FEMUP_FUZZ_TIMEOUT:-10}")
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
 failed=0

@@ -24,6 +24,16 @@ json blind/summary.json '0 <= j["top1_kind"] <= 1 and 0 <= j["bic_top1_kind"] <=
   | grep -q True || fail "summary: figures out of range"
 if command -v gnuplot > /dev/null; then [ -s blind/reliability.png ] || fail "reliability.png"; fi
 
+# The plane-frame suite (femup's plane_frame model, frame2d's Timoshenko truth
+# with semi-rigid joints, partial damage, masses between nodes), 3 cases, with a
+# stated model error.
+"$PY" -B "$SUITE/run_suite.py" --suite plane_frame --cases 3 --seed 3 --threads 2 \
+  --stated-model-error 0.01 --femup "$FEMUP" -o frames > frames.txt 2> frames.err \
+  || { cat frames.err; fail "the plane_frame suite did not run"; }
+[ "$(wc -l < frames/results.jsonl)" = 3 ] || fail "3 scored frame cases"
+grep -q "type: plane_frame" frames/cases/plane_frame_000.yaml || fail "a plane_frame study"
+json frames/summary.json 'j["stated_model_error"] == 0.01' | grep -q True || fail "stated model error"
+
 # Bad arguments: a clear message, nothing run.
 if "$PY" -B "$SUITE/run_suite.py" --cases 0 --femup "$FEMUP" -o bad > /dev/null 2> bad.err; then
   fail "--cases 0 accepted"

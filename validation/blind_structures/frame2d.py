@@ -33,6 +33,9 @@ class Frame:
         self.springs = []  # (node, dof, stiffness) to ground
         self.couplings = []  # (node_a, node_b, dof, stiffness) between nodes
         self.point_masses = []  # (node, mass, rotary inertia)
+        # Tied DOFs: ties[(b, dof)] = a: node b's dof is node a's (a hinge node
+        # sharing a joint's translations, with a rotational spring between).
+        self.ties = {}
 
     def add_node(self, x, y):
         self.xy.append((float(x), float(y)))
@@ -55,6 +58,17 @@ class Frame:
             e["n1"], e["n2"] = nodes[k], nodes[k + 1]
             self.elements.append(e)
         return list(range(first, len(self.elements))), nodes
+
+    def semi_rigid_end(self, joint, stiffness):
+        """A new node at `joint` sharing its translations, joined to it in
+        rotation by a spring of `stiffness` (N m/rad): connect a member's end
+        to the returned node for a semi-rigid joint."""
+        x, y = self.xy[joint]
+        b = self.add_node(x, y)
+        self.ties[(b, 0)] = joint
+        self.ties[(b, 1)] = joint
+        self.couplings.append((joint, b, 2, stiffness))
+        return b
 
     def num_dofs(self):
         return 3 * len(self.xy)
@@ -161,9 +175,19 @@ class Frame:
                 mv.append(v)
         K = sp.coo_matrix((kv, (rows, cols)), shape=(n, n)).tocsc()
         M = sp.coo_matrix((mv, (rows, cols)), shape=(n, n)).tocsc()
-        free = [i for i in range(n) if (i // 3, i % 3) not in self.fixed]
+        # Tied DOFs fold onto their masters: K <- T' K T.
+        master = list(range(n))
+        for (b, dof), a in self.ties.items():
+            master[3 * b + dof] = 3 * a + dof
+        if self.ties:
+            T = sp.coo_matrix((np.ones(n), (np.arange(n), master)), shape=(n, n)).tocsc()
+            K = (T.T @ K @ T).tocsc()
+            M = (T.T @ M @ T).tocsc()
+        free = [i for i in range(n)
+                if (i // 3, i % 3) not in self.fixed and master[i] == i]
         K = K[free][:, free]
         M = M[free][:, free]
+        self._master = master
         return K, M, free
 
     def modes(self, count):
@@ -179,6 +203,7 @@ class Frame:
             w, V = w[order], V[:, order]
         full = np.zeros((self.num_dofs(), V.shape[1]))
         full[free, :] = V
+        full = full[self._master, :]
         return np.sqrt(np.maximum(w, 0.0)) / (2 * np.pi), full
 
     def static(self, loads):
@@ -187,9 +212,10 @@ class Frame:
         f = np.zeros(self.num_dofs())
         for (node, dof), v in loads.items():
             f[3 * node + dof] += v
+        f = np.bincount(self._master, weights=f, minlength=len(f))
         u = np.zeros(self.num_dofs())
         u[free] = spl.spsolve(K, f[free])
-        return u
+        return u[self._master]
 
     def total_translational_mass(self):
         """Mass moving with a unit rigid translation in x (from M itself)."""

@@ -65,6 +65,22 @@ class FrameTest(unittest.TestCase):
         u = f.static({(t0, 0): 1e5})
         self.assertAlmostEqual(u[3 * t0] / (1e5 * h**3 / (24 * E * I)), 1.0, places=5)
 
+    def test_semi_rigid_joint(self):
+        # A cantilever whose clamp is a rotational spring at a hinge node: the
+        # same tip deflection as a base spring, P L^3 / 3EI + P L^2 / k_r.
+        kr = 2e7
+        f = Frame()
+        a, t = f.add_node(0, 0), f.add_node(0, 3.0)
+        f.fixed |= {(a, 0), (a, 1), (a, 2)}
+        h = f.semi_rigid_end(a, kr)
+        b = 0.3
+        f.add_member(h, t, 3, E=E, G=0.0, A=b * b, I=b**4 / 12, rho=RHO)
+        u = f.static({(t, 0): 1e4})
+        want = 1e4 * 27 / (3 * E * b**4 / 12) + 1e4 * 9 / kr
+        self.assertAlmostEqual(u[3 * t] / want, 1.0, places=9)
+        self.assertEqual(u[3 * h], 0.0)  # the hinge node moves with the clamp
+        self.assertAlmostEqual(u[3 * h + 2], -1e4 * 3.0 / kr, places=12)  # clockwise
+
     def test_mass_of_a_rigid_translation(self):
         f = Frame()
         a, b = f.add_node(0, 0), f.add_node(3, 4)  # 5 m, inclined

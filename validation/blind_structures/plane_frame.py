@@ -1,0 +1,336 @@
+"""Blind cases for a plane-frame diagnosis (femup's `plane_frame` model).
+
+The model femup diagnoses: a 1-4 storey, 1-3 bay steel moment frame of
+Euler-Bernoulli members, two elements per member, the slab's mass smeared into
+the beams' density, rigid joints, clamped bases (a `plane_frame` study model).
+The truth is frame2d.py's: Timoshenko members (shear area 0.45 A, an I-section's
+web), eight elements per member, consistent mass with rotary inertia, the slab
+as a line mass, and the effects below, none of which is a change the model's
+families make exactly:
+  joint flexibility   both ends of one beam joined to their columns by
+                      rotational springs (a bolted end plate, not a weld):
+                      the diagnosis should name a stiffness loss of that beam;
+  member damage       one column or beam loses bending stiffness over a zone of
+                      10-50 % of its length (a dent, a crack, corrosion):
+                      a stiffness loss of that member;
+  added floor mass    a machine (a point mass) somewhere along one beam, or extra
+                      mass along the whole beam (storage): an attached mass at a
+                      node of that beam (either end or its middle);
+  material_scaling    E of every member times s;
+  none.
+Sizes by the largest relative frequency shift in noise units, as for the shear
+buildings. Sensors: horizontal (ux) at some joints, vertical (uy) at some beam
+middles; 3-5 modes, some cases without shapes.
+
+femup's node numbering (lib/plane_frame.h): the joints column line by column
+line bottom up, then each member's inner node, storey by storey (columns left
+to right, then beams). Members are named s<storey>:col<line> and
+s<storey>:beam<bay>.
+"""
+import math
+
+import numpy as np
+
+from frame2d import Frame
+
+KINDS = ["none", "joint_flexibility", "member_damage", "added_floor_mass", "material_scaling"]
+# The family each truth should be named by.
+EXPECTED_KIND = {"none": "none", "joint_flexibility": "stiffness_loss",
+                 "member_damage": "stiffness_loss", "added_floor_mass": "attached_mass",
+                 "material_scaling": "material_scaling"}
+E_STEEL, G_STEEL, RHO_STEEL = 210e9, 81e9, 7850.0
+PARTS = 8  # truth elements per member (even: a node at each middle)
+
+
+def model_labels(S, B):
+    """femup's node labels: joints[(line, level)], middles[(storey, member)]."""
+    joints = {}
+    for c in range(B + 1):
+        for j in range(1, S + 1):
+            joints[(c, j)] = "n%d" % (c * S + j)
+    middles = {}
+    k = (B + 1) * S + 1
+    for s in range(1, S + 1):
+        for c in range(B + 1):
+            middles[(s, "col%d" % (c + 1))] = "n%d" % k
+            k += 1
+        for b in range(B):
+            middles[(s, "beam%d" % (b + 1))] = "n%d" % k
+            k += 1
+    return joints, middles
+
+
+def random_frame(rng):
+    """A light steel frame whose members are slender enough for an engineer to
+    model them without shear deformation: columns (HE-like, A = 0.9 r^2) of
+    slenderness L / r 55-90, beams (IPE-like, A = 0.35 r^2) of 35-60, so the
+    Timoshenko truth differs from the Euler-Bernoulli model by 0.2-2 % in
+    frequency (the shear term 12 E I / (kappa G A L^2) of 0.01-0.06)."""
+    S = int(rng.integers(1, 5))
+    B = int(rng.integers(1, 4))
+    h = float(rng.uniform(3.0, 4.5))
+    L = float(rng.uniform(4.0, 8.0))
+    rc = h / float(rng.uniform(55.0, 90.0))
+    rb = L / float(rng.uniform(35.0, 60.0))
+    Ac, Ab = 0.9 * rc * rc, 0.35 * rb * rb
+    return dict(storeys=S, bays=B, storey_height=h, bay_width=L, column_I=Ac * rc * rc,
+                column_A=Ac, beam_I=Ab * rb * rb, beam_A=Ab,
+                slab_line_mass=float(rng.uniform(500.0, 2500.0)))
+
+
+class Truth:
+    def __init__(self, p, effect=None, a=0.0):
+        self.p = p
+        S, B, h, L = p["storeys"], p["bays"], p["storey_height"], p["bay_width"]
+        E = E_STEEL * (effect.e_factor(a) if effect else 1.0)
+        f = Frame()
+        self.joint = {}
+        base = [f.add_node(c * L, 0.0) for c in range(B + 1)]
+        for c in range(B + 1):
+            f.fixed |= {(base[c], 0), (base[c], 1), (base[c], 2)}
+            for j in range(1, S + 1):
+                self.joint[(c, j)] = f.add_node(c * L, j * h)
+        self.middle = {}
+        col = dict(E=E, G=G_STEEL, A=p["column_A"], I=p["column_I"], rho=RHO_STEEL, kappa=0.45)
+        beam = dict(E=E, G=G_STEEL, A=p["beam_A"], I=p["beam_I"], rho=RHO_STEEL, kappa=0.45,
+                    line_mass=p["slab_line_mass"])
+        self.members = {}
+        for s in range(1, S + 1):
+            for c in range(B + 1):
+                a0 = base[c] if s == 1 else self.joint[(c, s - 1)]
+                els, nodes = f.add_member(a0, self.joint[(c, s)], PARTS, **col)
+                self.members[(s, "col%d" % (c + 1))] = els
+                self.middle[(s, "col%d" % (c + 1))] = nodes[PARTS // 2]
+            for b in range(B):
+                left, right = self.joint[(b, s)], self.joint[(b + 1, s)]
+                if effect is not None and effect.kind == "joint_flexibility" and \
+                        effect.member == (s, "beam%d" % (b + 1)):
+                    kr = E_STEEL * p["beam_I"] / L / a if a > 0 else None
+                    if kr is not None:
+                        left = f.semi_rigid_end(left, kr)
+                        right = f.semi_rigid_end(right, kr)
+                els, nodes = f.add_member(left, right, PARTS, **beam)
+                self.members[(s, "beam%d" % (b + 1))] = els
+                self.middle[(s, "beam%d" % (b + 1))] = nodes[PARTS // 2]
+        if effect is not None:
+            effect.apply(self, f, a)
+        self.frame = f
+
+    def modes(self, count, sensors):
+        """Frequencies and shapes at sensors [(node, dof)] of the lowest modes."""
+        freqs, V = self.frame.modes(count)
+        shapes = np.array([[V[3 * n + d, k] for (n, d) in sensors] for k in range(count)])
+        return freqs, shapes
+
+
+class Effect:
+    def __init__(self, kind, rng, p):
+        self.kind = kind
+        S, B = p["storeys"], p["bays"]
+        self.member = None
+        self.detail = {}
+        if kind == "joint_flexibility":
+            self.member = (int(rng.integers(1, S + 1)), "beam%d" % int(rng.integers(1, B + 1)))
+            self.a_max = 50.0  # beam EI/L over k_r
+        elif kind == "member_damage":
+            s = int(rng.integers(1, S + 1))
+            if rng.random() < 0.5:
+                self.member = (s, "col%d" % int(rng.integers(1, B + 2)))
+            else:
+                self.member = (s, "beam%d" % int(rng.integers(1, B + 1)))
+            width = int(rng.integers(1, PARTS // 2 + 1))  # 1-4 of 8 elements
+            start = int(rng.integers(0, PARTS - width + 1))
+            self.zone = (start, start + width)
+            self.a_max = 0.9
+            self.detail = dict(zone=[start / PARTS, (start + width) / PARTS])
+        elif kind == "added_floor_mass":
+            self.member = (int(rng.integers(1, S + 1)), "beam%d" % int(rng.integers(1, B + 1)))
+            self.point = rng.random() < 0.5
+            self.at = int(rng.integers(1, PARTS))  # inner node of the beam
+            self.a_max = 3.0  # extra mass / the beam's slab mass
+            self.detail = dict(point=self.point, at=self.at / PARTS if self.point else None)
+        elif kind == "material_scaling":
+            self.sign = 1 if rng.random() < 0.5 else -1
+            self.a_max = 0.5
+        else:
+            self.a_max = 0.0
+        self.expected = EXPECTED_KIND[kind]
+
+    def e_factor(self, a):
+        return 1 + self.sign * a if self.kind == "material_scaling" else 1.0
+
+    def apply(self, truth, f, a):
+        p = truth.p
+        if self.kind == "member_damage":
+            els = truth.members[self.member]
+            for e in els[self.zone[0]:self.zone[1]]:
+                f.elements[e]["I"] *= 1 - a
+        if self.kind == "added_floor_mass":
+            els = truth.members[self.member]
+            slab = p["slab_line_mass"] * p["bay_width"]
+            if self.point:
+                node = f.elements[els[self.at]]["n1"]
+                f.point_masses.append((node, a * slab, 0.0))
+            else:
+                for e in els:
+                    f.elements[e]["line_mass"] += a * p["slab_line_mass"]
+
+    def regions(self, p):
+        """The model regions a right verdict may name (kind, region)."""
+        S, B = p["storeys"], p["bays"]
+        joints, middles = model_labels(S, B)
+        if self.kind in ("joint_flexibility", "member_damage"):
+            s, m = self.member
+            return ["element s%d:%s" % (s, m)]
+        if self.kind == "added_floor_mass":
+            s, m = self.member
+            b = int(m[4:]) - 1
+            return ["node " + joints[(b, s)], "node " + joints[(b + 1, s)],
+                    "node " + middles[(s, m)]]
+        if self.kind == "material_scaling":
+            return ["all elements"]
+        return [""]
+
+    def describe(self, p, a):
+        if self.kind == "joint_flexibility":
+            return "s%d:%s ends semi-rigid, beam EI/L over k_r = %.3g" % (*self.member, a)
+        if self.kind == "member_damage":
+            return "s%d:%s EI lost %.3g over %.2f-%.2f of its length" % (
+                *self.member, a, *self.detail["zone"])
+        if self.kind == "added_floor_mass":
+            m = a * p["slab_line_mass"] * p["bay_width"]
+            where = ("a point at %.2f of the beam" % self.detail["at"]) if self.point else \
+                "along the beam"
+            return "s%d:%s carries %.0f kg, %s" % (*self.member, m, where)
+        if self.kind == "material_scaling":
+            return "E factor %.4f" % self.e_factor(a)
+        return "no effect"
+
+
+def make_case(rng, name, design="mixed", noise_free=False, floors=None):
+    p = random_frame(rng)
+    S, B = p["storeys"], p["bays"]
+    kind = KINDS[int(rng.integers(0, len(KINDS)))]
+    modes = int(rng.integers(3, 6)) if design == "informative" else int(rng.integers(2, 6))
+    shapes = True if design == "informative" else rng.random() < 2 / 3
+    fnoise = [0.001, 0.002, 0.005][int(rng.integers(0, 3))]
+    snoise = [0.01, 0.02, 0.05][int(rng.integers(0, 3))]
+    joints, middles = model_labels(S, B)
+    # Sensors: ux at one joint per floor at least (random line), and at random
+    # others; uy at half the beam middles (at least one).
+    chosen = []
+    for j in range(1, S + 1):
+        lines = rng.permutation(B + 1)[: int(rng.integers(1, B + 2))]
+        chosen += [("j", (int(c), j), 0) for c in sorted(lines)]
+    beams = [(s, "beam%d" % (b + 1)) for s in range(1, S + 1) for b in range(B)]
+    picked = rng.permutation(len(beams))[: max(1, len(beams) // 2)]
+    chosen += [("m", beams[int(i)], 1) for i in sorted(picked)]
+    effect = Effect(kind, rng, p)
+    strong = rng.random() < 0.8
+    target = math.exp(rng.uniform(math.log(5), math.log(50)) if strong else
+                      rng.uniform(0, math.log(5)))
+
+    def sensors_of(t):
+        return [(t.joint[key] if typ == "j" else t.middle[key], d) for typ, key, d in chosen]
+
+    nominal = Truth(p)
+    f0, _ = nominal.modes(modes, sensors_of(nominal))
+    a = 0.0
+    if kind != "none":
+        def shift(x):
+            t = Truth(p, effect, x)
+            f1, _ = t.modes(modes, sensors_of(t))
+            return float(np.max(np.abs(f1 / f0 - 1))) / fnoise
+        lo, hi = 0.0, effect.a_max
+        if shift(hi) <= target:
+            a = hi
+        else:
+            for _ in range(40):
+                mid = 0.5 * (lo + hi)
+                if shift(mid) < target:
+                    lo = mid
+                else:
+                    hi = mid
+                if hi - lo < 1e-4 * effect.a_max:
+                    break
+            a = 0.5 * (lo + hi)
+    truth = Truth(p, effect, a) if kind != "none" else nominal
+    f1, S1 = truth.modes(modes, sensors_of(truth))
+    achieved = float(np.max(np.abs(f1 / f0 - 1))) / fnoise if kind != "none" else 0.0
+    fn = rng.standard_normal(modes)
+    sn = rng.standard_normal((modes, len(chosen)))
+    scale = 0.0 if noise_free else 1.0
+    freqs = f1 * (1 + scale * fnoise * fn)
+    rows = []
+    for k in range(modes):
+        s = S1[k] / np.max(np.abs(S1[k]))
+        rows.append((s + scale * snoise * sn[k]).tolist())
+    labels = [(joints[key] if typ == "j" else middles[key]) + (":ux" if d == 0 else ":uy")
+              for typ, key, d in chosen]
+    study = dict(name=name, p=p, frequencies=freqs.tolist(), sensors=labels,
+                 shapes=rows if shapes else None, frequency_noise=fnoise, shape_noise=snoise)
+    truth_rec = dict(name=name, kind=effect.expected, truth_kind=kind,
+                     region=effect.regions(p)[0], regions=effect.regions(p), size=a,
+                     description=effect.describe(p, a), detail=effect.detail,
+                     shift_in_noise=achieved, target_shift_in_noise=target, modes=modes,
+                     sensors=len(labels), shapes=bool(shapes), frequency_noise=fnoise,
+                     shape_noise=snoise, building=dict(p, storeys=S),
+                     nominal_gap=nominal_gap(p, f0, modes))
+    return study, truth_rec
+
+
+def nominal_gap(p, f_truth, modes):
+    """rms relative frequency error of femup's model against the undamaged truth,
+    from a frame2d model built as femup builds it (Euler-Bernoulli, 2 elements,
+    slab smeared): a close stand-in for femup's own numbers."""
+    f = Frame()
+    S, B, h, L = p["storeys"], p["bays"], p["storey_height"], p["bay_width"]
+    base = [f.add_node(c * L, 0.0) for c in range(B + 1)]
+    joint = {}
+    for c in range(B + 1):
+        f.fixed |= {(base[c], 0), (base[c], 1), (base[c], 2)}
+        for j in range(1, S + 1):
+            joint[(c, j)] = f.add_node(c * L, j * h)
+    for s in range(1, S + 1):
+        for c in range(B + 1):
+            f.add_member(base[c] if s == 1 else joint[(c, s - 1)], joint[(c, s)], 2, E=E_STEEL,
+                         G=0.0, A=p["column_A"], I=p["column_I"], rho=RHO_STEEL)
+        for b in range(B):
+            f.add_member(joint[(b, s)], joint[(b + 1, s)], 2, E=E_STEEL, G=0.0, A=p["beam_A"],
+                         I=p["beam_I"], rho=RHO_STEEL + p["slab_line_mass"] / p["beam_A"])
+    fm, _ = f.modes(modes)
+    return float(np.sqrt(np.mean((fm / f_truth - 1) ** 2)))
+
+
+def study_yaml(s):
+    p = s["p"]
+    fmt = lambda v: "[" + ", ".join("%.10g" % x for x in v) + "]"
+    lines = [
+        "# A blind case of validation/blind_structures (plane_frame suite): a steel",
+        "# frame's model and the frame's measured modes.",
+        "name: %s" % s["name"],
+        "model:",
+        "  type: plane_frame",
+        "  storeys: %d" % p["storeys"],
+        "  bays: %d" % p["bays"],
+        "  storey_height: %.10g" % p["storey_height"],
+        "  bay_width: %.10g" % p["bay_width"],
+        "  elements_per_member: 2",
+        "  column: {E: %.10g, A: %.10g, I: %.10g, rho: %.10g}" % (
+            E_STEEL, p["column_A"], p["column_I"], RHO_STEEL),
+        "  beam: {E: %.10g, A: %.10g, I: %.10g, rho: %.10g}" % (
+            E_STEEL, p["beam_A"], p["beam_I"], RHO_STEEL + p["slab_line_mass"] / p["beam_A"]),
+        "measurements:",
+        "  - state: test",
+        "    frequencies_hz: %s" % fmt(s["frequencies"]),
+    ]
+    if s["shapes"] is not None:
+        lines.append("    sensors: [%s]" % ", ".join('"%s"' % x for x in s["sensors"]))
+        lines.append("    shapes:")
+        lines += ["      - %s" % fmt(r) for r in s["shapes"]]
+    lines += [
+        "diagnosis:",
+        "  noise: {frequency: %g, shape: %g}" % (s["frequency_noise"], s["shape_noise"]),
+        "  use_shapes: %s" % ("true" if s["shapes"] is not None else "false"),
+    ]
+    return "\n".join(lines) + "\n"
