@@ -300,6 +300,55 @@ void ExpectInputError(F run, const std::vector<std::string>& needles) {
   }
 }
 
+// Stated priors on the cantilever (effect_priors.h): the engineer knows the
+// mass is 1 to 2 kg somewhere between 1.4 and 1.9 m. The fit stays inside and
+// the class's Occam factor loses less to its narrower prior, so its score
+// rises; a normal prior on E moves material_scaling's fit to it.
+TEST(Diagnosis, StatedPriorsNarrowTheCantileverFamilies) {
+  Study study = Example("attached_mass");
+  const DiagnosisResult plain = RunDiagnosis(study);
+  ASSERT_EQ(Top(plain).label, "attached_mass") << plain.verdict;
+  DiagnosisSpec d = *study.diagnosis;
+  FamilyPrior mass;
+  mass.kind = "attached_mass";
+  QuantityPrior kg, x;
+  kg.quantity = "mass_kg";
+  kg.lower = 1.0;
+  kg.upper = 2.0;
+  x.quantity = "x_m";
+  x.lower = 1.4;
+  x.upper = 1.9;
+  mass.quantities = {kg, x};
+  FamilyPrior e;
+  e.kind = "material_scaling";
+  QuantityPrior factor;
+  factor.quantity = "factor";
+  factor.normal = true;
+  factor.mean = 1.0;
+  factor.sigma = 1e-4;
+  e.quantities = {factor};
+  d.priors.families = {mass, e};
+  study.diagnosis = d;
+  const DiagnosisResult stated = RunDiagnosis(study);
+  const DiagnosisCandidate& top = Top(stated);
+  ASSERT_EQ(top.label, "attached_mass") << stated.verdict;
+  EXPECT_GT(top.evidence.log_occam, Top(plain).evidence.log_occam + 1);
+  EXPECT_GT(top.score, Top(plain).score + 1);
+  EXPECT_NEAR(top.chi2, Top(plain).chi2, 1e-3 * Top(plain).chi2);
+  EXPECT_GE(top.locations[0].x, 1.4);
+  EXPECT_LE(top.locations[0].x, 1.9);
+  for (const DiagnosisCandidate& c : stated.candidates) {
+    if (c.label != "material_scaling") continue;
+    EXPECT_NEAR(std::exp(c.theta[0]), 1.0, 5e-4);  // held by the prior (sigma 1e-4)
+  }
+  // Regions do not apply to the cantilever: refused before any fit.
+  mass.regions = {"n7"};
+  d.priors.families = {mass};
+  study.diagnosis = d;
+  ExpectInputError([&] { RunDiagnosis(study); },
+                   {"diagnosis.priors.attached_mass.regions", "x_m"});
+}
+
 TEST(Diagnosis, RejectsAnUnknownCandidate) {
   testing::ScratchDir dir;
   const std::string path =

@@ -149,6 +149,181 @@ TEST(EffectRanking, RefusesBadOptionsAndFamiliesThatDoNotApply) {
   }
 }
 
+// Stated priors (effect_priors.h). On a chain the ground spring's flexibility
+// and storey 1's loss are the same change; by default the support (one place
+// against six storeys) takes most of their joint probability. Knowing the
+// foundation stiff (at most 5 % more compliant than modelled) rules it out,
+// and the verdict becomes storey 1's loss.
+TEST(EffectRanking, AStatedRangeThatExcludesTheWrongExplanationChangesTheVerdict) {
+  ChainSpec truth = ShearBuilding();
+  truth.springs[0] *= 0.8;  // a loss of 0.2, or a compliance ratio of 0.25
+  EffectRankingOptions o = Options();
+  o.kinds = {"support_flexibility", "stiffness_loss", "attached_mass"};
+  const Structure nominal = BuildSpringMassChain(ShearBuilding());
+  const std::vector<ModalData> data = {Measured(truth, 5)};
+  const EffectRanking by_default = RankModelEffects(nominal, data, o);
+  ASSERT_EQ(by_default.classes[0].kind, "support_flexibility");
+  FamilyPrior stiff;
+  stiff.kind = "support_flexibility";
+  QuantityPrior range;
+  range.quantity = "compliance_ratio";
+  range.lower = 1e-3;
+  range.upper = 0.05;
+  stiff.quantities = {range};
+  o.priors.families = {stiff};
+  const EffectRanking stated = RankModelEffects(nominal, data, o);
+  EXPECT_EQ(stated.classes[0].kind, "stiffness_loss");
+  EXPECT_EQ(stated.classes[0].region, "element 1");
+  EXPECT_GT(stated.classes[0].probability, 0.99);
+  EXPECT_NEAR(stated.classes[0].magnitudes[0].value, 0.2, 0.03);
+  // The support's fit stays inside the stated range (and fits far worse).
+  for (const RankedClass& c : stated.classes) {
+    if (c.kind != "support_flexibility") continue;
+    EXPECT_LE(c.magnitudes[0].value, 0.05 * (1 + 1e-9));
+    EXPECT_GT(c.chi2, stated.classes[0].chi2 + 100);
+  }
+}
+
+// A normal prior centred on the truth: the estimate stays on it and its
+// posterior standard deviation (in ln loss) shrinks to the combination of the
+// data's and the prior's, 1 / sqrt(1 / s_data^2 + 1 / s_prior^2), s_prior =
+// 0.01 / 0.2 in ln loss.
+TEST(EffectRanking, ANormalPriorCentredOnTheTruthNarrowsTheFit) {
+  ChainSpec truth = ShearBuilding();
+  truth.springs[2] *= 0.8;
+  const Structure nominal = BuildSpringMassChain(ShearBuilding());
+  const std::vector<ModalData> data = {Measured(truth, 7)};
+  EffectRankingOptions o = Options();
+  o.kinds = {"stiffness_loss"};
+  const EffectRanking plain = RankModelEffects(nominal, data, o);
+  FamilyPrior known;
+  known.kind = "stiffness_loss";
+  QuantityPrior normal;
+  normal.quantity = "loss";
+  normal.normal = true;
+  normal.mean = 0.2;
+  normal.sigma = 0.01;
+  known.quantities = {normal};
+  o.priors.families = {known};
+  const EffectRanking stated = RankModelEffects(nominal, data, o);
+  const RankedClass& a = plain.classes[0];
+  const RankedClass& b = stated.classes[0];
+  ASSERT_EQ(a.region, "element 3");
+  ASSERT_EQ(b.region, "element 3");
+  const double s_data = a.evidence.sigma[0], s_prior = 0.01 / 0.2;
+  EXPECT_LT(b.evidence.sigma[0], s_data);
+  EXPECT_NEAR(b.evidence.sigma[0],
+              1 / std::sqrt(1 / (s_data * s_data) + 1 / (s_prior * s_prior)),
+              0.05 * b.evidence.sigma[0]);
+  EXPECT_LE(std::abs(b.magnitudes[0].value - 0.2), std::abs(a.magnitudes[0].value - 0.2));
+  // The mode moves towards the mean; the data's chi2 cannot fall below the
+  // data's own best.
+  EXPECT_GE(b.chi2, a.chi2 - 1e-6);
+}
+
+// A weight multiplies a family's prior, so the posterior odds of two classes
+// change by the ratio of their families' weights whatever their evidence; the
+// log priors are the weights' shares (split among a family's instances).
+TEST(EffectRanking, WeightsChangeThePosteriorOddsByTheirRatio) {
+  ChainSpec truth = ShearBuilding();
+  truth.springs[0] *= 0.8;
+  EffectRankingOptions o = Options();
+  o.kinds = {"support_flexibility", "stiffness_loss", "attached_mass"};
+  const Structure nominal = BuildSpringMassChain(ShearBuilding());
+  const std::vector<ModalData> data = {Measured(truth, 5)};
+  auto find = [](const EffectRanking& r, const std::string& label) {
+    for (const RankedClass& c : r.classes)
+      if (c.kind + " at " + c.region == label || (c.kind == label && c.region.empty()))
+        return c;
+    ADD_FAILURE() << label;
+    return RankedClass();
+  };
+  const EffectRanking plain = RankModelEffects(nominal, data, o);
+  o.priors.weights = {{"none", 2}, {"stiffness_loss", 3}};
+  const EffectRanking weighted = RankModelEffects(nominal, data, o);
+  const std::string loss = "stiffness_loss at element 1";
+  const std::string support = "support_flexibility at supports";
+  const double odds_plain =
+      find(plain, loss).probability / find(plain, support).probability;
+  const double odds_weighted =
+      find(weighted, loss).probability / find(weighted, support).probability;
+  EXPECT_NEAR(odds_weighted / odds_plain, 3.0, 1e-9);
+  // Same evidence with or without the weights.
+  EXPECT_DOUBLE_EQ(find(weighted, loss).evidence.log_evidence,
+                   find(plain, loss).evidence.log_evidence);
+  // Shares: none 2, each family 1 but stiffness_loss 3: 2 / 7 for none, 3 / 7
+  // split among six storeys.
+  EXPECT_NEAR(find(weighted, "none").log_prior, std::log(2.0 / 7.0), 1e-12);
+  EXPECT_NEAR(find(weighted, loss).log_prior, std::log(3.0 / 7.0 / 6.0), 1e-12);
+  EXPECT_NEAR(find(plain, loss).log_prior, std::log(1.0 / 4.0 / 6.0), 1e-12);
+}
+
+TEST(EffectRanking, RefusesStatedPriorsThatDoNotFitTheFamilies) {
+  const Structure s = BuildSpringMassChain(ShearBuilding());
+  const ModalData d = Measured(ShearBuilding(), 1);
+  auto where = [&](const EffectRankingOptions& o) {
+    try {
+      RankModelEffects(s, {d}, o);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EffectRankingOptions o = Options();
+  o.kinds = {"stiffness_loss"};
+  FamilyPrior f;
+  f.kind = "attached_mass";  // not tried
+  f.regions = {"x2"};
+  o.priors.families = {f};
+  EXPECT_NE(
+      where(o).find("diagnosis.priors.attached_mass: is not among the families tried"),
+      std::string::npos)
+      << where(o);
+  f.kind = "stiffness_loss";
+  f.regions = {"9"};
+  o.priors.families = {f};
+  EXPECT_NE(
+      where(o).find("diagnosis.priors.stiffness_loss.regions[1]: '9' names no element"),
+      std::string::npos)
+      << where(o);
+  f.regions.clear();
+  QuantityPrior q;
+  q.quantity = "loss";
+  q.lower = 0.6;
+  q.upper = 0.05;
+  f.quantities = {q};
+  o.priors.families = {f};
+  EXPECT_NE(where(o).find("diagnosis.priors.stiffness_loss.loss: lower 0.6 > upper 0.05"),
+            std::string::npos)
+      << where(o);
+  o.priors.families.clear();
+  o.priors.weights = {{"added_mass", 2}};  // does not apply to a dry chain
+  o.kinds.clear();
+  EXPECT_NE(where(o).find("diagnosis.weights.added_mass: does not apply"),
+            std::string::npos)
+      << where(o);
+}
+
+// The stated-priors example: the portal frame's two lowest modes cannot tell a
+// mass at the first-floor joints from one at the beam's middle; stating where
+// the machine stands and what it weighs can.
+TEST(StructureDiagnosis, PortalFramePriorsExample) {
+  Study study =
+      LoadStudy(std::string(FEMUP_EXAMPLES_DIR) + "/diagnosis/portal_frame_priors.yaml");
+  ASSERT_TRUE(study.diagnosis.has_value());
+  EXPECT_FALSE(study.diagnosis->priors.empty());
+  const StructureDiagnosisResult stated = RunStructureDiagnosis(study);
+  EXPECT_EQ(stated.ranking.classes[0].kind, "attached_mass");
+  EXPECT_EQ(stated.ranking.classes[0].region, "node n7");
+  EXPECT_GT(stated.ranking.classes[0].probability, 0.99);
+  EXPECT_NE(StructureDiagnosisReport(stated).find("stated priors: attached_mass"),
+            std::string::npos);
+  study.diagnosis->priors = StatedPriors();
+  const StructureDiagnosisResult plain = RunStructureDiagnosis(study);
+  EXPECT_EQ(plain.ranking.classes[0].kind, "attached_mass");
+  EXPECT_LT(plain.ranking.classes[0].probability, 0.5);
+}
+
 // The pipeline on the bundled example (data made by numpy, not femup).
 TEST(StructureDiagnosis, ShearBuildingExampleEndToEnd) {
   const Study study =

@@ -281,5 +281,158 @@ TEST(Study, ParseStudyReadsTextAndNamesThePath) {
   }
 }
 
+// diagnosis.priors and diagnosis.weights (docs/diagnosis.md, "Stated priors"):
+// parsed in the quantities' own units, checked against the model while the
+// study is read, every refusal naming the file and the field.
+const char* kShear = R"(
+model:
+  type: chain
+  masses: [1e5, 1e5, 1e5, 1e5]
+  springs: [2e8, 2e8, 2e8, 2e8]
+measurements:
+  - {state: air, frequencies_hz: [1.9, 5.5, 8.4]}
+diagnosis:
+  candidates: [attached_mass, stiffness_loss, material_scaling, support_flexibility]
+)";
+
+std::string WithPriors(const std::string& lines) { return kShear + lines; }
+
+TEST(Study, StatedPriorsAreRead) {
+  const Study s = LoadStudy(Write("priors.yaml", WithPriors(R"(  priors:
+    attached_mass: {mass_kg: [0.002, 0.010], regions: [x3, x4]}
+    material_scaling: {factor: {normal: [1.0, 0.05]}}
+    stiffness_loss: {loss: [0.05, 0.6], regions: [3, 4]}
+    support_flexibility: {compliance_ratio: [0.01, 10]}
+  weights: {none: 1, stiffness_loss: 2}
+)")));
+  ASSERT_TRUE(s.diagnosis.has_value());
+  const StatedPriors& p = s.diagnosis->priors;
+  ASSERT_EQ(p.families.size(), 4u);
+  const FamilyPrior* mass = p.Find("attached_mass");
+  ASSERT_NE(mass, nullptr);
+  ASSERT_EQ(mass->quantities.size(), 1u);
+  EXPECT_EQ(mass->quantities[0].quantity, "mass_kg");
+  EXPECT_FALSE(mass->quantities[0].normal);
+  EXPECT_DOUBLE_EQ(mass->quantities[0].lower, 0.002);
+  EXPECT_DOUBLE_EQ(mass->quantities[0].upper, 0.010);
+  EXPECT_EQ(mass->regions, (std::vector<std::string>{"x3", "x4"}));
+  const FamilyPrior* e = p.Find("material_scaling");
+  ASSERT_NE(e, nullptr);
+  EXPECT_TRUE(e->quantities[0].normal);
+  EXPECT_DOUBLE_EQ(e->quantities[0].mean, 1.0);
+  EXPECT_DOUBLE_EQ(e->quantities[0].sigma, 0.05);
+  EXPECT_EQ(p.Find("stiffness_loss")->regions, (std::vector<std::string>{"3", "4"}));
+  EXPECT_DOUBLE_EQ(p.Weight("stiffness_loss"), 2);
+  EXPECT_DOUBLE_EQ(p.Weight("none"), 1);
+  EXPECT_DOUBLE_EQ(p.Weight("attached_mass"), 1);
+  // Without the keys: nothing stated.
+  EXPECT_TRUE(LoadStudy(Write("no_priors.yaml", kShear)).diagnosis->priors.empty());
+}
+
+TEST(Study, BadStatedPriorsNameTheField) {
+  ExpectError("p_lower.yaml",
+              WithPriors("  priors: {attached_mass: {mass_kg: [0.01, 0.002]}}\n"),
+              {"diagnosis.priors.attached_mass.mass_kg: lower 0.01 > upper 0.002"});
+  ExpectError("p_equal.yaml",
+              WithPriors("  priors: {attached_mass: {mass_kg: [2, 2]}}\n"),
+              {"diagnosis.priors.attached_mass.mass_kg: lower = upper"});
+  ExpectError(
+      "p_family.yaml", WithPriors("  priors: {corrosion: {rate: [1, 2]}}\n"),
+      {"diagnosis.priors.corrosion: unknown family 'corrosion'", "attached_mass"});
+  ExpectError("p_key.yaml", WithPriors("  priors: {attached_mass: {mass: [1, 2]}}\n"),
+              {"diagnosis.priors.attached_mass.mass: unknown key", "mass_kg, regions"});
+  ExpectError("p_std.yaml",
+              WithPriors("  priors: {material_scaling: {factor: {normal: [1.0, 0]}}}\n"),
+              {"diagnosis.priors.material_scaling.factor.normal[2]",
+               "positive standard deviation"});
+  ExpectError(
+      "p_negstd.yaml",
+      WithPriors("  priors: {material_scaling: {factor: {normal: [1.0, -0.1]}}}\n"),
+      {"diagnosis.priors.material_scaling.factor.normal[2]"});
+  ExpectError("p_normal_key.yaml",
+              WithPriors("  priors: {material_scaling: {factor: {gauss: [1.0, 0.1]}}}\n"),
+              {"diagnosis.priors.material_scaling.factor.gauss: unknown key"});
+  ExpectError("p_shape.yaml", WithPriors("  priors: {attached_mass: {mass_kg: [1]}}\n"),
+              {"diagnosis.priors.attached_mass.mass_kg", "expected [lower, upper]"});
+  ExpectError("p_scalar.yaml", WithPriors("  priors: {attached_mass: {mass_kg: 5}}\n"),
+              {"diagnosis.priors.attached_mass.mass_kg", "expected [lower, upper]"});
+  ExpectError("p_domain.yaml",
+              WithPriors("  priors: {stiffness_loss: {loss: [0.5, 1.2]}}\n"),
+              {"diagnosis.priors.stiffness_loss.loss", "(0, 0.99]"});
+  ExpectError("p_mass.yaml",
+              WithPriors("  priors: {attached_mass: {mass_kg: [-1, 5]}}\n"),
+              {"diagnosis.priors.attached_mass.mass_kg", "(0, inf)"});
+  ExpectError("p_mean.yaml",
+              WithPriors("  priors: {material_scaling: {factor: {normal: [-1, 0.1]}}}\n"),
+              {"diagnosis.priors.material_scaling.factor", "the mean -1"});
+  ExpectError(
+      "p_region.yaml",
+      WithPriors("  priors: {attached_mass: {mass_kg: [1, 5], regions: [x2, n7]}}\n"),
+      {"diagnosis.priors.attached_mass.regions[2]", "'n7' names no element"});
+  ExpectError("p_region_kind.yaml",
+              WithPriors("  priors: {stiffness_loss: {regions: [x2]}}\n"),
+              {"diagnosis.priors.stiffness_loss.regions[1]", "names a node"});
+  ExpectError("p_region_one.yaml",
+              WithPriors("  priors: {material_scaling: {regions: [1]}}\n"),
+              {"diagnosis.priors.material_scaling.regions", "one place"});
+  ExpectError("p_empty.yaml", WithPriors("  priors: {attached_mass: {}}\n"),
+              {"diagnosis.priors.attached_mass", "expected a mapping"});
+  // A family the study does not try, or one that does not apply to the model.
+  const std::string few = Replace(
+      kShear, "[attached_mass, stiffness_loss, material_scaling, support_flexibility]",
+      "[attached_mass]");
+  ExpectError("p_candidate.yaml",
+              few + "  priors: {stiffness_loss: {loss: [0.05, 0.6]}}\n",
+              {"diagnosis.priors.stiffness_loss", "not among diagnosis.candidates"});
+  const std::string all =
+      Replace(kShear,
+              "  candidates: [attached_mass, stiffness_loss, material_scaling, "
+              "support_flexibility]\n",
+              "");
+  ExpectError("p_apply.yaml", all + "  priors: {added_mass: {ratio: [0.1, 1]}}\n",
+              {"diagnosis.priors.added_mass", "does not apply", "wet"});
+  ExpectError("w_apply.yaml", all + "  weights: {added_mass: 2}\n",
+              {"diagnosis.weights.added_mass", "does not apply"});
+  ExpectError("w_value.yaml", WithPriors("  weights: {stiffness_loss: 0}\n"),
+              {"diagnosis.weights.stiffness_loss", "positive"});
+  ExpectError("w_family.yaml", WithPriors("  weights: {rust: 2}\n"),
+              {"diagnosis.weights.rust: unknown family"});
+}
+
+// The cantilever's effects are placed by a fitted height: regions are refused
+// (x_m states where), and the sampled evidence takes uniform priors only.
+TEST(Study, CantileverPriorsUseHeights) {
+  const std::string beam = R"(
+model:
+  type: cantilever
+  length: 2.0
+  elements: 10
+  section: {E: 210e9, A: 9e-4, I: 1.6875e-8, rho: 7850}
+measurements:
+  - {state: air, frequencies_hz: [2.9, 18.3, 51.2]}
+diagnosis:
+)";
+  const Study s = LoadStudy(
+      Write("beam_priors.yaml",
+            beam + "  priors: {attached_mass: {mass_kg: [1, 2], x_m: [1.4, 1.9]},\n"
+                   "           added_mass: {level_m: [0, 1.5], kg_per_m: {normal: [2.8, "
+                   "0.5]}}}\n"));
+  EXPECT_EQ(s.diagnosis->priors.Find("attached_mass")->quantities.size(), 2u);
+  ExpectError("beam_regions.yaml", beam + "  priors: {attached_mass: {regions: [n7]}}\n",
+              {"diagnosis.priors.attached_mass.regions", "x_m"});
+  ExpectError("beam_height.yaml", beam + "  priors: {attached_mass: {x_m: [1.0, 2.5]}}\n",
+              {"diagnosis.priors.attached_mass.x_m", "[0, 2]"});
+  ExpectError("beam_sampled.yaml",
+              beam + "  evidence: sampled\n" +
+                  "  priors: {material_scaling: {factor: {normal: [1, 0.05]}}}\n",
+              {"diagnosis.priors.material_scaling.factor", "evidence: laplace"});
+  ExpectError("beam_axial.yaml", beam + "  priors: {axial_load: {force_n: [0, 5000]}}\n",
+              {"diagnosis.priors.axial_load", "default candidates"});
+  ExpectError("beam_quantity.yaml",
+              beam + "  priors: {support_flexibility: {compliance_ratio: [0.01, 1]}}\n",
+              {"diagnosis.priors.support_flexibility.compliance_ratio",
+               "rotation_compliance_ratio"});
+}
+
 }  // namespace
 }  // namespace femup

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "femup/errors.h"
 
@@ -32,12 +33,16 @@ class AddedMassEffect : public Effect {
   std::string kind() const override { return "added_mass"; }
   std::vector<EffectParameter> Parameters(const CantileverSpec& s) const override {
     const double length = BeamLength(s);
-    return {
-        {"ln_mass_ratio", "ln(added mass per length / rho A)", std::log(1e-3),
-         std::log(5.0), false},
-        {"depth", "height above the support it reaches (m)", 0.05 * length, length, true},
-        {"fade", "fraction of the depth over which it fades to zero at the top", 0.0,
-         kMaxFade, false}};
+    return {LogQuantity({"ln_mass_ratio", "ln(added mass per length / rho A)",
+                         std::log(1e-3), std::log(5.0), false},
+                        "kg_per_m", BeamMassPerLength(s)),
+            LinearQuantity({"depth", "height above the support it reaches (m)",
+                            0.05 * length, length, true},
+                           "level_m", 1.0, 0.0, length),
+            LinearQuantity(
+                {"fade", "fraction of the depth over which it fades to zero at the top",
+                 0.0, kMaxFade, false},
+                "fade", 1.0, 0.0, kMaxFade)};
   }
   std::vector<Eigen::VectorXd> Starts(const CantileverSpec& s) const override {
     const double length = BeamLength(s);
@@ -49,6 +54,8 @@ class AddedMassEffect : public Effect {
   void Apply(const Eigen::VectorXd& t, Immersion immersion, bool wet_only,
              const CantileverSpec& nominal, CantileverSpec* spec) const override {
     if (wet_only && immersion != Immersion::kWet) return;
+    // A level at (or below) the support: no water (a stated prior may reach it).
+    if (!(t[1] > 0)) return;
     CantileverSpec::DistributedMass m;
     m.z0 = 0;
     m.z1 = std::min(t[1], BeamLength(nominal));
@@ -80,10 +87,12 @@ class SupportFlexibilityEffect : public Effect {
  public:
   std::string kind() const override { return "support_flexibility"; }
   std::vector<EffectParameter> Parameters(const CantileverSpec&) const override {
-    return {{"ln_rotation_compliance", "ln(EI / (k_rotation L))", std::log(1e-6),
-             std::log(10.0), false},
-            {"ln_translation_compliance", "ln(3 EI / (k_translation L^3))",
-             std::log(1e-6), std::log(10.0), false}};
+    return {LogQuantity({"ln_rotation_compliance", "ln(EI / (k_rotation L))",
+                         std::log(1e-6), std::log(10.0), false},
+                        "rotation_compliance_ratio", 1.0),
+            LogQuantity({"ln_translation_compliance", "ln(3 EI / (k_translation L^3))",
+                         std::log(1e-6), std::log(10.0), false},
+                        "translation_compliance_ratio", 1.0)};
   }
   std::vector<Eigen::VectorXd> Starts(const CantileverSpec&) const override {
     return {Vec({std::log(1e-3), std::log(1e-5)}), Vec({std::log(1e-5), std::log(1e-3)}),
@@ -123,8 +132,12 @@ class AttachedMassEffect : public Effect {
   std::string kind() const override { return "attached_mass"; }
   std::vector<EffectParameter> Parameters(const CantileverSpec& s) const override {
     const double length = BeamLength(s);
-    return {{"ln_mass_ratio", "ln(mass / rho A L)", std::log(1e-4), std::log(2.0), false},
-            {"x", "height above the support (m)", 0.02 * length, length, true}};
+    return {
+        LogQuantity(
+            {"ln_mass_ratio", "ln(mass / rho A L)", std::log(1e-4), std::log(2.0), false},
+            "mass_kg", BeamMassPerLength(s) * length),
+        LinearQuantity({"x", "height above the support (m)", 0.02 * length, length, true},
+                       "x_m", 1.0, 0.0, length)};
   }
   std::vector<Eigen::VectorXd> Starts(const CantileverSpec& s) const override {
     const double length = BeamLength(s);
@@ -158,13 +171,19 @@ class StiffnessLossEffect : public Effect {
  public:
   // Region widths, as fractions of the length: "a short region".
   static constexpr double kMinWidth = 0.02, kMaxWidth = 0.4, kStartWidth = 0.1;
+  // The largest loss a stated prior may reach (all of it leaves no beam).
+  static constexpr double kMaxLoss = 0.99;
   std::string kind() const override { return "stiffness_loss"; }
   std::vector<EffectParameter> Parameters(const CantileverSpec& s) const override {
     const double length = BeamLength(s);
-    return {{"ln_loss", "ln(fraction of EI lost)", std::log(3e-3), std::log(0.9), false},
-            {"x", "centre of the region (m)", 0.0, length, true},
-            {"ln_width", "ln(width of the region / L)", std::log(kMinWidth),
-             std::log(kMaxWidth), false}};
+    return {LogQuantity({"ln_loss", "ln(fraction of EI lost)", std::log(3e-3),
+                         std::log(0.9), false},
+                        "loss", 1.0, kMaxLoss),
+            LinearQuantity({"x", "centre of the region (m)", 0.0, length, true}, "x_m",
+                           1.0, 0.0, length),
+            LogQuantity({"ln_width", "ln(width of the region / L)", std::log(kMinWidth),
+                         std::log(kMaxWidth), false},
+                        "width_m", length, length)};
   }
   std::vector<Eigen::VectorXd> Starts(const CantileverSpec& s) const override {
     const double length = BeamLength(s);
@@ -207,7 +226,8 @@ class MaterialScalingEffect : public Effect {
  public:
   std::string kind() const override { return "material_scaling"; }
   std::vector<EffectParameter> Parameters(const CantileverSpec&) const override {
-    return {{"ln_e_factor", "ln(E_real / E_model)", -0.7, 0.7, false}};
+    return {LogQuantity({"ln_e_factor", "ln(E_real / E_model)", -0.7, 0.7, false},
+                        "factor", 1.0)};
   }
   std::vector<Eigen::VectorXd> Starts(const CantileverSpec&) const override {
     return {Vec({0.0})};
@@ -236,10 +256,14 @@ class AxialLoadEffect : public Effect {
   static constexpr double kMaxCompression = 0.8;
   static constexpr double kMaxTension = 10.0;
   std::string kind() const override { return "axial_load"; }
-  std::vector<EffectParameter> Parameters(const CantileverSpec&) const override {
-    return {{"force_ratio",
-             "axial force / (pi^2 E I / (4 L^2)), tension positive, compression negative",
-             -kMaxCompression, kMaxTension, false}};
+  std::vector<EffectParameter> Parameters(const CantileverSpec& s) const override {
+    const double euler = EulerLoad(s);
+    return {LinearQuantity(
+        {"force_ratio",
+         "axial force / (pi^2 E I / (4 L^2)), tension positive, compression negative",
+         -kMaxCompression, kMaxTension, false},
+        "force_n", euler, -kMaxCompression * euler,
+        std::numeric_limits<double>::infinity())};
   }
   std::vector<Eigen::VectorXd> Starts(const CantileverSpec&) const override {
     return {Vec({0.0}), Vec({-0.4}), Vec({2.0})};
@@ -286,6 +310,26 @@ std::unique_ptr<Effect> CreateEffect(const std::string& kind) {
   for (const auto& k : AvailableEffects()) known += (known.empty() ? "" : ", ") + k;
   throw InputError("effect",
                    "unknown effect '" + kind + "' (expected none, " + known + ")");
+}
+
+EffectParameter LogQuantity(EffectParameter p, const std::string& key, double scale,
+                            double max) {
+  p.quantity = key;
+  p.log_coordinate = true;
+  p.quantity_scale = scale;
+  p.quantity_min = 0;
+  p.quantity_max = max;
+  return p;
+}
+
+EffectParameter LinearQuantity(EffectParameter p, const std::string& key, double scale,
+                               double min, double max) {
+  p.quantity = key;
+  p.log_coordinate = false;
+  p.quantity_scale = scale;
+  p.quantity_min = min;
+  p.quantity_max = max;
+  return p;
 }
 
 double BeamMassPerLength(const CantileverSpec& spec) {

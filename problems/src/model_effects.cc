@@ -19,6 +19,10 @@ Eigen::VectorXd Vec(std::initializer_list<double> v) {
 
 SparseMatrix Zero(int n) { return SparseMatrix(n, n); }
 
+// The largest stiffness loss a stated prior may reach (all of it leaves a
+// mechanism).
+constexpr double kMaxLoss = 0.99;
+
 // The node and component of a DOF label: "n7:ux" -> ("n7", "ux"); a chain's "x3"
 // -> ("x3", "").
 std::pair<std::string, std::string> SplitLabel(const std::string& label) {
@@ -65,7 +69,8 @@ class MaterialScaling : public Base {
   }
   std::string kind() const override { return "material_scaling"; }
   std::vector<EffectParameter> Parameters() const override {
-    return {{"ln_e_factor", "ln(E_real / E_model)", -0.7, 0.7, false}};
+    return {LogQuantity({"ln_e_factor", "ln(E_real / E_model)", -0.7, 0.7, false},
+                        "factor", 1.0)};
   }
   std::vector<Eigen::VectorXd> Starts() const override { return {Vec({0.0})}; }
   ModelChange Change(const Eigen::VectorXd& t, Immersion) const override {
@@ -94,8 +99,9 @@ class StiffnessLoss : public Base {
   using Base::Base;
   std::string kind() const override { return "stiffness_loss"; }
   std::vector<EffectParameter> Parameters() const override {
-    return {{"ln_loss", "ln(fraction of the stiffness lost)", std::log(3e-3),
-             std::log(0.9), false}};
+    return {LogQuantity({"ln_loss", "ln(fraction of the stiffness lost)", std::log(3e-3),
+                         std::log(0.9), false},
+                        "loss", 1.0, kMaxLoss)};
   }
   std::vector<Eigen::VectorXd> Starts() const override {
     return {Vec({std::log(0.03)}), Vec({std::log(0.3)})};
@@ -134,8 +140,9 @@ class AttachedMass : public Base {
   }
   std::string kind() const override { return "attached_mass"; }
   std::vector<EffectParameter> Parameters() const override {
-    return {{"ln_mass_ratio", "ln(mass / the structure's mass)", std::log(1e-4),
-             std::log(2.0), false}};
+    return {LogQuantity({"ln_mass_ratio", "ln(mass / the structure's mass)",
+                         std::log(1e-4), std::log(2.0), false},
+                        "mass_kg", m_ref_)};
   }
   std::vector<Eigen::VectorXd> Starts() const override {
     return {Vec({std::log(0.003)}), Vec({std::log(0.1)})};
@@ -175,12 +182,15 @@ class AddedMass : public Base {
   }
   std::string kind() const override { return "added_mass"; }
   std::vector<EffectParameter> Parameters() const override {
-    std::vector<EffectParameter> p = {{"ln_mass_ratio",
-                                       "ln(added mass / the elements' added-mass basis)",
-                                       std::log(1e-3), std::log(5.0), false}};
+    std::vector<EffectParameter> p = {
+        LogQuantity({"ln_mass_ratio", "ln(added mass / the elements' added-mass basis)",
+                     std::log(1e-3), std::log(5.0), false},
+                    "ratio", 1.0)};
     if (with_level_) {
-      p.push_back({"level", "height of the water level above the support (m)",
-                   Bottom() + 0.05 * (Top() - Bottom()), Top(), true});
+      p.push_back(
+          LinearQuantity({"level", "height of the water level above the support (m)",
+                          Bottom() + 0.05 * (Top() - Bottom()), Top(), true},
+                         "level_m", 1.0, Bottom(), Top()));
     }
     return p;
   }
@@ -246,8 +256,10 @@ class SupportFlexibility : public Base {
   using Base::Base;
   std::string kind() const override { return "support_flexibility"; }
   std::vector<EffectParameter> Parameters() const override {
-    return {{"ln_compliance_ratio", "ln(added compliance / the support's own)",
-             std::log(1e-3), std::log(100.0), false}};
+    return {
+        LogQuantity({"ln_compliance_ratio", "ln(added compliance / the support's own)",
+                     std::log(1e-3), std::log(100.0), false},
+                    "compliance_ratio", 1.0)};
   }
   std::vector<Eigen::VectorXd> Starts() const override {
     return {Vec({std::log(0.01)}), Vec({std::log(1.0)})};

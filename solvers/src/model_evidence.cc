@@ -12,7 +12,29 @@ namespace femup {
 ModelEvidence LaplaceEvidence(double chi2, const Eigen::MatrixXd& jacobian,
                               const Eigen::VectorXd& x, const Eigen::VectorXd& lower,
                               const Eigen::VectorXd& upper, double temperature) {
+  return LaplaceEvidence(chi2, jacobian, x, lower, upper, temperature, Eigen::VectorXd(),
+                         Eigen::VectorXd());
+}
+
+ModelEvidence LaplaceEvidence(double chi2, const Eigen::MatrixXd& jacobian,
+                              const Eigen::VectorXd& x, const Eigen::VectorXd& lower,
+                              const Eigen::VectorXd& upper, double temperature,
+                              const Eigen::VectorXd& normal_mean,
+                              const Eigen::VectorXd& normal_sigma) {
   const Eigen::Index n = x.size();
+  const bool any_normal = normal_mean.size() > 0 || normal_sigma.size() > 0;
+  if (any_normal && (normal_mean.size() != n || normal_sigma.size() != n)) {
+    throw InputError("evidence.normal",
+                     "normal_mean and normal_sigma need one entry per parameter");
+  }
+  for (Eigen::Index i = 0; any_normal && i < n; ++i) {
+    if (!(normal_sigma[i] >= 0) || !std::isfinite(normal_sigma[i]) ||
+        !std::isfinite(normal_mean[i])) {
+      throw InputError("evidence.normal[" + std::to_string(i + 1) + "]",
+                       "the mean must be finite and sigma finite and >= 0");
+    }
+  }
+  auto normal = [&](Eigen::Index i) { return any_normal && normal_sigma[i] > 0; };
   if (lower.size() != n || upper.size() != n || (n > 0 && jacobian.cols() != n)) {
     throw InputError("evidence",
                      "x, lower, upper and the Jacobian's columns differ in size");
@@ -37,13 +59,32 @@ ModelEvidence LaplaceEvidence(double chi2, const Eigen::MatrixXd& jacobian,
   const Eigen::ArrayXd range = (upper - lower).array();
   Eigen::MatrixXd h = jacobian.transpose() * jacobian / temperature;
   const double two_pi = 2 * std::acos(-1.0);
-  h.diagonal().array() += two_pi / range.square();
+  // Per parameter: the prior's precision on H's diagonal and the log of its
+  // density at x (uniform priors only: as vectors, the sums in the order they
+  // always had).
+  double log_prior_density = 0;
+  if (!any_normal) {
+    h.diagonal().array() += two_pi / range.square();
+    log_prior_density = -range.log().sum();
+  }
+  for (Eigen::Index i = 0; any_normal && i < n; ++i) {
+    if (normal(i)) {
+      const double z = (x[i] - normal_mean[i]) / normal_sigma[i];
+      h(i, i) += 1 / (normal_sigma[i] * normal_sigma[i]);
+      log_prior_density -=
+          0.5 * std::log(two_pi) + std::log(normal_sigma[i]) + 0.5 * z * z;
+    } else {
+      h(i, i) += two_pi / (range[i] * range[i]);
+      log_prior_density -= std::log(range[i]);
+    }
+  }
   const Eigen::LLT<Eigen::MatrixXd> llt(h);
   const Eigen::MatrixXd l = llt.matrixL();
   const double log_det_h = 2 * l.diagonal().array().log().sum();
-  double log_occam = 0.5 * (n * std::log(two_pi) - log_det_h) - range.log().sum();
+  double log_occam = 0.5 * (n * std::log(two_pi) - log_det_h) + log_prior_density;
   const double edge = 1e-6;
   for (Eigen::Index i = 0; i < n; ++i) {
+    if (normal(i)) continue;
     if (x[i] <= lower[i] + edge * range[i] || x[i] >= upper[i] - edge * range[i])
       log_occam -= std::log(2.0);
   }

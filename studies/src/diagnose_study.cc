@@ -12,10 +12,12 @@
 
 #include "femup/errors.h"
 #include "femup/plot.h"
+#include "femup/problems/effect_priors.h"
 #include "femup/solvers/nonlinear_solver.h"
 #include "femup/solvers/sampled_evidence.h"
 #include "json_util.h"
 #include "render_staged.h"
+#include "stated_priors_text.h"
 
 namespace femup {
 
@@ -98,20 +100,30 @@ struct FitOutcome {
   std::vector<LocalOptimum> optima;  // every start's answer, distinct ones only
 };
 
-// Multi-start fit of one class on `data`.
+// Multi-start fit of one class on `data`, the stated normal priors' residuals
+// included (effect_priors.h): the best start is the one with the least misfit
+// with them; chi2 and the Jacobians kept are the data's alone.
 FitOutcome FitClass(const EffectFitData& data, const std::vector<const Effect*>& effects,
                     const std::vector<Eigen::VectorXd>& starts,
                     const NonlinearSolver& solver, int* runs) {
   FitOutcome best;
+  double best_misfit = 0;
   std::string last_error;
+  const std::vector<EffectParameter> params = EffectSetParameters(data, effects);
   for (const Eigen::VectorXd& start : starts) {
-    const NonlinearProblem problem = BuildEffectFitProblem(data, effects, start);
-    const NonlinearSolution sol = solver.Solve(problem);
+    const NonlinearProblem fit = BuildEffectFitProblem(data, effects, start);
+    const NonlinearProblem problem = WithPriorResiduals(fit, params);
+    NonlinearSolution sol = solver.Solve(problem);
     ++*runs;
     if (sol.residual.size() != problem.num_residuals || !sol.residual.allFinite() ||
         sol.jacobian.rows() != problem.num_residuals) {
       last_error = sol.summary.message;
       continue;
+    }
+    const double misfit = sol.residual.squaredNorm();
+    if (problem.num_residuals != fit.num_residuals) {
+      sol.residual = Eigen::VectorXd(sol.residual.head(fit.num_residuals));
+      sol.jacobian = Eigen::MatrixXd(sol.jacobian.topRows(fit.num_residuals));
     }
     const double chi2 = sol.residual.squaredNorm();
     bool seen = false;
@@ -124,8 +136,9 @@ FitOutcome FitClass(const EffectFitData& data, const std::vector<const Effect*>&
       o.chi2 = chi2;
       best.optima.push_back(std::move(o));
     }
-    if (!best.ok || chi2 < best.chi2) {
+    if (!best.ok || misfit < best_misfit) {
       best.ok = true;
+      best_misfit = misfit;
       best.chi2 = chi2;
       best.theta = sol.x;
       best.jacobian = sol.jacobian;
@@ -241,6 +254,51 @@ DiagnosisResult RunDiagnosis(const Study& study) {
   r.shape_noise = spec.shape_noise;
   r.form_error_fraction = spec.form_error;
   r.confidence = spec.confidence;
+  r.priors = spec.priors;
+
+  // The stated priors (effect_priors.h), checked before any work: families the
+  // diagnosis tries, quantities of theirs, no regions (the cantilever's effects
+  // are placed by a fitted height), no normal prior with sampled evidence.
+  const std::vector<std::string> kinds =
+      spec.candidates.empty() ? DefaultEffects() : spec.candidates;
+  {
+    auto fail = [&](const std::string& field, const std::string& what) {
+      throw InputError(study.path, "diagnosis." + field + ": " + what);
+    };
+    const std::string invalid = spec.priors.Validate();
+    if (!invalid.empty()) throw InputError(study.path, "diagnosis." + invalid);
+    auto tried = [&](const std::string& kind) {
+      return std::find(kinds.begin(), kinds.end(), kind) != kinds.end();
+    };
+    for (const auto& [kind, w] : spec.priors.weights)
+      if (kind != "none" && !tried(kind))
+        fail("weights." + kind, "is not among the families tried");
+    for (const FamilyPrior& f : spec.priors.families) {
+      const std::string field = "priors." + f.kind;
+      if (!tried(f.kind)) fail(field, "is not among the families tried");
+      if (!f.regions.empty())
+        fail(field + ".regions",
+             "the cantilever's effects are placed by a fitted height, not by region: "
+             "state x_m: [from, to] instead");
+      for (const QuantityPrior& q : f.quantities)
+        if (q.normal && spec.evidence == "sampled")
+          fail(field + "." + q.quantity,
+               "a normal prior needs evidence: laplace (the sampled evidence draws from "
+               "uniform priors)");
+      try {
+        WithFamilyPrior(CreateEffect(f.kind), f, nominal);
+      } catch (const InputError& e) {
+        fail(field + "." + e.where(), std::string(e.what()).substr(e.where().size() + 2));
+      }
+    }
+  }
+  // A family's effect with its stated priors.
+  auto make_effect = [&](const std::string& kind) {
+    std::unique_ptr<Effect> e = CreateEffect(kind);
+    if (const FamilyPrior* f = spec.priors.Find(kind))
+      e = WithFamilyPrior(std::move(e), *f, nominal);
+    return e;
+  };
 
   // Measured states as observed modes at their sensors.
   const std::vector<PreparedState> prepared = PrepareMeasurements(study);
@@ -438,8 +496,6 @@ DiagnosisResult RunDiagnosis(const Study& study) {
       CreateNonlinearSolver(spec.solver, options);
 
   // Candidate classes.
-  std::vector<std::string> kinds =
-      spec.candidates.empty() ? DefaultEffects() : spec.candidates;
   std::vector<std::vector<std::string>> classes{{}};
   for (const auto& k : kinds) classes.push_back({k});
   const std::size_t num_singles = kinds.size();
@@ -457,7 +513,7 @@ DiagnosisResult RunDiagnosis(const Study& study) {
     c.label = "none";
     std::vector<std::unique_ptr<Effect>> effects;
     for (std::size_t i = 0; i < cls.size(); ++i) {
-      effects.push_back(CreateEffect(cls[i]));
+      effects.push_back(make_effect(cls[i]));
       c.label = i == 0 ? cls[i] : c.label + "+" + cls[i];
     }
     const std::vector<const Effect*> ptrs = Pointers(effects);
@@ -558,10 +614,15 @@ DiagnosisResult RunDiagnosis(const Study& study) {
   auto score_all = [&](double temperature) {
     for (DiagnosisCandidate& c : r.candidates) {
       std::vector<std::unique_ptr<Effect>> effects;
-      for (const auto& k : c.kinds) effects.push_back(CreateEffect(k));
+      for (const auto& k : c.kinds) effects.push_back(make_effect(k));
       Eigen::VectorXd lo, hi;
       prior_box(Pointers(effects), &lo, &hi);
-      c.evidence = LaplaceEvidence(c.chi2, c.jacobian, c.theta, lo, hi, temperature);
+      const std::vector<EffectParameter> params =
+          EffectSetParameters(r.fitted_data, Pointers(effects));
+      Eigen::VectorXd normal_mean, normal_sigma;
+      LocalNormalPriors(params, c.theta, &normal_mean, &normal_sigma);
+      c.evidence = LaplaceEvidence(c.chi2, c.jacobian, c.theta, lo, hi, temperature,
+                                   normal_mean, normal_sigma);
       c.held_out_log_predictive = LogPredictiveDensity(
           c.held_out_residual, c.held_out_jacobian, c.evidence.covariance, temperature);
       // Laplace's approximation at every separated basin the multi-start fit
@@ -587,8 +648,9 @@ DiagnosisResult RunDiagnosis(const Study& study) {
         if (!o->predicts || o->chi2 > c.chi2 + 30 * temperature || c.theta.size() == 0 ||
             !o->jacobian.allFinite())
           continue;
-        const ModelEvidence e =
-            LaplaceEvidence(o->chi2, o->jacobian, o->theta, lo, hi, temperature);
+        LocalNormalPriors(params, o->theta, &normal_mean, &normal_sigma);
+        const ModelEvidence e = LaplaceEvidence(o->chi2, o->jacobian, o->theta, lo, hi,
+                                                temperature, normal_mean, normal_sigma);
         const Eigen::LDLT<Eigen::MatrixXd> covariance(e.covariance);
         // The same basin as a kept one: within 3 of its posterior standard
         // deviations, measured by either basin's covariance, or no barrier
@@ -643,7 +705,7 @@ DiagnosisResult RunDiagnosis(const Study& study) {
       if (c.theta.size() == 0) continue;  // no parameters: Laplace is exact
       if (c.laplace_score < best_laplace - kSampledBelow) continue;
       std::vector<std::unique_ptr<Effect>> effects;
-      for (const auto& k : c.kinds) effects.push_back(CreateEffect(k));
+      for (const auto& k : c.kinds) effects.push_back(make_effect(k));
       const std::vector<const Effect*> ptrs = Pointers(effects);
       Eigen::VectorXd lo, hi;
       prior_box(ptrs, &lo, &hi);
@@ -727,7 +789,10 @@ DiagnosisResult RunDiagnosis(const Study& study) {
     const double share = c.kinds.empty()       ? 1.0
                          : c.kinds.size() == 1 ? 1.0 / num_singles
                                                : 1.0 / num_pairs;
-    prior[static_cast<Eigen::Index>(i)] = share / levels;
+    // Stated weights: "none"'s, a family's, a pair's the product of its two.
+    double weight = c.kinds.empty() ? spec.priors.Weight("none") : 1.0;
+    for (const std::string& k : c.kinds) weight *= spec.priors.Weight(k);
+    prior[static_cast<Eigen::Index>(i)] = weight * share / levels;
   }
   const Eigen::VectorXd post = PosteriorProbabilities(scores, prior);
   for (std::size_t i = 0; i < r.candidates.size(); ++i)
@@ -919,6 +984,7 @@ void WriteDiagnosisOutputs(const DiagnosisResult& r, bool plots, OutputDir* out,
                                  {"mass_chi2_drop", e.mass_chi2_drop}});
   }
   j["warnings"] = r.warnings;
+  j["stated_priors"] = StatedPriorsJson(r.priors);
   out->WriteText("diagnosis.json", j.dump(2) + "\n");
   if (!plots) return;
 
@@ -1019,7 +1085,9 @@ std::string DiagnosisReport(const DiagnosisResult& r) {
   if (r.form_error_fraction > 0)
     o << ", form error " << 100 * r.form_error_fraction << " % of the nominal misfit";
   if (r.temperature > 1) o << " (scaled by sqrt(" << Fixed(r.temperature, 2) << "))";
-  o << "\n\n  verdict: " << r.verdict << "\n\n";
+  o << "\n";
+  if (!r.priors.empty()) o << "  stated priors: " << StatedPriorsLine(r.priors) << "\n";
+  o << "\n  verdict: " << r.verdict << "\n\n";
   o << "  rank  class                                    P       chi2   held-out  "
        "where\n";
   const std::size_t shown = std::min<std::size_t>(8, r.candidates.size());

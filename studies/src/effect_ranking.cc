@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "femup/errors.h"
+#include "femup/problems/effect_priors.h"
 #include "femup/problems/model_effect_pencil.h"
 #include "femup/solvers/nonlinear_solver.h"
 
@@ -38,22 +39,32 @@ bool SameSpan(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, double cosine)
   return s.minCoeff() >= cosine;
 }
 
+// The best start is the one with the least misfit, the stated normal priors'
+// residuals included (the posterior's mode); chi2, the residual and the
+// Jacobian kept are the data's alone.
 Fit FitInstance(const std::shared_ptr<const Structure>& structure,
                 const std::shared_ptr<const ModelEffect>& effect,
                 const std::vector<ModalData>& states,
                 const EigenSensitivityOptions& options, const NonlinearSolver& solver) {
   Fit best;
+  double best_misfit = 0;
+  const std::vector<EffectParameter> params = effect->Parameters();
   for (const Eigen::VectorXd& start : effect->Starts()) {
-    const NonlinearProblem problem =
+    const NonlinearProblem data =
         BuildModelEffectFitProblem(structure, {effect}, states, options, start);
+    const NonlinearProblem problem = WithPriorResiduals(data, params);
     const NonlinearSolution sol = solver.Solve(problem);
     if (sol.residual.size() != problem.num_residuals || !sol.residual.allFinite() ||
         sol.jacobian.rows() != problem.num_residuals) {
       continue;
     }
-    const double chi2 = sol.residual.squaredNorm();
-    if (!best.ok || chi2 < best.chi2) {
-      best = {true, sol.summary.usable(), sol.x, sol.jacobian, sol.residual, chi2};
+    const double misfit = sol.residual.squaredNorm();
+    if (!best.ok || misfit < best_misfit) {
+      const Eigen::VectorXd residual = sol.residual.head(data.num_residuals);
+      best = {true,     sol.summary.usable(),
+              sol.x,    sol.jacobian.topRows(data.num_residuals),
+              residual, residual.squaredNorm()};
+      best_misfit = misfit;
     }
   }
   return best;
@@ -93,7 +104,7 @@ std::string EffectRankingOptions::Validate() const {
   const auto names = AvailableNonlinearSolvers();
   if (std::find(names.begin(), names.end(), solver) == names.end())
     return "solver: unknown nonlinear solver '" + solver + "'";
-  return "";
+  return priors.Validate();
 }
 
 EffectRanking RankModelEffects(const Structure& structure_in,
@@ -123,6 +134,43 @@ EffectRanking RankModelEffects(const Structure& structure_in,
     }
   }
 
+  // Stated priors for families not tried are the study's error, before any fit.
+  auto tried = [&](const std::string& kind) {
+    return std::find(kinds.begin(), kinds.end(), kind) != kinds.end();
+  };
+  auto not_tried = [&](const std::string& kind) {
+    std::string why = "is not among the families tried (";
+    for (std::size_t i = 0; i < kinds.size(); ++i) why += (i ? ", " : "") + kinds[i];
+    why += ")";
+    for (const std::string& s : out.skipped)
+      if (s.rfind(kind + ": ", 0) == 0)
+        why = "does not apply: " + s.substr(kind.size() + 2);
+    return why;
+  };
+  for (const FamilyPrior& f : options.priors.families)
+    if (!tried(f.kind)) throw InputError("diagnosis.priors." + f.kind, not_tried(f.kind));
+  for (const auto& [kind, w] : options.priors.weights)
+    if (kind != "none" && !tried(kind))
+      throw InputError("diagnosis.weights." + kind, not_tried(kind));
+  // Every family's instances with their stated priors, made (and checked)
+  // before any fit.
+  std::vector<std::vector<std::unique_ptr<ModelEffect>>> instances;
+  for (const std::string& kind : kinds) {
+    std::vector<std::unique_ptr<ModelEffect>> made =
+        CreateModelEffects(kind, *structure, effect_options);
+    if (const FamilyPrior* prior = options.priors.Find(kind)) {
+      const std::string field = "diagnosis.priors." + kind;
+      try {
+        made = KeepStatedRegions(std::move(made), *structure, *prior);
+        for (auto& m : made) m = WithFamilyPrior(std::move(m), *prior);
+      } catch (const InputError& e) {
+        const std::string what = e.what();
+        throw InputError(field + "." + e.where(), what.substr(e.where().size() + 2));
+      }
+    }
+    instances.push_back(std::move(made));
+  }
+
   EigenSensitivityOptions fit;
   fit.frequency_sigma = 2 * options.frequency_sigma;  // of lambda = (2 pi f)^2
   fit.shape_sigma = options.shape_sigma;
@@ -132,7 +180,13 @@ EffectRanking RankModelEffects(const Structure& structure_in,
   int shape_modes = 0;
   for (const ModalData& d : states)
     shape_modes += options.use_shapes && d.HasShapes() ? d.num_modes() : 0;
-  const double log_family_prior = -std::log(static_cast<double>(kinds.size() + 1));
+  // Each family's share of the prior: its weight over the sum of "none"'s and
+  // every tried family's (1 each unless stated: 1 / (families + 1)).
+  double total_weight = options.priors.Weight("none");
+  for (const std::string& kind : kinds) total_weight += options.priors.Weight(kind);
+  auto log_family_prior = [&](const std::string& kind) {
+    return std::log(options.priors.Weight(kind)) - std::log(total_weight);
+  };
 
   // "none", then every instance of every family.
   RankedClass none;
@@ -140,16 +194,17 @@ EffectRanking RankModelEffects(const Structure& structure_in,
   const Eigen::VectorXd nominal = NominalResidual(structure, states, fit);
   out.num_residuals = static_cast<int>(nominal.size());
   none.chi2 = nominal.squaredNorm();
-  none.log_prior = log_family_prior;
+  none.log_prior = log_family_prior("none");
   std::vector<RankedClass> classes = {none};
   std::vector<Eigen::MatrixXd> jacobians = {Eigen::MatrixXd(out.num_residuals, 0)};
   std::vector<Eigen::VectorXd> residuals = {nominal};
   std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>> boxes = {{}};
-  for (const std::string& kind : kinds) {
-    std::vector<std::unique_ptr<ModelEffect>> made =
-        CreateModelEffects(kind, *structure, effect_options);
+  std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>> normals = {{}};
+  for (std::size_t k = 0; k < kinds.size(); ++k) {
+    const std::string& kind = kinds[k];
+    std::vector<std::unique_ptr<ModelEffect>>& made = instances[k];
     const double log_prior =
-        log_family_prior - std::log(static_cast<double>(made.size()));
+        log_family_prior(kind) - std::log(static_cast<double>(made.size()));
     for (auto& instance : made) {
       std::shared_ptr<const ModelEffect> effect(std::move(instance));
       const Fit f = FitInstance(structure, effect, states, fit, *solver);
@@ -170,10 +225,13 @@ EffectRanking RankModelEffects(const Structure& structure_in,
         lower[i] = params[i].lower;
         upper[i] = params[i].upper;
       }
+      Eigen::VectorXd normal_mean, normal_sigma;
+      LocalNormalPriors(params, f.theta, &normal_mean, &normal_sigma);
       classes.push_back(std::move(c));
       jacobians.push_back(f.jacobian);
       residuals.push_back(f.residual);
       boxes.push_back({lower, upper});
+      normals.push_back({normal_mean, normal_sigma});
     }
   }
 
@@ -188,9 +246,9 @@ EffectRanking RankModelEffects(const Structure& structure_in,
 
   Eigen::VectorXd log_evidence(classes.size()), prior(classes.size());
   for (std::size_t i = 0; i < classes.size(); ++i) {
-    classes[i].evidence =
-        LaplaceEvidence(classes[i].chi2, jacobians[i], classes[i].theta, boxes[i].first,
-                        boxes[i].second, out.temperature);
+    classes[i].evidence = LaplaceEvidence(
+        classes[i].chi2, jacobians[i], classes[i].theta, boxes[i].first, boxes[i].second,
+        out.temperature, normals[i].first, normals[i].second);
     log_evidence[i] = classes[i].evidence.log_evidence;
     prior[i] = std::exp(classes[i].log_prior);
   }

@@ -8,6 +8,7 @@
 #include "femup/errors.h"
 #include "json_util.h"
 #include "render_staged.h"
+#include "stated_priors_text.h"
 
 namespace femup {
 
@@ -28,6 +29,8 @@ StructureDiagnosisResult RunStructureDiagnosis(const Study& study) {
   options.shape_sigma = spec.shape_noise;
   options.use_shapes = spec.use_shapes;
   options.solver = spec.solver;
+  options.priors = spec.priors;
+  r.priors = spec.priors;
   // A named family that does not apply is the study's error, before any fit.
   for (const std::string& kind : options.kinds) {
     const auto known = ModelEffectKinds();
@@ -48,7 +51,13 @@ StructureDiagnosisResult RunStructureDiagnosis(const Study& study) {
   }
   for (const PreparedState& p : PrepareMeasurements(study))
     r.measured.push_back(p.at_sensors);
-  r.ranking = RankModelEffects(study.structure, r.measured, options);
+  try {
+    r.ranking = RankModelEffects(study.structure, r.measured, options);
+  } catch (const InputError& e) {
+    // The study's own fields (diagnosis.priors.*, ...): name the study file.
+    if (e.where().rfind("diagnosis", 0) == 0) throw InputError(study.path, e.what());
+    throw;
+  }
   return r;
 }
 
@@ -102,6 +111,7 @@ void WriteStructureDiagnosisOutputs(const StructureDiagnosisResult& r, bool plot
     j["classes"].push_back(cj);
   }
   j["not_applicable"] = k.skipped;
+  j["stated_priors"] = StatedPriorsJson(r.priors);
   out->WriteText("diagnosis.json", j.dump(2) + "\n");
   if (!plots) return;
   Figure f;
@@ -125,6 +135,7 @@ std::string StructureDiagnosisReport(const StructureDiagnosisResult& r) {
   const EffectRanking& k = r.ranking;
   const RankedClass& top = k.classes.front();
   o << "diagnosis of " << r.study_name << " (" << r.model_type << " model)\n";
+  if (!r.priors.empty()) o << "stated priors: " << StatedPriorsLine(r.priors) << "\n";
   if (top.kind == "none") {
     o << "verdict: no significant gap (P " << std::fixed << std::setprecision(2)
       << top.probability << ")\n";

@@ -7,7 +7,8 @@
 // makes.
 //
 // Each parameter has a range, which is also its prior: uniform in the
-// parameter's own coordinate (log coordinates for magnitudes that span decades).
+// parameter's own coordinate (log coordinates for magnitudes that span decades),
+// unless a study states another (effect_priors.h).
 // Locations are in metres from the support.
 //
 // The library (CreateEffect):
@@ -39,6 +40,7 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "femup/builders.h"
@@ -47,12 +49,46 @@
 namespace femup {
 
 struct EffectParameter {
+  EffectParameter() = default;
+  // A parameter with no stated quantity ({name, description, lower, upper,
+  // location}; LogQuantity and LinearQuantity below add one).
+  EffectParameter(std::string name_in, std::string description_in, double lower_in,
+                  double upper_in, bool location_in)
+      : name(std::move(name_in)),
+        description(std::move(description_in)),
+        lower(lower_in),
+        upper(upper_in),
+        location(location_in) {}
+
   std::string name;         // "ln_mass_ratio", "depth"
   std::string description;  // "ln(m_a / rho A)"
   double lower = 0;         // the prior range, uniform in this coordinate
   double upper = 1;
   bool location = false;  // a position along the structure (m)
+  // The physical quantity behind the coordinate, on which a study states what
+  // it knows (`diagnosis.priors`, effect_priors.h): its key in the study file,
+  // unit included ("mass_kg", "loss"; empty: none can be stated), and the map
+  // q = quantity_scale exp(theta) in a log coordinate, else q = quantity_scale
+  // theta (quantity_scale > 0). [quantity_min, quantity_max] are the values q
+  // can take (a log coordinate's are > 0 whatever quantity_min says).
+  std::string quantity;
+  bool log_coordinate = false;
+  double quantity_scale = 1;
+  double quantity_min = -std::numeric_limits<double>::infinity();
+  double quantity_max = std::numeric_limits<double>::infinity();
+  // A stated Gaussian prior on q, N(normal_mean, normal_sigma^2), when
+  // normal_sigma > 0: it replaces the uniform prior on [lower, upper], which
+  // then only bounds the fit.
+  double normal_mean = 0;
+  double normal_sigma = 0;
 };
+
+// `p` measuring the quantity `key` as q = scale exp(theta), q in (0, max].
+EffectParameter LogQuantity(EffectParameter p, const std::string& key, double scale,
+                            double max = std::numeric_limits<double>::infinity());
+// `p` measuring the quantity `key` as q = scale theta, q in [min, max].
+EffectParameter LinearQuantity(EffectParameter p, const std::string& key, double scale,
+                               double min, double max);
 
 // Where an effect acts, in metres from the support (NaN where not applicable).
 struct EffectLocation {

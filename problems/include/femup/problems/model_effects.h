@@ -8,7 +8,9 @@
 // act on (a stiffness loss in storey 3, an attached mass at node n7): the
 // discrete choice is the instance, the continuous parameters are theta. Each
 // parameter's range is also its prior, uniform in the parameter's coordinate
-// (log coordinates for magnitudes spanning decades).
+// (log coordinates for magnitudes spanning decades), unless a study states
+// another (effect_priors.h: ranges and normal priors on the physical
+// quantities, the regions kept).
 //
 // The families (kinds), with theta and the change they make:
 //   material_scaling    ln(s): every element's stiffness times s (E error);

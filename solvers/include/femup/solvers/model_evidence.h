@@ -39,6 +39,27 @@ ModelEvidence LaplaceEvidence(double chi2, const Eigen::MatrixXd& jacobian,
                               const Eigen::VectorXd& x, const Eigen::VectorXd& lower,
                               const Eigen::VectorXd& upper, double temperature = 1.0);
 
+// The same where some parameters have a Gaussian prior N(normal_mean_i,
+// normal_sigma_i^2) in their own coordinate (normal_sigma_i > 0; 0 = the
+// uniform prior on [lower_i, upper_i]), which for them replaces the uniform
+// one: the box only bounds the fit (no range term, no bound penalty). x is the
+// posterior's mode (the fit included the residuals (x_i - mean_i) / sigma_i)
+// and chi2 the data's part of its misfit alone; then
+//   log Occam = 1/2 log det(2 pi H^-1) - sum_uniform log(upper_i - lower_i)
+//               - sum_gaussian [log(sqrt(2 pi) sigma_i)
+//                               + 1/2 ((x_i - mean_i) / sigma_i)^2],
+// H's diagonal term being 1 / sigma_i^2 for a Gaussian parameter (the prior
+// density at the mode times the posterior's volume; exact for a linear model
+// with Gaussian priors only, the prior's misfit not divided by T).
+// normal_mean and normal_sigma: one entry per parameter each, or both empty
+// (every prior uniform: the function above). Throws InputError as above and
+// for their sizes, a negative or non-finite sigma or a non-finite mean.
+ModelEvidence LaplaceEvidence(double chi2, const Eigen::MatrixXd& jacobian,
+                              const Eigen::VectorXd& x, const Eigen::VectorXd& lower,
+                              const Eigen::VectorXd& upper, double temperature,
+                              const Eigen::VectorXd& normal_mean,
+                              const Eigen::VectorXd& normal_sigma);
+
 // Log density of data left out of a fit, predicted from it (the Laplace
 // posterior predictive, linearised): with the held-out whitened residuals r at
 // the best fit, their Jacobian J and the fit's posterior covariance C,

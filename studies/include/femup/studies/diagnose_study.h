@@ -12,10 +12,15 @@
 //     scored by its Laplace evidence (model_evidence.h) plus the predictive
 //     log-likelihood of the held-out modes, and given a posterior probability
 //     (prior: one third each on no effect, one effect and two effects, shared
-//     equally within). When even the best class leaves a chi2 the stated noise
-//     cannot explain (p < 0.01), the noise is scaled up by chi2 / dof of that
-//     class (a noise temperature) before the probabilities are formed, and the
-//     report says so.
+//     equally within, times the stated weights: a pair's the product of its
+//     two). Stated priors (effect_priors.h) replace the families' ranges and
+//     add Gaussian priors (a residual in the fit, their Occam factor in the
+//     evidence); regions do not apply (the effects are placed by a fitted
+//     height: state x_m instead), nor normal priors with sampled evidence.
+//     When even the best class leaves a chi2 the stated noise cannot explain
+//     (p < 0.01), the noise is scaled up by chi2 / dof of that class (a noise
+//     temperature) before the probabilities are formed, and the report says
+//     so.
 //  3. How far it shrinks: frequency errors and MACs of the nominal model and of
 //     each class's fitted model, on fitted and on held-out modes.
 //
@@ -30,6 +35,7 @@
 
 #include "femup/output_dir.h"
 #include "femup/problems/effect_fit.h"
+#include "femup/problems/effect_priors.h"
 #include "femup/problems/effects.h"
 #include "femup/solvers/model_evidence.h"
 #include "femup/studies/study.h"
@@ -117,12 +123,14 @@ struct DiagnosisResult {
   bool separated = false;
   std::vector<std::string> indistinguishable;
   double confidence = 0.9;
+  StatedPriors priors;  // as the study states them (diagnosis.priors, weights)
   std::vector<std::string> warnings;
 };
 
 // Runs the diagnosis on `study`, which needs a cantilever model and a
 // `diagnosis` section (defaults apply when it is absent). Throws InputError for
-// a model that is not a cantilever, unusable measurements, or bad options.
+// a model that is not a cantilever, unusable measurements, bad options, or
+// stated priors that do not apply (before any fit).
 DiagnosisResult RunDiagnosis(const Study& study);
 
 // diagnosis.json and, when `plots`, localisation.png, effects.png, gap.png.

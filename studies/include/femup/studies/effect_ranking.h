@@ -5,9 +5,12 @@
 // its Laplace evidence (model_evidence.h), and given a posterior probability.
 //
 // Prior: "none" and each candidate family share equally (the benchmark's class
-// prior); a family's share is split equally among its instances, so a family
-// with many possible places pays for the choice (the discrete part of its
-// Occam factor). When even the best class leaves a chi2 the stated noise cannot
+// prior), or in proportion to their stated weights; a family's share is split
+// equally among its instances, so a family with many possible places pays for
+// the choice (the discrete part of its Occam factor). Stated priors
+// (effect_priors.h) replace a family's ranges, add Gaussian priors (a residual
+// in the fit, their Occam factor in the evidence) and keep only the instances
+// at the stated regions. When even the best class leaves a chi2 the stated noise cannot
 // explain (upper-tail p < 0.01), the noise is scaled by chi2 / dof of that class
 // (a noise temperature) before the probabilities are formed, and the result
 // says so.
@@ -30,6 +33,7 @@
 #include <vector>
 
 #include "femup/measurement.h"
+#include "femup/problems/effect_priors.h"
 #include "femup/problems/model_effects.h"
 #include "femup/solvers/model_evidence.h"
 #include "femup/structure.h"
@@ -42,6 +46,9 @@ struct EffectRankingOptions {
   double shape_sigma = 0.02;       // of a shape entry, relative to the largest
   bool use_shapes = true;
   std::string solver = "ceres";  // a NonlinearSolver name
+  // What the study states about the families (empty: their defaults). Each
+  // family it names must be among those tried.
+  StatedPriors priors;
   // Empty when valid, else "<field>: what is wrong".
   std::string Validate() const;
 };
@@ -74,7 +81,10 @@ struct EffectRanking {
 };
 
 // Throws InputError for invalid options, an unknown family, a named family that
-// does not apply to the structure, or states the engine refuses.
+// does not apply to the structure, a stated prior that does not fit the
+// structure's families (a quantity they lack, a region that names none of their
+// places; "diagnosis.priors.<kind>...", before any fit), or states the engine
+// refuses.
 EffectRanking RankModelEffects(const Structure& structure,
                                const std::vector<ModalData>& states,
                                const EffectRankingOptions& options);

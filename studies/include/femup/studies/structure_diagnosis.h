@@ -23,17 +23,19 @@ struct StructureDiagnosisResult {
   std::vector<std::string> dof_labels;
   EffectRanking ranking;
   double confidence = 0.9;
+  StatedPriors priors;  // as the study states them (diagnosis.priors, weights)
 };
 
 // Throws InputError (naming the study file and field) for a study without
-// measurements, a candidate family that does not apply to the model (before
-// any fit runs), or data the fit cannot use.
+// measurements, a candidate family that does not apply to the model, a stated
+// prior that does not fit the model's families (each before any fit runs), or
+// data the fit cannot use.
 StructureDiagnosisResult RunStructureDiagnosis(const Study& study);
 
 // diagnosis.json (every class with kind, region, probability, chi2, evidence,
 // parameters and magnitudes; the families' probabilities; the noise
-// temperature; the families that do not apply and why) and effects.png (the
-// families' probabilities).
+// temperature; the families that do not apply and why; the stated priors) and
+// effects.png (the families' probabilities).
 void WriteStructureDiagnosisOutputs(const StructureDiagnosisResult& r, bool plots,
                                     OutputDir* out, std::vector<std::string>* warnings);
 

@@ -16,6 +16,7 @@
 #include "femup/measurement.h"
 #include "femup/model.h"
 #include "femup/problems/correction_system.h"
+#include "femup/problems/effect_priors.h"
 #include "femup/problems/eigen_sensitivity.h"
 #include "femup/problems/noise.h"
 #include "femup/solvers/linear_solver.h"
@@ -159,6 +160,12 @@ struct DiagnosisSpec {
   // two compared on the blind benchmark.
   std::string evidence = "laplace";
   int evidence_samples = 2000;  // draws per class when sampled
+  // What the user knows of the families (`priors` and `weights`;
+  // docs/diagnosis.md, "Stated priors"): ranges or normal priors on their
+  // physical quantities, the regions where they may act, their relative prior
+  // weights. Checked against the model when the study is read. Empty: the
+  // families' defaults.
+  StatedPriors priors;
 };
 
 struct Study {

@@ -1,0 +1,355 @@
+// Stated priors on the effect families (problems/effect_priors.h): physical
+// ranges and normal priors converted into the families' coordinates, the
+// instances kept by regions, the normal priors' fit residuals against
+// differences, and every refusal naming its field.
+#include "femup/problems/effect_priors.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "femup/builders.h"
+#include "femup/errors.h"
+#include "femup/plane_frame.h"
+
+namespace femup {
+namespace {
+
+ChainSpec Chain() {
+  ChainSpec spec;
+  spec.masses.assign(4, 1e4);
+  spec.springs.assign(4, 5e7);
+  return spec;
+}
+
+FamilyPrior Prior(const std::string& kind, std::vector<QuantityPrior> quantities,
+                  std::vector<std::string> regions = {}) {
+  FamilyPrior f;
+  f.kind = kind;
+  f.quantities = std::move(quantities);
+  f.regions = std::move(regions);
+  return f;
+}
+
+QuantityPrior Range(const std::string& q, double lower, double upper) {
+  QuantityPrior p;
+  p.quantity = q;
+  p.lower = lower;
+  p.upper = upper;
+  return p;
+}
+
+QuantityPrior Normal(const std::string& q, double mean, double sigma) {
+  QuantityPrior p;
+  p.quantity = q;
+  p.normal = true;
+  p.mean = mean;
+  p.sigma = sigma;
+  return p;
+}
+
+// The message of the InputError `f` throws, with its where() in *where.
+template <typename F>
+std::string ErrorOf(F f, std::string* where = nullptr) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    if (where) *where = e.where();
+    return e.what();
+  }
+  ADD_FAILURE() << "expected an InputError";
+  return "";
+}
+
+bool Has(const std::string& text, const std::string& needle) {
+  return text.find(needle) != std::string::npos;
+}
+
+TEST(EffectPriors, QuantitiesMapToTheCoordinatesAndBack) {
+  const EffectParameter log_p = LogQuantity({"ln_m", "", -1, 1, false}, "mass_kg", 37.0);
+  EXPECT_NEAR(QuantityAt(log_p, std::log(2.0)), 74.0, 1e-12);
+  EXPECT_NEAR(CoordinateOf(log_p, 74.0), std::log(2.0), 1e-15);
+  const EffectParameter lin =
+      LinearQuantity({"f", "", -1, 1, false}, "force_n", 50.0, -40.0,
+                     std::numeric_limits<double>::infinity());
+  EXPECT_DOUBLE_EQ(QuantityAt(lin, 0.3), 15.0);
+  EXPECT_DOUBLE_EQ(CoordinateOf(lin, 15.0), 0.3);
+}
+
+TEST(EffectPriors, EveryStructureFamilyNamesItsQuantities) {
+  Structure s = BuildSpringMassChain(Chain());
+  s.elements[0].wet = true;
+  for (const std::string& kind : ModelEffectKinds()) {
+    const auto made = CreateModelEffects(kind, s);
+    ASSERT_FALSE(made.empty()) << kind;
+    for (const EffectParameter& p : made.front()->Parameters())
+      EXPECT_FALSE(p.quantity.empty()) << kind << " " << p.name;
+  }
+  // The attached mass is in kg: m = m_ref exp(theta).
+  const auto mass = CreateModelEffects("attached_mass", s);
+  const EffectParameter p = mass.front()->Parameters()[0];
+  EXPECT_EQ(p.quantity, "mass_kg");
+  EXPECT_NEAR(QuantityAt(p, 0.0), ReferenceMass(s), 1e-9);
+}
+
+TEST(EffectPriors, ARangeReplacesTheDefaultRangeInTheCoordinate) {
+  const Structure s = BuildSpringMassChain(Chain());
+  const double m_ref = ReferenceMass(s);  // 4e4 kg
+  const auto made = CreateModelEffects("attached_mass", s);
+  // 2 g to 10 g: far below the default range (1e-4 of the structure's mass).
+  const auto params =
+      ApplyFamilyPrior(made.front()->Parameters(),
+                       Prior("attached_mass", {Range("mass_kg", 0.002, 0.010)}));
+  EXPECT_NEAR(params[0].lower, std::log(0.002 / m_ref), 1e-12);
+  EXPECT_NEAR(params[0].upper, std::log(0.010 / m_ref), 1e-12);
+  EXPECT_EQ(params[0].normal_sigma, 0.0);
+}
+
+TEST(EffectPriors, ANormalPriorBoundsTheFitAtSixSigmaWithinTheDefaultRange) {
+  const Structure s = BuildSpringMassChain(Chain());
+  const auto material = CreateModelEffects("material_scaling", s);
+  auto p = ApplyFamilyPrior(material.front()->Parameters(),
+                            Prior("material_scaling", {Normal("factor", 1.0, 0.05)}));
+  EXPECT_NEAR(p[0].lower, std::log(0.7), 1e-12);
+  EXPECT_NEAR(p[0].upper, std::log(1.3), 1e-12);
+  EXPECT_EQ(p[0].normal_mean, 1.0);
+  EXPECT_EQ(p[0].normal_sigma, 0.05);
+  // Wider than the default range (factor e^-0.7 to e^0.7): clipped to it.
+  p = ApplyFamilyPrior(material.front()->Parameters(),
+                       Prior("material_scaling", {Normal("factor", 1.0, 0.5)}));
+  EXPECT_NEAR(p[0].lower, -0.7, 1e-12);
+  EXPECT_NEAR(p[0].upper, 0.7, 1e-12);
+  // A mean outside the default range: mean +- 6 sigma, at least 1 % of the
+  // mean in a log coordinate.
+  const auto mass = CreateModelEffects("attached_mass", s);
+  const double m_ref = ReferenceMass(s);
+  p = ApplyFamilyPrior(mass.front()->Parameters(),
+                       Prior("attached_mass", {Normal("mass_kg", 0.005, 0.001)}));
+  EXPECT_NEAR(p[0].lower, std::log(0.00005 / m_ref), 1e-12);
+  EXPECT_NEAR(p[0].upper, std::log(0.011 / m_ref), 1e-12);
+  // A loss of 0.5 +- 0.2: up to the default's 0.9, down to 1 % of the mean
+  // (above the default's 3e-3).
+  const auto loss = CreateModelEffects("stiffness_loss", s);
+  p = ApplyFamilyPrior(loss.front()->Parameters(),
+                       Prior("stiffness_loss", {Normal("loss", 0.5, 0.2)}));
+  EXPECT_NEAR(p[0].upper, std::log(0.9), 1e-12);
+  EXPECT_NEAR(p[0].lower, std::log(0.005), 1e-12);
+}
+
+TEST(EffectPriors, QuantitiesTheFamilyLacksAndValuesOutsideTheirDomainAreRefused) {
+  const Structure s = BuildSpringMassChain(Chain());
+  const auto loss = CreateModelEffects("stiffness_loss", s);
+  std::string where;
+  std::string msg = ErrorOf(
+      [&] {
+        ApplyFamilyPrior(loss.front()->Parameters(),
+                         Prior("stiffness_loss", {Range("mass_kg", 1, 2)}));
+      },
+      &where);
+  EXPECT_EQ(where, "mass_kg");
+  EXPECT_TRUE(Has(msg, "its quantities: loss")) << msg;
+  msg = ErrorOf(
+      [&] {
+        ApplyFamilyPrior(loss.front()->Parameters(),
+                         Prior("stiffness_loss", {Range("loss", 0.5, 1.2)}));
+      },
+      &where);
+  EXPECT_EQ(where, "loss");
+  EXPECT_TRUE(Has(msg, "(0, 0.99]")) << msg;
+  const auto mass = CreateModelEffects("attached_mass", s);
+  msg = ErrorOf([&] {
+    ApplyFamilyPrior(mass.front()->Parameters(),
+                     Prior("attached_mass", {Range("mass_kg", -1, 2)}));
+  });
+  EXPECT_TRUE(Has(msg, "(0, inf)")) << msg;
+  msg = ErrorOf([&] {
+    ApplyFamilyPrior(mass.front()->Parameters(),
+                     Prior("attached_mass", {Normal("mass_kg", 0, 2)}));
+  });
+  EXPECT_TRUE(Has(msg, "the mean 0")) << msg;
+}
+
+TEST(EffectPriors, ValidateNamesTheField) {
+  StatedPriors p;
+  EXPECT_EQ(p.Validate(), "");
+  EXPECT_TRUE(p.empty());
+  p.families = {Prior("attached_mass", {Range("mass_kg", 0.01, 0.002)})};
+  EXPECT_EQ(p.Validate(), "priors.attached_mass.mass_kg: lower 0.01 > upper 0.002");
+  p.families = {Prior("attached_mass", {Range("mass_kg", 0.01, 0.01)})};
+  EXPECT_TRUE(Has(p.Validate(), "priors.attached_mass.mass_kg: lower = upper"))
+      << p.Validate();
+  p.families = {Prior("material_scaling", {Normal("factor", 1, 0)})};
+  EXPECT_TRUE(Has(p.Validate(), "priors.material_scaling.factor: normal"))
+      << p.Validate();
+  p.families = {
+      Prior("material_scaling", {Normal("factor", 1, 0.1), Normal("factor", 1, 0.1)})};
+  EXPECT_TRUE(Has(p.Validate(), "stated twice")) << p.Validate();
+  p.families = {Prior("stiffness_loss", {}, {"3", "3"})};
+  EXPECT_TRUE(Has(p.Validate(), "priors.stiffness_loss.regions[2]")) << p.Validate();
+  p.families.clear();
+  p.weights = {{"none", 1}, {"stiffness_loss", -2}};
+  EXPECT_TRUE(Has(p.Validate(), "weights.stiffness_loss")) << p.Validate();
+  p.weights = {{"none", 3}, {"stiffness_loss", 2}};
+  EXPECT_EQ(p.Validate(), "");
+  EXPECT_EQ(p.Weight("none"), 3);
+  EXPECT_EQ(p.Weight("attached_mass"), 1);
+}
+
+TEST(EffectPriors, RegionsKeepTheNamedElementsAndNodes) {
+  const Structure s = BuildSpringMassChain(Chain());
+  // Elements by id (a chain's labels are its ids).
+  auto kept = KeepStatedRegions(CreateModelEffects("stiffness_loss", s), s,
+                                Prior("stiffness_loss", {}, {"3", "1"}));
+  ASSERT_EQ(kept.size(), 2u);
+  EXPECT_EQ(kept[0]->region().name, "element 1");
+  EXPECT_EQ(kept[1]->region().name, "element 3");
+  kept = KeepStatedRegions(CreateModelEffects("attached_mass", s), s,
+                           Prior("attached_mass", {}, {"x4"}));
+  ASSERT_EQ(kept.size(), 1u);
+  EXPECT_EQ(kept[0]->region().name, "node x4");
+  // A frame's members by label, nodes by name.
+  PlaneFrameSpec frame;
+  frame.storeys = 2;
+  frame.bays = 1;
+  frame.storey_height = 3.5;
+  frame.bay_width = 6;
+  frame.elements_per_member = 2;
+  frame.column = {210e9, 7.8e-3, 8.4e-5, 7850};
+  frame.beam = {210e9, 5.4e-3, 1.9e-4, 7850};
+  const Structure f = BuildPlaneFrameStructure(frame);
+  kept = KeepStatedRegions(CreateModelEffects("stiffness_loss", f), f,
+                           Prior("stiffness_loss", {}, {"s1:beam1"}));
+  ASSERT_EQ(kept.size(), 1u);
+  EXPECT_EQ(kept[0]->region().name, "element s1:beam1");
+  kept = KeepStatedRegions(CreateModelEffects("attached_mass", f), f,
+                           Prior("attached_mass", {}, {"n7"}));
+  ASSERT_EQ(kept.size(), 1u);
+  EXPECT_EQ(kept[0]->region().name, "node n7");
+}
+
+TEST(EffectPriors, RegionsThatNameNoPlaceOfTheFamilyAreRefused) {
+  const Structure s = BuildSpringMassChain(Chain());
+  std::string where;
+  std::string msg = ErrorOf(
+      [&] {
+        KeepStatedRegions(CreateModelEffects("attached_mass", s), s,
+                          Prior("attached_mass", {}, {"x2", "n99"}));
+      },
+      &where);
+  EXPECT_EQ(where, "regions[2]");
+  EXPECT_TRUE(Has(msg, "'n99' names no element")) << msg;
+  msg = ErrorOf(
+      [&] {
+        KeepStatedRegions(CreateModelEffects("stiffness_loss", s), s,
+                          Prior("stiffness_loss", {}, {"x2"}));
+      },
+      &where);
+  EXPECT_EQ(where, "regions[1]");
+  EXPECT_TRUE(Has(msg, "names a node")) << msg;
+  msg = ErrorOf(
+      [&] {
+        KeepStatedRegions(CreateModelEffects("attached_mass", s), s,
+                          Prior("attached_mass", {}, {"2"}));
+      },
+      &where);
+  EXPECT_TRUE(Has(msg, "names an element")) << msg;
+  msg = ErrorOf(
+      [&] {
+        KeepStatedRegions(CreateModelEffects("material_scaling", s), s,
+                          Prior("material_scaling", {}, {"2"}));
+      },
+      &where);
+  EXPECT_EQ(where, "regions");
+  EXPECT_TRUE(Has(msg, "one place")) << msg;
+}
+
+TEST(EffectPriors, StatedInstancesCarryTheRangesAndStartInsideThem) {
+  const Structure s = BuildSpringMassChain(Chain());
+  auto made = CreateModelEffects("stiffness_loss", s);
+  const auto stated = WithFamilyPrior(
+      std::move(made.front()), Prior("stiffness_loss", {Range("loss", 0.05, 0.6)}));
+  const EffectParameter p = stated->Parameters()[0];
+  EXPECT_NEAR(p.lower, std::log(0.05), 1e-12);
+  EXPECT_NEAR(p.upper, std::log(0.6), 1e-12);
+  const auto starts = stated->Starts();
+  ASSERT_EQ(starts.size(), 3u);  // ln 0.03 clipped to ln 0.05, ln 0.3, the middle
+  EXPECT_NEAR(starts[0][0], std::log(0.05), 1e-12);
+  EXPECT_NEAR(starts[1][0], std::log(0.3), 1e-12);
+  EXPECT_NEAR(starts[2][0], 0.5 * (std::log(0.05) + std::log(0.6)), 1e-12);
+  EXPECT_EQ(stated->kind(), "stiffness_loss");
+  EXPECT_EQ(stated->region().name, "element 1");
+  // The cantilever's effects the same way: a point mass between 1.4 and 1.9 m.
+  CantileverSpec beam;
+  beam.node_heights = UniformHeights(2.0, 10);
+  beam.section = {210e9, 9e-4, 1.6875e-8, 7850};
+  const auto mass =
+      WithFamilyPrior(CreateEffect("attached_mass"),
+                      Prior("attached_mass", {Range("x_m", 1.4, 1.9)}), beam);
+  EXPECT_DOUBLE_EQ(mass->Parameters(beam)[1].lower, 1.4);
+  EXPECT_DOUBLE_EQ(mass->Parameters(beam)[1].upper, 1.9);
+  for (const Eigen::VectorXd& start : mass->Starts(beam)) {
+    EXPECT_GE(start[1], 1.4);
+    EXPECT_LE(start[1], 1.9);
+  }
+  EXPECT_THROW(WithFamilyPrior(CreateEffect("attached_mass"),
+                               Prior("attached_mass", {Range("x_m", 1.4, 2.5)}), beam),
+               InputError);
+}
+
+// The normal prior's residual and its Jacobian, against differences; the data's
+// residuals and Jacobian untouched before it.
+TEST(EffectPriors, NormalPriorResidualsAreAppendedWithTheirDerivative) {
+  std::vector<EffectParameter> params = {
+      LogQuantity({"ln_m", "", -5, 5, false}, "mass_kg", 20.0),
+      LinearQuantity({"level", "", 0, 3, true}, "level_m", 1.0, 0.0, 3.0)};
+  NonlinearProblem data;
+  data.num_residuals = 2;
+  data.initial = Eigen::Vector2d(0.1, 1.0);
+  data.evaluate = [](const Eigen::VectorXd& x, Eigen::VectorXd* r, Eigen::MatrixXd* j,
+                     std::string*) {
+    *r = Eigen::Vector2d(x[0] * x[1] - 1, x[0] - 2);
+    if (j) {
+      j->resize(2, 2);
+      *j << x[1], x[0], 1, 0;
+    }
+    return true;
+  };
+  EXPECT_EQ(WithPriorResiduals(data, params).num_residuals, 2);  // no normal prior
+  params[0].normal_mean = 30;
+  params[0].normal_sigma = 4;
+  params[1].normal_mean = 1.2;
+  params[1].normal_sigma = 0.3;
+  const NonlinearProblem p = WithPriorResiduals(data, params);
+  ASSERT_EQ(p.num_residuals, 4);
+  const Eigen::Vector2d x(0.3, 1.5);
+  Eigen::VectorXd r;
+  Eigen::MatrixXd j;
+  ASSERT_TRUE(p.evaluate(x, &r, &j, nullptr));
+  EXPECT_DOUBLE_EQ(r[0], 0.3 * 1.5 - 1);
+  EXPECT_NEAR(r[2], (20 * std::exp(0.3) - 30) / 4, 1e-12);
+  EXPECT_NEAR(r[3], (1.5 - 1.2) / 0.3, 1e-12);
+  for (int c = 0; c < 2; ++c) {
+    const double h = 1e-6;
+    Eigen::VectorXd xp = x, xm = x, rp, rm;
+    xp[c] += h;
+    xm[c] -= h;
+    p.evaluate(xp, &rp, nullptr, nullptr);
+    p.evaluate(xm, &rm, nullptr, nullptr);
+    EXPECT_LT(((rp - rm) / (2 * h) - j.col(c)).cwiseAbs().maxCoeff(), 1e-7) << c;
+  }
+  // Linearised in the coordinate: the same residual and the same slope.
+  Eigen::VectorXd mean, sigma;
+  LocalNormalPriors(params, x, &mean, &sigma);
+  ASSERT_EQ(sigma.size(), 2);
+  for (int c = 0; c < 2; ++c) {
+    EXPECT_NEAR((x[c] - mean[c]) / sigma[c], r[2 + c], 1e-12);
+    EXPECT_NEAR(1 / sigma[c], j(2 + c, c), 1e-12);
+  }
+  params[1].normal_sigma = 0;  // uniform again: sigma 0 there
+  LocalNormalPriors(params, x, &mean, &sigma);
+  EXPECT_EQ(sigma[1], 0.0);
+}
+
+}  // namespace
+}  // namespace femup
