@@ -70,6 +70,26 @@ TEST(EffectRanking, NamesTheDamagedStorey) {
   EXPECT_NE(r.skipped[0].find("added_mass"), std::string::npos);
 }
 
+// A model whose frequencies are off by a form error (the higher the mode, the
+// more: 1 % per mode above the first, as an idealised model's often are) while
+// its shapes are right: the frequencies' noise is scaled (a temperature of
+// their own) and the shapes', which fit, is not, so the shapes still point to
+// the damaged storey rather than to an effect that absorbs the form error.
+TEST(EffectRanking, FormErrorInFrequenciesIsTemperedApartFromTheShapes) {
+  ChainSpec truth = ShearBuilding();
+  truth.springs[2] *= 0.8;
+  ModalData d = Measured(truth, 7);
+  for (int j = 0; j < d.num_modes(); ++j) d.frequencies_hz[j] *= 1 + 0.01 * j;
+  const EffectRanking r =
+      RankModelEffects(BuildSpringMassChain(ShearBuilding()), {d}, Options());
+  EXPECT_GT(r.temperature, 10.0);
+  // The shapes' misfit stays near their noise (the fit's compromise with the
+  // frequencies shows in them a little).
+  EXPECT_LT(r.shape_temperature, 3.0);
+  EXPECT_EQ(r.classes[0].kind, "stiffness_loss");
+  EXPECT_EQ(r.classes[0].region, "element 3");
+}
+
 TEST(EffectRanking, NamesAnAttachedMassOnTheRoof) {
   ChainSpec truth = ShearBuilding();
   truth.masses[5] += 1.5e4;  // 15 % of a floor on the roof

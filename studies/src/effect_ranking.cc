@@ -235,20 +235,59 @@ EffectRanking RankModelEffects(const Structure& structure_in,
     }
   }
 
-  // The noise temperature from the best fit.
+  // Noise temperatures from the best fit, one for the frequencies and one for
+  // the shapes: a model's form error shows in its frequencies first, and one
+  // temperature for both would be diluted by shape residuals that fit.
+  std::vector<char> is_frequency;
+  for (const ModalData& d : states) {
+    const int sensors =
+        options.use_shapes && d.HasShapes() ? static_cast<int>(d.shapes.rows()) : 0;
+    for (int j = 0; j < d.num_modes(); ++j) {
+      is_frequency.push_back(1);
+      for (int i = 0; i < sensors; ++i) is_frequency.push_back(0);
+    }
+  }
+  if (static_cast<int>(is_frequency.size()) != out.num_residuals) {
+    throw InputError("measurements", "internal: residual layout does not match the data");
+  }
   std::size_t best = 0;
   for (std::size_t i = 1; i < classes.size(); ++i)
     if (classes[i].chi2 < classes[best].chi2) best = i;
-  const int dof = std::max(
-      1, out.num_residuals - shape_modes - static_cast<int>(classes[best].theta.size()));
+  int num_frequencies = 0;
+  double chi2_f = 0, chi2_s = 0;
+  for (int r = 0; r < out.num_residuals; ++r) {
+    const double v = residuals[best][r] * residuals[best][r];
+    if (is_frequency[r]) {
+      chi2_f += v;
+      ++num_frequencies;
+    } else {
+      chi2_s += v;
+    }
+  }
+  const int num_params = static_cast<int>(classes[best].theta.size());
+  const int dof_f = std::max(1, num_frequencies - num_params);
+  const int dof_s = std::max(1, out.num_residuals - num_frequencies - shape_modes);
+  const int dof = std::max(1, out.num_residuals - shape_modes - num_params);
   out.best_chi2_p_value = boost::math::gamma_q(0.5 * dof, 0.5 * classes[best].chi2);
-  out.temperature = out.best_chi2_p_value < 0.01 ? classes[best].chi2 / dof : 1.0;
+  const double p_f = boost::math::gamma_q(0.5 * dof_f, 0.5 * chi2_f);
+  const double p_s = out.num_residuals > num_frequencies
+                         ? boost::math::gamma_q(0.5 * dof_s, 0.5 * chi2_s)
+                         : 1.0;
+  const double t_f = p_f < 0.01 ? std::max(1.0, chi2_f / dof_f) : 1.0;
+  const double t_s = p_s < 0.01 ? std::max(1.0, chi2_s / dof_s) : 1.0;
+  out.temperature = t_f;
+  out.shape_temperature = t_s;
+  Eigen::VectorXd row_scale(out.num_residuals);
+  for (int r = 0; r < out.num_residuals; ++r)
+    row_scale[r] = 1.0 / std::sqrt(is_frequency[r] ? t_f : t_s);
 
   Eigen::VectorXd log_evidence(classes.size()), prior(classes.size());
   for (std::size_t i = 0; i < classes.size(); ++i) {
-    classes[i].evidence = LaplaceEvidence(
-        classes[i].chi2, jacobians[i], classes[i].theta, boxes[i].first, boxes[i].second,
-        out.temperature, normals[i].first, normals[i].second);
+    const double chi2 = residuals[i].cwiseProduct(row_scale).squaredNorm();
+    const Eigen::MatrixXd jac = row_scale.asDiagonal() * jacobians[i];
+    classes[i].evidence =
+        LaplaceEvidence(chi2, jac, classes[i].theta, boxes[i].first, boxes[i].second, 1.0,
+                        normals[i].first, normals[i].second);
     log_evidence[i] = classes[i].evidence.log_evidence;
     prior[i] = std::exp(classes[i].log_prior);
   }

@@ -1,6 +1,7 @@
 #include "femup/studies/structure_diagnosis.h"
 
 #include <algorithm>
+#include <cmath>
 #include <iomanip>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -84,6 +85,7 @@ void WriteStructureDiagnosisOutputs(const StructureDiagnosisResult& r, bool plot
                   {"equivalent", top.equivalent},
                   {"group_probability", top.group_probability}};
   j["temperature"] = k.temperature;
+  j["shape_temperature"] = k.shape_temperature;
   j["best_chi2_p_value"] = k.best_chi2_p_value;
   j["residuals"] = k.num_residuals;
   j["kinds"] = nlohmann::json::array();
@@ -152,10 +154,13 @@ std::string StructureDiagnosisReport(const StructureDiagnosisResult& r) {
         << "\n";
     }
   }
-  if (k.temperature > 1) {
+  if (k.temperature > 1 || k.shape_temperature > 1) {
     o << "note: no class fits within the stated noise (best p " << std::scientific
-      << std::setprecision(1) << k.best_chi2_p_value << "); noise scaled by "
-      << std::fixed << std::setprecision(2) << k.temperature << "\n";
+      << std::setprecision(1) << k.best_chi2_p_value
+      << "): the model's own form error, or noise understated; standard deviations "
+         "scaled by "
+      << std::fixed << std::setprecision(2) << std::sqrt(k.temperature)
+      << " (frequencies) and " << std::sqrt(k.shape_temperature) << " (shapes)\n";
   }
   o << "classes (most probable first):\n";
   const std::size_t shown = std::min<std::size_t>(k.classes.size(), 8);

@@ -10,10 +10,17 @@
 // the choice (the discrete part of its Occam factor). Stated priors
 // (effect_priors.h) replace a family's ranges, add Gaussian priors (a residual
 // in the fit, their Occam factor in the evidence) and keep only the instances
-// at the stated regions. When even the best class leaves a chi2 the stated noise cannot
-// explain (upper-tail p < 0.01), the noise is scaled by chi2 / dof of that class
-// (a noise temperature) before the probabilities are formed, and the result
-// says so.
+// at the stated regions.
+//
+// Noise temperatures: where the best class (least chi2) leaves a misfit of the
+// frequencies that their stated noise cannot explain (upper-tail p < 0.01),
+// the frequencies' noise is scaled by chi2 / dof of their part of that misfit
+// before the probabilities are formed; the shapes' noise likewise by theirs.
+// Two temperatures, not one: a model's own form error (an idealised chain, an
+// Euler-Bernoulli frame of stocky members) shows in its frequencies first, and
+// one temperature for all residuals is diluted by shape residuals that fit, so
+// a family that absorbs the form error (an E scaling) would still be named
+// with confidence (docs/diagnosis.md, "Blind suites on other structures").
 //
 // Observational equivalence: two classes whose fits predict the data alike
 // (their whitened residuals differ by at most 1 in squared norm: less than one
@@ -74,7 +81,8 @@ struct RankedClass {
 struct EffectRanking {
   std::vector<RankedClass> classes;                                // most probable first
   std::vector<std::pair<std::string, double>> kind_probabilities;  // most probable first
-  double temperature = 1;
+  double temperature = 1;        // of the frequencies' noise
+  double shape_temperature = 1;  // of the shapes' noise
   double best_chi2_p_value = 1;
   int num_residuals = 0;
   std::vector<std::string> skipped;  // "<kind>: why it does not apply"
