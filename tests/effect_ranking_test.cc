@@ -380,5 +380,40 @@ TEST(StructureDiagnosis, RefusesAFamilyThatDoesNotApplyBeforeAnyFit) {
   }
 }
 
+// A space frame (the jacket) is assembled without per-member matrices, so no
+// family can act on it yet: a clear refusal naming the model type, before any
+// fit, rather than a size mismatch from deep inside.
+TEST(StructureDiagnosis, RefusesASpaceFrameClearly) {
+  const Study study = ParseStudy(R"(
+name: small_jacket
+model:
+  type: space_frame
+  bays_x: 1
+  bays_y: 1
+  levels: 2
+  level_height: 10
+  bay_width_x: 15
+  bay_width_y: 15
+  elements_per_member: 1
+  blocks_per_level: 1
+  bracing: x
+  legs: {diameter: 1.2, wall: 0.03}
+  braces: {diameter: 0.6, wall: 0.015}
+  horizontals: {diameter: 0.6, wall: 0.015}
+measurements:
+  - {state: air, frequencies_hz: [1.0, 2.0]}
+)",
+                                 "jacket.yaml");
+  try {
+    RunStructureDiagnosis(study);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("jacket.yaml"), std::string::npos) << what;
+    EXPECT_NE(what.find("model.type"), std::string::npos) << what;
+    EXPECT_NE(what.find("space_frame"), std::string::npos) << what;
+  }
+}
+
 }  // namespace
 }  // namespace femup

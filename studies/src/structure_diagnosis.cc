@@ -16,6 +16,14 @@ namespace femup {
 StructureDiagnosisResult RunStructureDiagnosis(const Study& study) {
   if (study.measurements.empty())
     throw InputError(study.path, "measurements: missing (nothing to diagnose)");
+  if (study.structure.stiffness.rows() == 0) {
+    throw InputError(
+        study.path, "model.type: femup diagnose does not run on " + study.structure.type +
+                        " models yet (they are assembled without per-member matrices, "
+                        "which every effect family acts on); chain, cantilever, "
+                        "plane_frame and matrix_market models with element matrices "
+                        "can be diagnosed");
+  }
   const DiagnosisSpec spec = study.diagnosis.value_or(DiagnosisSpec());
   StructureDiagnosisResult r;
   r.study_name = study.name;
