@@ -7,6 +7,7 @@
 #include <cmath>
 #include <map>
 #include <memory>
+#include <string_view>
 
 #include "femup/errors.h"
 #include "femup/problems/effect_priors.h"
@@ -70,10 +71,16 @@ Fit FitInstance(const std::shared_ptr<const Structure>& structure,
   return best;
 }
 
-// The residuals of the nominal model (no effect).
-Eigen::VectorXd NominalResidual(const std::shared_ptr<const Structure>& structure,
-                                const std::vector<ModalData>& states,
-                                const EigenSensitivityOptions& options) {
+// The residuals of the nominal model (no effect), and which of them are
+// eigenvalue (frequency) rows, from the engine's own row labels.
+struct Nominal {
+  Eigen::VectorXd residual;
+  std::vector<char> is_frequency;
+};
+
+Nominal NominalResidual(const std::shared_ptr<const Structure>& structure,
+                        const std::vector<ModalData>& states,
+                        const EigenSensitivityOptions& options) {
   // One unknown whose basis is zero: the nominal matrices whatever its value
   // (the engine needs an unknown; any structure has this one).
   ParametrisedModel model(structure->stiffness, structure->mass, structure->dof_labels);
@@ -91,7 +98,14 @@ Eigen::VectorXd NominalResidual(const std::shared_ptr<const Structure>& structur
     throw InputError("measurements",
                      "the nominal model cannot be compared with the data: " + why);
   }
-  return r;
+  Nominal out{r, {}};
+  for (const std::string& label : problem.residual_labels) {
+    const std::string_view suffix = " lambda";
+    out.is_frequency.push_back(
+        label.size() >= suffix.size() &&
+        label.compare(label.size() - suffix.size(), suffix.size(), suffix) == 0);
+  }
+  return out;
 }
 
 }  // namespace
@@ -191,7 +205,9 @@ EffectRanking RankModelEffects(const Structure& structure_in,
   // "none", then every instance of every family.
   RankedClass none;
   none.kind = "none";
-  const Eigen::VectorXd nominal = NominalResidual(structure, states, fit);
+  const Nominal nominal_fit = NominalResidual(structure, states, fit);
+  const Eigen::VectorXd& nominal = nominal_fit.residual;
+  const std::vector<char>& is_frequency = nominal_fit.is_frequency;
   out.num_residuals = static_cast<int>(nominal.size());
   none.chi2 = nominal.squaredNorm();
   none.log_prior = log_family_prior("none");
@@ -238,18 +254,6 @@ EffectRanking RankModelEffects(const Structure& structure_in,
   // Noise temperatures from the best fit, one for the frequencies and one for
   // the shapes: a model's form error shows in its frequencies first, and one
   // temperature for both would be diluted by shape residuals that fit.
-  std::vector<char> is_frequency;
-  for (const ModalData& d : states) {
-    const int sensors =
-        options.use_shapes && d.HasShapes() ? static_cast<int>(d.shapes.rows()) : 0;
-    for (int j = 0; j < d.num_modes(); ++j) {
-      is_frequency.push_back(1);
-      for (int i = 0; i < sensors; ++i) is_frequency.push_back(0);
-    }
-  }
-  if (static_cast<int>(is_frequency.size()) != out.num_residuals) {
-    throw InputError("measurements", "internal: residual layout does not match the data");
-  }
   std::size_t best = 0;
   for (std::size_t i = 1; i < classes.size(); ++i)
     if (classes[i].chi2 < classes[best].chi2) best = i;

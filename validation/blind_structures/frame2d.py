@@ -190,9 +190,9 @@ class Frame:
         self._master = master
         return K, M, free
 
-    def modes(self, count):
-        """The lowest `count` modes: frequencies (Hz) and shapes over all DOFs
-        (restrained ones 0), mass-normalised."""
+    def solve(self, count):
+        """The lowest `count` modes: frequencies (Hz), mass-normalised shapes over
+        all DOFs (restrained ones 0), and the free DOFs' mass matrix and list."""
         K, M, free = self.assemble()
         nf = K.shape[0]
         if nf <= 400 or count >= nf - 1:
@@ -204,7 +204,12 @@ class Frame:
         full = np.zeros((self.num_dofs(), V.shape[1]))
         full[free, :] = V
         full = full[self._master, :]
-        return np.sqrt(np.maximum(w, 0.0)) / (2 * np.pi), full
+        return np.sqrt(np.maximum(w, 0.0)) / (2 * np.pi), full, M, free
+
+    def modes(self, count):
+        """The lowest `count` modes: frequencies (Hz) and shapes over all DOFs."""
+        freqs, full, _, _ = self.solve(count)
+        return freqs, full
 
     def static(self, loads):
         """Displacements (all DOFs) under nodal loads {(node, dof): force}."""

@@ -27,10 +27,10 @@ line bottom up, then each member's inner node, storey by storey (columns left
 to right, then beams). Members are named s<storey>:col<line> and
 s<storey>:beam<bay>.
 """
-import math
 
 import numpy as np
 
+from cases import draw_target, largest_shift, measured, size_for_shift
 from frame2d import Frame
 
 KINDS = ["none", "joint_flexibility", "member_damage", "added_floor_mass", "material_scaling"]
@@ -226,55 +226,36 @@ def make_case(rng, name, design="mixed", noise_free=False, floors=None):
     picked = rng.permutation(len(beams))[: max(1, len(beams) // 2)]
     chosen += [("m", beams[int(i)], 1) for i in sorted(picked)]
     effect = Effect(kind, rng, p)
-    strong = rng.random() < 0.8
-    target = math.exp(rng.uniform(math.log(5), math.log(50)) if strong else
-                      rng.uniform(0, math.log(5)))
+    target = draw_target(rng)
 
     def sensors_of(t):
         return [(t.joint[key] if typ == "j" else t.middle[key], d) for typ, key, d in chosen]
 
+    def truth_modes(t):
+        return t.modes(modes, sensors_of(t))
+
     nominal = Truth(p)
-    f0, _ = nominal.modes(modes, sensors_of(nominal))
+    f0, _ = truth_modes(nominal)
     a = 0.0
     if kind != "none":
-        def shift(x):
-            t = Truth(p, effect, x)
-            f1, _ = t.modes(modes, sensors_of(t))
-            return float(np.max(np.abs(f1 / f0 - 1))) / fnoise
-        lo, hi = 0.0, effect.a_max
-        if shift(hi) <= target:
-            a = hi
-        else:
-            for _ in range(40):
-                mid = 0.5 * (lo + hi)
-                if shift(mid) < target:
-                    lo = mid
-                else:
-                    hi = mid
-                if hi - lo < 1e-4 * effect.a_max:
-                    break
-            a = 0.5 * (lo + hi)
+        a = size_for_shift(
+            lambda x: largest_shift(truth_modes(Truth(p, effect, x))[0], f0, fnoise),
+            effect.a_max, target)
     truth = Truth(p, effect, a) if kind != "none" else nominal
-    f1, S1 = truth.modes(modes, sensors_of(truth))
-    achieved = float(np.max(np.abs(f1 / f0 - 1))) / fnoise if kind != "none" else 0.0
-    fn = rng.standard_normal(modes)
-    sn = rng.standard_normal((modes, len(chosen)))
-    scale = 0.0 if noise_free else 1.0
-    freqs = f1 * (1 + scale * fnoise * fn)
-    rows = []
-    for k in range(modes):
-        s = S1[k] / np.max(np.abs(S1[k]))
-        rows.append((s + scale * snoise * sn[k]).tolist())
+    f1, S1 = truth_modes(truth)
+    achieved = largest_shift(f1, f0, fnoise) if kind != "none" else 0.0
+    freqs, rows = measured(rng, f1, [S1[k] / np.max(np.abs(S1[k])) for k in range(modes)],
+                           fnoise, snoise, noise_free)
     labels = [(joints[key] if typ == "j" else middles[key]) + (":ux" if d == 0 else ":uy")
               for typ, key, d in chosen]
-    study = dict(name=name, p=p, frequencies=freqs.tolist(), sensors=labels,
+    study = dict(name=name, p=p, frequencies=freqs, sensors=labels,
                  shapes=rows if shapes else None, frequency_noise=fnoise, shape_noise=snoise)
     truth_rec = dict(name=name, kind=effect.expected, truth_kind=kind,
                      region=effect.regions(p)[0], regions=effect.regions(p), size=a,
                      description=effect.describe(p, a), detail=effect.detail,
                      shift_in_noise=achieved, target_shift_in_noise=target, modes=modes,
                      sensors=len(labels), shapes=bool(shapes), frequency_noise=fnoise,
-                     shape_noise=snoise, building=dict(p, storeys=S),
+                     shape_noise=snoise, building=dict(p),
                      nominal_gap=nominal_gap(p, f0, modes))
     return study, truth_rec
 

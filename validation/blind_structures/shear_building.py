@@ -42,7 +42,9 @@ The chain model's names: spring k = storey k ("element k"), mass k = floor k
 import math
 
 import numpy as np
+import scipy.linalg as sl
 
+from cases import draw_target, largest_shift, measured, size_for_shift
 from frame2d import Frame
 
 KINDS = ["none", "stiffness_loss", "attached_mass", "support_flexibility", "material_scaling"]
@@ -102,22 +104,20 @@ class Building:
         """The lowest `count` sway modes (most of their kinetic energy in the
         floors' horizontal motion): frequencies and floor displacements."""
         want = count + 8
+        horizontal = None
         while True:
-            freqs, V = self.frame.modes(min(want, self.frame.num_dofs() - 4))
-            _, M, free = self.frame.assemble()
-            picked_f, picked_s = [], []
-            for k in range(V.shape[1]):
-                v = V[:, k]
-                vf = v[free]
-                total = float(vf @ (M @ vf))
-                horiz = np.array([v[i] if i % 3 == 0 else 0.0 for i in range(len(v))])[free]
-                sway = float(horiz @ (M @ horiz)) / total
-                if sway > 0.5:
-                    picked_f.append(freqs[k])
-                    picked_s.append([self.floor_displacement(v, j)
-                                     for j in range(1, self.p["storeys"] + 1)])
-                if len(picked_f) == count:
-                    return np.array(picked_f), np.array(picked_s)
+            freqs, V, M, free = self.frame.solve(min(want, self.frame.num_dofs() - 4))
+            if horizontal is None:
+                horizontal = (np.asarray(free) % 3 == 0).astype(float)
+            Vf = V[free, :]
+            total = np.einsum("ik,ik->k", Vf, M @ Vf)
+            Vh = Vf * horizontal[:, None]
+            sway = np.einsum("ik,ik->k", Vh, M @ Vh) / total
+            picked = np.flatnonzero(sway > 0.5)[:count]
+            if len(picked) == count:
+                shapes = np.array([[self.floor_displacement(V[:, k], j)
+                                    for j in range(1, self.p["storeys"] + 1)] for k in picked])
+                return freqs[picked], shapes
             if want >= self.frame.num_dofs() - 4:
                 raise RuntimeError("fewer sway modes than asked for")
             want *= 2
@@ -272,43 +272,21 @@ def make_case(rng, name, design="mixed", noise_free=False, floors="flexible"):
     fnoise = [0.001, 0.002, 0.005][int(rng.integers(0, 3))]
     snoise = [0.01, 0.02, 0.05][int(rng.integers(0, 3))]
     effect = Effect(kind, rng, p)
-    strong = rng.random() < 0.8
-    target = math.exp(rng.uniform(math.log(5), math.log(50)) if strong else
-                      rng.uniform(0, math.log(5)))
+    target = draw_target(rng)
     nominal = Building(p)
     f0, _ = nominal.sway_modes(modes)
     masses, springs = nominal.equivalent_chain()
     a = 0.0
     if kind != "none":
-        def shift(x):
-            f1, _ = effect.building(p, x).sway_modes(modes)
-            return float(np.max(np.abs(f1 / f0 - 1))) / fnoise
-        lo, hi = 0.0, effect.a_max
-        if shift(hi) <= target:
-            a = hi
-        else:
-            for _ in range(40):
-                mid = 0.5 * (lo + hi)
-                if shift(mid) < target:
-                    lo = mid
-                else:
-                    hi = mid
-                if hi - lo < 1e-4 * effect.a_max:
-                    break
-            a = 0.5 * (lo + hi)
+        a = size_for_shift(
+            lambda x: largest_shift(effect.building(p, x).sway_modes(modes)[0], f0, fnoise),
+            effect.a_max, target)
     truth_building = effect.building(p, a) if kind != "none" else nominal
     f1, S1 = truth_building.sway_modes(modes)
-    achieved = float(np.max(np.abs(f1 / f0 - 1))) / fnoise if kind != "none" else 0.0
-    fn = rng.standard_normal(modes)
-    sn = rng.standard_normal((modes, len(sensors)))
-    scale = 0.0 if noise_free else 1.0
-    freqs = f1 * (1 + scale * fnoise * fn)
-    shape_rows = []
-    for k in range(modes):
-        s = S1[k] / np.max(np.abs(S1[k]))
-        s = s[sensors] + scale * snoise * sn[k]
-        shape_rows.append(s.tolist())
-    study = dict(name=name, masses=masses, springs=springs, frequencies=freqs.tolist(),
+    achieved = largest_shift(f1, f0, fnoise) if kind != "none" else 0.0
+    freqs, shape_rows = measured(rng, f1, [(S1[k] / np.max(np.abs(S1[k])))[sensors]
+                                           for k in range(modes)], fnoise, snoise, noise_free)
+    study = dict(name=name, masses=masses, springs=springs, frequencies=freqs,
                  sensors=["x%d" % (i + 1) for i in sensors],
                  shapes=shape_rows if shapes else None, frequency_noise=fnoise,
                  shape_noise=snoise)
@@ -316,7 +294,7 @@ def make_case(rng, name, design="mixed", noise_free=False, floors="flexible"):
                  description=effect.size_description(p, a), detail=effect.detail,
                  shift_in_noise=achieved, target_shift_in_noise=target, modes=modes,
                  sensors=len(sensors), shapes=bool(shapes), frequency_noise=fnoise,
-                 shape_noise=snoise, building={k: v for k, v in p.items()},
+                 shape_noise=snoise, building=dict(p),
                  nominal_gap=float(np.sqrt(np.mean((f0 / chain_frequencies(masses, springs,
                                                                          modes) - 1) ** 2))))
     return study, truth
@@ -331,7 +309,6 @@ def chain_frequencies(masses, springs, count):
             K[i - 1, i - 1] += k
             K[i - 1, i] -= k
             K[i, i - 1] -= k
-    import scipy.linalg as sl
     w = sl.eigh(K, np.diag(masses), eigvals_only=True)
     return np.sqrt(w[:count]) / (2 * np.pi)
 
