@@ -10,6 +10,7 @@
 #include "femup/errors.h"
 #include "femup/output_dir.h"
 #include "femup/progress.h"
+#include "femup/run_report.h"
 #include "femup/solvers/nonlinear_solver.h"
 #include "femup/studies/blind_benchmark.h"
 #include "femup/studies/compare_study.h"
@@ -97,11 +98,52 @@ std::unique_ptr<femup::ProgressBar> MakeProgressBar(const std::string& label,
                                               !quiet && femup::StderrIsTerminal());
 }
 
-void Finish(femup::OutputDir* dir, const std::vector<std::string>& warnings,
-            const Common& c) {
+constexpr const char* kVersion = "femup 0.1.0";
+
+// The command line as typed, each argument quoted where the shell would need it.
+std::string g_command_line;
+
+std::string QuotedCommandLine(int argc, char** argv) {
+  std::string line;
+  for (int i = 0; i < argc; ++i) {
+    std::string arg = i == 0 ? std::string("femup") : std::string(argv[i]);
+    const bool plain =
+        !arg.empty() && arg.find_first_not_of(
+                            "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUV"
+                            "WXYZ0123456789-_./=:,+@%") == std::string::npos;
+    if (!plain) {
+      std::string quoted = "'";
+      for (const char ch : arg)
+        quoted += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
+      arg = quoted + "'";
+    }
+    line += (i ? " " : "") + arg;
+  }
+  return line;
+}
+
+// What report.html shows besides the output folder's files.
+femup::RunReport Report(const std::string& command, const std::string& name,
+                        std::vector<std::string> inputs, std::string summary) {
+  femup::RunReport report;
+  report.command = command;
+  report.name = name;
+  report.command_line = g_command_line;
+  report.version = kVersion;
+  report.inputs = std::move(inputs);
+  report.summary = std::move(summary);
+  return report;
+}
+
+// Stages report.html, moves every file into place, then prints the warnings
+// and what was written.
+void Finish(femup::OutputDir* dir, const std::vector<std::string>& warnings, bool quiet,
+            femup::RunReport report) {
+  report.warnings = warnings;
+  femup::WriteRunReport(report, dir);
   dir->Commit();
   for (const auto& w : warnings) std::cerr << "femup: warning: " << w << "\n";
-  if (!c.quiet) {
+  if (!quiet) {
     std::cout << "\nwrote to " << dir->directory() << ":";
     for (const auto& f : dir->files()) {
       if (std::filesystem::exists(std::filesystem::path(dir->directory()) / f)) {
@@ -119,7 +161,8 @@ int main(int argc, char** argv) {
       "femup: find where a finite element model is wrong, and by how much, from "
       "vibration measurements"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "femup 0.1.0");
+  app.set_version_flag("--version", kVersion);
+  g_command_line = QuotedCommandLine(argc, argv);
 
   Common run_opts, noise_opts, modes_opts, check_opts, sim_opts, diag_opts;
   int num_modes = 0;
@@ -293,8 +336,10 @@ int main(int argc, char** argv) {
       femup::OutputDir dir(OutputFolder(sim_opts, study));
       femup::WriteSimulateOutputs(result, study.plots && !sim_opts.no_plots, &dir,
                                   &warnings);
-      if (!sim_opts.quiet) std::cout << femup::SimulateReport(result);
-      Finish(&dir, warnings, sim_opts);
+      const std::string text = femup::SimulateReport(result);
+      if (!sim_opts.quiet) std::cout << text;
+      Finish(&dir, warnings, sim_opts.quiet,
+             Report("simulate", study.name, {sim_opts.study}, text));
       return 0;
     }
     if (*diagnose) {
@@ -307,16 +352,20 @@ int main(int argc, char** argv) {
         femup::OutputDir dir(OutputFolder(diag_opts, study));
         femup::WriteStructureDiagnosisOutputs(result, study.plots && !diag_opts.no_plots,
                                               &dir, &warnings);
-        if (!diag_opts.quiet) std::cout << femup::StructureDiagnosisReport(result);
-        Finish(&dir, warnings, diag_opts);
+        const std::string text = femup::StructureDiagnosisReport(result);
+        if (!diag_opts.quiet) std::cout << text;
+        Finish(&dir, warnings, diag_opts.quiet,
+               Report("diagnose", study.name, {diag_opts.study}, text));
         return 0;
       }
       const femup::DiagnosisResult result = femup::RunDiagnosis(study);
       femup::OutputDir dir(OutputFolder(diag_opts, study));
       femup::WriteDiagnosisOutputs(result, study.plots && !diag_opts.no_plots, &dir,
                                    &warnings);
-      if (!diag_opts.quiet) std::cout << femup::DiagnosisReport(result);
-      Finish(&dir, warnings, diag_opts);
+      const std::string text = femup::DiagnosisReport(result);
+      if (!diag_opts.quiet) std::cout << text;
+      Finish(&dir, warnings, diag_opts.quiet,
+             Report("diagnose", study.name, {diag_opts.study}, text));
       return 0;
     }
     if (*bench) {
@@ -334,20 +383,24 @@ int main(int argc, char** argv) {
       }
       femup::OutputDir dir(bench_out);
       femup::WriteBenchmarkOutputs(result, !bench_no_plots, &dir, &warnings);
-      if (!bench_quiet) std::cout << femup::BenchmarkReport(result);
-      Common c;
-      c.quiet = bench_quiet;
-      Finish(&dir, warnings, c);
+      const std::string text = femup::BenchmarkReport(result);
+      if (!bench_quiet) std::cout << text;
+      Finish(&dir, warnings, bench_quiet,
+             Report("benchmark",
+                    bench_options.suite + " suite, " +
+                        std::to_string(bench_options.cases) + " cases",
+                    {}, text));
       return 0;
     }
     if (*compare) {
       const femup::CompareResult result = femup::RunCompare(compare_studies);
       femup::OutputDir dir(compare_out);
       femup::WriteCompareOutputs(result, !compare_no_plots, &dir, &warnings);
-      if (!compare_quiet) std::cout << femup::CompareReport(result);
-      Common c;
-      c.quiet = compare_quiet;
-      Finish(&dir, warnings, c);
+      const std::string text = femup::CompareReport(result);
+      if (!compare_quiet) std::cout << text;
+      Finish(&dir, warnings, compare_quiet,
+             Report("compare", std::to_string(compare_studies.size()) + " studies",
+                    compare_studies, text));
       return 0;
     }
     if (*run) {
@@ -358,11 +411,13 @@ int main(int argc, char** argv) {
       femup::OutputDir dir(OutputFolder(run_opts, study));
       femup::WriteUpdateOutputs(result, study.plots && !run_opts.no_plots, &dir,
                                 &warnings);
-      if (!run_opts.quiet) std::cout << femup::UpdateReport(result);
+      const std::string text = femup::UpdateReport(result);
+      if (!run_opts.quiet) std::cout << text;
       for (const auto& w : result.solution.identifiability.warnings) {
         warnings.push_back("solved system: " + w);
       }
-      Finish(&dir, warnings, run_opts);
+      Finish(&dir, warnings, run_opts.quiet,
+             Report("run", study.name, {run_opts.study}, text));
       return result.solution.summary.usable() ? 0 : 3;
     }
     if (*noise) {
@@ -388,8 +443,10 @@ int main(int argc, char** argv) {
       femup::OutputDir dir(OutputFolder(noise_opts, study));
       femup::WriteNoiseOutputs(result, study.plots && !noise_opts.no_plots, &dir,
                                &warnings);
-      if (!noise_opts.quiet) std::cout << femup::NoiseReport(result);
-      Finish(&dir, warnings, noise_opts);
+      const std::string text = femup::NoiseReport(result);
+      if (!noise_opts.quiet) std::cout << text;
+      Finish(&dir, warnings, noise_opts.quiet,
+             Report("noise", study.name, {noise_opts.study}, text));
       return 0;
     }
     if (*solve) {
@@ -397,20 +454,24 @@ int main(int argc, char** argv) {
           femup::RunSolve(files, solve_solver, solve_options);
       femup::OutputDir dir(solve_out);
       femup::WriteSolveOutputs(result, !solve_no_plots, &dir, &warnings);
-      if (!solve_quiet) std::cout << femup::SolveReport(result);
-      Common c;
-      c.quiet = solve_quiet;
-      Finish(&dir, warnings, c);
+      const std::string text = femup::SolveReport(result);
+      if (!solve_quiet) std::cout << text;
+      std::vector<std::string> inputs{files.a, files.b};
+      for (const std::string* f : {&files.lower, &files.upper, &files.truth}) {
+        if (!f->empty()) inputs.push_back(*f);
+      }
+      Finish(&dir, warnings, solve_quiet,
+             Report("solve", solve_solver + " on " + files.a, inputs, text));
       return result.solution.summary.usable() ? 0 : 3;
     }
     if (*identify) {
       const femup::IdentifyResult result = femup::RunIdentify(id_options);
       femup::OutputDir dir(id_out);
       femup::WriteIdentifyOutputs(result, !id_no_plots, &dir, &warnings);
-      if (!id_quiet) std::cout << femup::IdentifyReport(result);
-      Common c;
-      c.quiet = id_quiet;
-      Finish(&dir, warnings, c);
+      const std::string text = femup::IdentifyReport(result);
+      if (!id_quiet) std::cout << text;
+      Finish(&dir, warnings, id_quiet,
+             Report("identify", id_options.file, {id_options.file}, text));
       return result.modes.empty() ? 3 : 0;
     }
     if (*modes) {
@@ -419,8 +480,10 @@ int main(int argc, char** argv) {
       femup::OutputDir dir(OutputFolder(modes_opts, study));
       femup::WriteModesOutputs(result, study.plots && !modes_opts.no_plots, &dir,
                                &warnings);
-      if (!modes_opts.quiet) std::cout << femup::ModesReport(result);
-      Finish(&dir, warnings, modes_opts);
+      const std::string text = femup::ModesReport(result);
+      if (!modes_opts.quiet) std::cout << text;
+      Finish(&dir, warnings, modes_opts.quiet,
+             Report("modes", study.name, {modes_opts.study}, text));
       return 0;
     }
   } catch (const femup::InputError& e) {
