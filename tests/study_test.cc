@@ -281,6 +281,40 @@ TEST(Study, ParseStudyReadsTextAndNamesThePath) {
   }
 }
 
+// A model and its factors alone (the Python module's model_from_dict): no
+// measurements needed, the same checks and messages as a whole study, and the
+// keys of the other sections refused.
+TEST(Study, ParseStudyModelReadsModelAndFactorsOnly) {
+  const Study s = ParseStudyModel(
+      "model: {type: chain, masses: [1, 2, 3], springs: [10, 20, 30], wet: [2]}\n"
+      "parameters: {mass: none, fix: {\"stiffness[2]\": 0.1}}\n"
+      "truth: {\"added_mass[2]\": 0.3}\n",
+      "in_memory/model.json");
+  EXPECT_EQ(s.model.num_dofs(), 3);
+  EXPECT_EQ(s.model.ParameterNames(),
+            (std::vector<std::string>{"stiffness[1]", "stiffness[2]", "stiffness[3]",
+                                      "added_mass[2]"}));
+  EXPECT_EQ(s.fixed.at("stiffness[2]"), 0.1);
+  ASSERT_TRUE(s.truth.has_value());
+  EXPECT_EQ((*s.truth)[3], 0.3);
+  EXPECT_TRUE(s.measurements.empty());
+  EXPECT_EQ(s.name, "model");
+  for (const auto& [text, expected] : std::vector<std::pair<std::string, std::string>>{
+           {"model: {type: chain, masses: [1, -2], springs: [1, 1]}\n",
+            "model.masses[2]"},
+           {"model: {type: chain, masses: [1], springs: [1]}\nmeasurements: []\n",
+            "measurements: unknown key"},
+           {"parameters: {mass: none}\n", "missing required key 'model'"}}) {
+    try {
+      ParseStudyModel(text, "in_memory/model.json");
+      ADD_FAILURE() << "no error for " << text;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("in_memory/model.json"), std::string::npos);
+    }
+  }
+}
+
 // diagnosis.priors and diagnosis.weights (docs/diagnosis.md, "Stated priors"):
 // parsed in the quantities' own units, checked against the model while the
 // study is read, every refusal naming the file and the field.

@@ -1411,11 +1411,16 @@ std::string WhereIn(const std::string& path, const YAML::Exception& e) {
   return w.str();
 }
 
-// The study whose parsed YAML is `root`.
-Study ReadStudy(const YAML::Node& root, const std::string& path) {
+// The study whose parsed YAML is `root`; with `model_only`, its model and
+// factors alone (ParseStudyModel).
+Study ReadStudy(const YAML::Node& root, const std::string& path, bool model_only) {
   const Field top(root, path, "");
-  top.ExpectKeys({"name", "description", "model", "parameters", "truth", "measurements",
-                  "system", "solver", "noise_study", "output", "records", "diagnosis"});
+  if (model_only) {
+    top.ExpectKeys({"name", "description", "model", "parameters", "truth"});
+  } else {
+    top.ExpectKeys({"name", "description", "model", "parameters", "truth", "measurements",
+                    "system", "solver", "noise_study", "output", "records", "diagnosis"});
+  }
   Study study;
   study.path = path;
   study.name = top.Has("name") ? top["name"].Str() : fs::path(path).stem().string();
@@ -1543,6 +1548,7 @@ Study ReadStudy(const YAML::Node& root, const std::string& path) {
                         [&](const Field& value, int i) { truth[i] = value.Num(); });
     study.truth = truth;
   }
+  if (model_only) return study;
   if (top.Has("records")) study.records = ReadRecords(top["records"], study.model);
   if (study.records && !top.Has("measurements")) return study;
 
@@ -1635,7 +1641,9 @@ Study ReadStudy(const YAML::Node& root, const std::string& path) {
 
 }  // namespace
 
-Study ParseStudy(std::string_view text, const std::string& path) {
+namespace {
+
+Study ParseStudyText(std::string_view text, const std::string& path, bool model_only) {
   YAML::Node root;
   try {
     root = YAML::Load(std::string(text));
@@ -1643,12 +1651,22 @@ Study ParseStudy(std::string_view text, const std::string& path) {
     throw InputError(WhereIn(path, e), "not valid YAML/JSON: " + e.msg);
   }
   try {
-    return ReadStudy(root, path);
+    return ReadStudy(root, path, model_only);
   } catch (const YAML::Exception& e) {
     // Every read goes through Field, which checks a node's type first; should
     // yaml-cpp still object, it is the file's content, never an internal error.
     throw InputError(WhereIn(path, e), "unexpected YAML content: " + e.msg);
   }
+}
+
+}  // namespace
+
+Study ParseStudy(std::string_view text, const std::string& path) {
+  return ParseStudyText(text, path, false);
+}
+
+Study ParseStudyModel(std::string_view text, const std::string& path) {
+  return ParseStudyText(text, path, true);
 }
 
 Study LoadStudy(const std::string& path) {

@@ -199,6 +199,12 @@ Study LoadStudy(const std::string& path);
 // The same for a study's text already in memory. `path` stands for the file in
 // messages, and file names in the study are relative to its folder.
 Study ParseStudy(std::string_view text, const std::string& path);
+// A study's model and factors alone: text with `model` and optionally
+// `parameters`, `truth`, `name` and `description` (any other key is an error),
+// read and checked as ParseStudy reads them, without measurements (what the
+// Python module's model_from_dict needs). The Study has its structure, model,
+// fixed values, bounds, equalities and truth; nothing else is set.
+Study ParseStudyModel(std::string_view text, const std::string& path);
 
 // The measured states: given ones as they are, simulated ones from the truth,
 // identified ones from their files, UFF 55 modes at the DOFs their map gives
