@@ -33,7 +33,7 @@ import math as _math
 import os as _os
 
 from ._femup import *  # noqa: F401,F403  (the compiled module's functions and classes)
-from ._femup import InputError, build_chain, parse_study
+from ._femup import InputError, build_chain, parse_study, parse_study_model
 
 __version__ = "0.1.0"
 
@@ -114,7 +114,9 @@ def model_from_dict(model, parameters=None, base_dir="."):
     study = {"model": model}
     if parameters is not None:
         study["parameters"] = parameters
-    s = study_from_dict(study, base_dir=base_dir, name="<model>")
+    base = str(base_dir)
+    path = "<model>" if base in ("", ".") else _os.path.join(base, "<model>")
+    s = parse_study_model(study_text(study), path)
     return s.structure, s.model
 
 

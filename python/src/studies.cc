@@ -143,6 +143,9 @@ void BindStudy(py::module_& m) {
   m.def("parse_study", &femup::ParseStudy, py::arg("text"), py::arg("path"),
         "A study from its text; `path` stands for the file in messages, and file names "
         "in the study are relative to its folder.");
+  m.def("parse_study_model", &femup::ParseStudyModel, py::arg("text"), py::arg("path"),
+        "A study's model and factors alone (model, parameters, truth, name, "
+        "description), checked as a study file is; no measurements needed.");
   m.def("prepare_measurements", &femup::PrepareMeasurements, py::arg("study"),
         py::call_guard<py::gil_scoped_release>(),
         "The measured states: given, simulated from the truth, identified from records, "

@@ -1,0 +1,131 @@
+"""The module's results against the command line's JSON on the bundled
+examples: the same library, so the same numbers (to rounding in the JSON)."""
+
+import numpy as np
+import pytest
+
+import femup
+from conftest import EXAMPLES
+
+RUN_EXAMPLES = [
+    "paper_chain_masses_1-3_wet.yaml",
+    "paper_chain_masses_1-3_wet_stacked.yaml",
+    "paper_chain_masses_1-3_wet_unconstrained.yaml",
+    "paper_chain_masses_1-2_wet.yaml",
+    "paper_chain_bounded_comparison.yaml",
+    "paper_chain_solver_comparison.yaml",
+    "paper_table1_frequencies.yaml",
+    "cantilever_model_a.yaml",
+    "space_frame/jacket.yaml",
+    "uff_modes/model.yaml",
+]
+
+
+def close(a, b, rel=1e-9, abs_=1e-12):
+    np.testing.assert_allclose(np.asarray(a, float), np.asarray(b, float), rtol=rel, atol=abs_)
+
+
+@pytest.mark.parametrize("example", RUN_EXAMPLES)
+def test_run_matches_result_json(example, run_cli):
+    path = EXAMPLES / example
+    expected = run_cli("run", path, "result.json")
+    result = femup.run_update(femup.load_study(str(path)))
+    by_name = {p["name"]: p for p in expected["parameters"]}
+    assert [f.name for f in result.factors] == [p["name"] for p in expected["parameters"]]
+    for f in result.factors:
+        p = by_name[f.name]
+        assert f.kind == p["kind"] and f.fixed == p["fixed"]
+        close(f.estimate, p["estimate"], abs_=1e-12)
+        if "preset" in p:
+            close(f.preset, p["preset"])
+        if p.get("standard_error") is not None:
+            close(f.standard_error, p["standard_error"], rel=1e-6, abs_=1e-15)
+    assert result.solution.summary.status == expected["solver"]["status"]
+    assert result.solver_name == expected["solver"]["name"]
+    assert result.problem.A.shape == (expected["system"]["rows"], expected["system"]["unknowns"])
+    assert result.form == expected["system"]["form"]
+    assert len(result.states) == len(expected["states"])
+    for state, js in zip(result.states, expected["states"]):
+        assert state.state == js["state"]
+        close(state.measured_hz, js["measured_hz"])
+        close(state.model_hz, js["model_hz"])
+        close(state.updated_hz, js["updated_hz"], rel=1e-9)
+
+
+def test_noise_study_matches_noise_json(run_cli, tmp_path):
+    # The paper's noise study with fewer draws (the seed fixed by the study).
+    text = (EXAMPLES / "paper_chain_noise.yaml").read_text()
+    assert "draws: 1000" in text
+    study_file = tmp_path / "noise_short.yaml"
+    study_file.write_text(text.replace("draws: 1000", "draws: 40"))
+    expected = run_cli("noise", study_file, "noise.json")
+    study = femup.load_study(str(study_file))
+    assert study.noise_study.draws == 40
+    one = femup.run_noise_study(study, threads=1)
+    two = femup.run_noise_study(study, threads=2)
+    np.testing.assert_array_equal(one.rm_mean, two.rm_mean)  # any thread count
+    close(one.levels, expected["levels"])
+    assert one.usable_draws == expected["usable_draws"]
+    close(one.rm_average, expected["rm_average_percent"], rel=1e-12)
+    assert len(expected["rm_percent"]) == len(one.added_mass_indices)
+    for k, js in enumerate(expected["rm_percent"]):
+        assert one.parameter_names[one.added_mass_indices[k]] == js["parameter"]
+        close(one.rm_mean[:, k], js["mean"], rel=1e-12)
+        close([row[k].p90 for row in one.rm], js["p90"], rel=1e-12)
+    figure = expected["estimates_at_level"]
+    close(one.figure_level, figure["level"])
+    close(one.figure_mean, [p["mean"] for p in figure["parameters"]], rel=1e-12)
+
+
+def test_modes_matches_modes_json(run_cli):
+    path = EXAMPLES / "cantilever_model_a.yaml"
+    expected = run_cli("modes", path, "modes.json")
+    result = femup.run_modes(femup.load_study(str(path)))
+    close(result.nominal.frequencies_hz, expected["frequencies_hz"])
+    close(result.nominal.eigenvalues, expected["eigenvalues"])
+    assert result.dof_labels == expected["dof_labels"]
+    shapes = np.array(expected["shapes_mass_normalised"]).T
+    close(result.nominal.shapes, shapes, rel=1e-9, abs_=1e-12)
+
+
+def test_cantilever_diagnosis_matches_diagnosis_json(run_cli):
+    path = EXAMPLES / "diagnosis" / "added_mass.yaml"
+    expected = run_cli("diagnose", path, "diagnosis.json")
+    result = femup.diagnose(femup.load_study(str(path)))
+    assert isinstance(result, femup.DiagnosisResult)
+    assert result.verdict == expected["verdict"]["text"]
+    assert result.candidates[0].label == expected["verdict"]["kind"]
+    close(result.verdict_probability, expected["verdict"]["probability"], rel=1e-9)
+    assert result.separated == expected["verdict"]["separated"]
+    assert result.indistinguishable == expected["verdict"]["indistinguishable"]
+    assert [c.label for c in result.candidates] == [e["kind"] for e in expected["effects"]]
+    for k, (c, e) in enumerate(zip(result.candidates, expected["effects"])):
+        close(c.probability, e["probability"], rel=1e-9, abs_=1e-300)
+        close(c.chi2, e["chi2"], rel=1e-9)
+        gap_before, gap_after = result.gap(-1), result.gap(k)
+        for key in ("rms_frequency_error", "mean_mac"):
+            close(gap_before[key], e["gap_before"][key], rel=1e-12)
+            close(gap_after[key], e["gap_after"][key], rel=1e-12)
+    kinds = dict(result.kind_probabilities)
+    for kind, p in expected["kind_probabilities"].items():
+        close(kinds[kind], p, rel=1e-9, abs_=1e-300)
+
+
+def test_structure_diagnosis_matches_diagnosis_json(run_cli):
+    path = EXAMPLES / "diagnosis" / "shear_building.yaml"
+    expected = run_cli("diagnose", path, "diagnosis.json")
+    result = femup.diagnose(femup.load_study(str(path)))
+    assert isinstance(result, femup.StructureDiagnosisResult)
+    assert result.model_type == expected["model_type"]
+    classes = result.classes
+    assert [(c.kind, c.region) for c in classes] == [
+        (e["kind"], e["region"]) for e in expected["classes"]]
+    for c, e in zip(classes, expected["classes"]):
+        close(c.probability, e["probability"], rel=1e-9, abs_=1e-300)
+        close(c.chi2, e["chi2"], rel=1e-9)
+        close(c.evidence.log_evidence, e["log_evidence"], rel=1e-9)
+        assert c.equivalent == e["equivalent"]
+        for m, em in zip(c.magnitudes, e["magnitudes"]):
+            assert m.name == em["name"] and m.unit == em["unit"]
+            close(m.value, em["value"], rel=1e-9)
+    close(result.ranking.temperature, expected["temperature"])
