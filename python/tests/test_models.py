@@ -146,7 +146,10 @@ def test_model_from_dict_every_type(tmp_path):
          "water_depth": 1.5})
     assert structure.num_dofs == 30 and model.num_parameters == 10 + 10 + 8
     structure, model = femup.model_from_dict(
-        {"type": "plane_frame", "storeys": 1, "bays": 1, "elements_per_member": 2},
+        {"type": "plane_frame", "storeys": 1, "bays": 1, "storey_height": 3.0,
+         "bay_width": 5.0, "elements_per_member": 2,
+         "column": {"E": 210e9, "A": 0.02, "I": 4e-4, "rho": 7850},
+         "beam": {"E": 210e9, "A": 0.012, "I": 2.5e-4, "rho": 7850}},
         parameters={"mass": "none", "stiffness": "per_element", "added_mass": "none"})
     assert model.num_parameters == 3
     structure, model = femup.model_from_dict(
