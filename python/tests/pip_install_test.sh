@@ -10,7 +10,8 @@
 set -euo pipefail
 python="$1"; work="$2"; build="$3"
 root="$(cd "$(dirname "$0")/../.." && pwd)"
-rm -rf "$work"; mkdir -p "$work"
+# A clean build each time (objects come from ccache): what a new user's install does.
+rm -rf "$work" "$build"; mkdir -p "$work"
 start=$(date +%s)
 "$python" -m venv --system-site-packages "$work/venv"
 export FEMUP_PIP_BUILD_DIR="$build" PIP_NO_INDEX=1 PIP_DISABLE_PIP_VERSION_CHECK=1
