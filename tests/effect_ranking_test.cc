@@ -6,12 +6,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <random>
 
 #include "femup/builders.h"
 #include "femup/errors.h"
 #include "femup/modal.h"
+#include "femup/plane_frame.h"
 #include "femup/studies/structure_diagnosis.h"
 #include "scratch_dir.h"
 
@@ -98,6 +100,54 @@ TEST(EffectRanking, NamesAnAttachedMassOnTheRoof) {
   EXPECT_EQ(r.classes[0].kind, "attached_mass");
   EXPECT_EQ(r.classes[0].region, "node x6");
   EXPECT_NEAR(r.classes[0].magnitudes[0].value, 1.5e4, 0.2e4);
+}
+
+// A two-storey portal frame on base rotation springs (the foundation as the
+// engineer estimated it) whose real foundation is four times softer: the truth
+// is built by the builder with the softer springs, measured as a test would be
+// (the lowest four modes, sway at the joints and the beams' middles).
+TEST(EffectRanking, NamesASofterFoundationOfAPortalFrame) {
+  PlaneFrameSpec spec;
+  spec.storeys = 2;
+  spec.bays = 1;
+  spec.storey_height = 3.5;
+  spec.bay_width = 6.0;
+  spec.elements_per_member = 2;
+  spec.column = {210e9, 7.8e-3, 8.4e-5, 7850};
+  spec.beam = {210e9, 5.4e-3, 1.9e-4, 5.6e5};
+  const double column_rotation = 4 * 210e9 * 8.4e-5 / 3.5;  // 4 E I / h
+  spec.base.rotation = 2 * column_rotation;
+  const Structure nominal = BuildPlaneFrameStructure(spec);
+  spec.base.rotation /= 4;
+  const Structure truth = BuildPlaneFrameStructure(spec);
+  const Modes modes = SolveModes(truth.stiffness, truth.mass);
+  std::vector<int> sensors;
+  for (const char* label : {"n1:ux", "n2:ux", "n3:ux", "n4:ux", "n7:uy", "n10:uy"}) {
+    const auto at = std::find(truth.dof_labels.begin(), truth.dof_labels.end(), label);
+    ASSERT_NE(at, truth.dof_labels.end()) << label;
+    sensors.push_back(static_cast<int>(at - truth.dof_labels.begin()));
+  }
+  std::mt19937 rng(5);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  ModalData d;
+  d.state = "air";
+  d.sensor_dofs = sensors;
+  d.frequencies_hz = modes.FrequenciesHz().head(4);
+  d.shapes.resize(sensors.size(), 4);
+  for (int j = 0; j < 4; ++j) {
+    d.frequencies_hz[j] *= 1 + 0.002 * normal(rng);
+    for (std::size_t i = 0; i < sensors.size(); ++i)
+      d.shapes(i, j) = modes.shapes(sensors[i], j);
+    const double peak = d.shapes.col(j).cwiseAbs().maxCoeff();
+    for (std::size_t i = 0; i < sensors.size(); ++i)
+      d.shapes(i, j) += 0.02 * peak * normal(rng);
+  }
+  const EffectRanking r = RankModelEffects(nominal, {d}, Options());
+  ASSERT_FALSE(r.classes.empty());
+  EXPECT_EQ(r.classes[0].kind, "support_flexibility");
+  EXPECT_GT(r.classes[0].probability, 0.9);
+  // k / (1 + c) = k / 4: an added compliance three times the spring's own.
+  EXPECT_NEAR(r.classes[0].magnitudes[0].value, 3.0, 0.6);
 }
 
 // A chain's ground spring softened in series and its first storey's loss are

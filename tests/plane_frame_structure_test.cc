@@ -12,6 +12,7 @@
 #include "femup/plane_frame.h"
 #include "femup/problems/model_effect_pencil.h"
 #include "femup/solvers/nonlinear_solver.h"
+#include "femup/studies/study.h"
 
 namespace femup {
 namespace {
@@ -104,6 +105,91 @@ TEST(PlaneFrameStructure, FindsAWeakerColumn) {
   EXPECT_NEAR(std::exp(fit.x[0]), 0.3, 1e-6);
 }
 
+// A column on a base rotation spring kr, its top held by the rigid beam: by
+// slope-deflection, lateral stiffness 12 E I / h^3 (1 - 3 E I / (4 E I + kr h))
+// (kr -> infinity: fixed-guided, 12 E I / h^3; kr = 0: 3 E I / h^3), and a base
+// horizontal spring kh in series with it.
+double ColumnSwayStiffness(double ei, double h, double kr, double kh) {
+  const double k = 12 * ei / std::pow(h, 3) * (1 - 3 * ei / (4 * ei + kr * h));
+  return kh > 0 ? 1 / (1 / k + 1 / kh) : k;
+}
+
+TEST(PlaneFrameStructure, BaseSpringsMatchTheSlopeDeflectionClosedForm) {
+  PlaneFrameSpec spec = Portal();
+  const double ei = spec.column.E * spec.column.I, h = spec.storey_height;
+  const double beam_mass = spec.beam.rho * spec.beam.A * spec.bay_width;
+  for (const auto& [kr, kh] : {std::pair<double, double>{4 * ei / h, 0.0},
+                               {0.5 * ei / h, 0.0},
+                               {20 * ei / h, 12 * ei / std::pow(h, 3)}}) {
+    spec.base = {kh, 0.0, kr};
+    const Structure s = BuildPlaneFrameStructure(spec);
+    const Modes modes = SolveModes(s.stiffness, s.mass);
+    const double exact = 2 * ColumnSwayStiffness(ei, h, kr, kh) / beam_mass;
+    EXPECT_NEAR(modes.eigenvalues[0] / exact, 1.0, 3e-3) << "kr " << kr << " kh " << kh;
+  }
+}
+
+TEST(PlaneFrameStructure, BaseSpringsAreSupportsWithTheirOwnDofs) {
+  PlaneFrameSpec spec = Portal();
+  const Structure clamped = BuildPlaneFrameStructure(spec);
+  EXPECT_TRUE(clamped.supports.empty());
+  EXPECT_NE(clamped.description.find("columns clamped"), std::string::npos);
+  spec.base.rotation = 5e7;
+  spec.base.vertical = 2e9;
+  const Structure s = BuildPlaneFrameStructure(spec);
+  // Two column bases, two sprung directions each, after the frame's own DOFs.
+  ASSERT_EQ(s.dof_labels.size(), clamped.dof_labels.size() + 4);
+  EXPECT_EQ(s.dof_labels[clamped.dof_labels.size()], "b1:uy");
+  EXPECT_EQ(s.dof_labels.back(), "b2:rz");
+  ASSERT_EQ(s.supports.size(), 4u);
+  EXPECT_EQ(s.supports[1].name, "base rotation at b1");
+  EXPECT_EQ(s.supports[1].unit, "N m/rad");
+  EXPECT_EQ(s.supports[1].stiffness, 5e7);
+  EXPECT_EQ(s.supports[0].unit, "N/m");
+  EXPECT_EQ(s.stiffness.coeff(s.supports[1].dof, s.supports[1].dof) -
+                s.elements[0].stiffness.coeff(s.supports[1].dof, s.supports[1].dof),
+            5e7);
+  EXPECT_EQ(s.nodes.back().name, "b2");
+  EXPECT_EQ(s.nodes.back().xyz.x(), spec.bay_width);
+  EXPECT_NE(
+      s.description.find("on base springs (vertical 2e+09 N/m, rotation 5e+07 N m/rad"),
+      std::string::npos)
+      << s.description;
+  // Stiff springs approach the clamp (steel columns: the base DOFs carry mass).
+  spec.column.rho = 7850;
+  spec.base = {};
+  const Structure steel = BuildPlaneFrameStructure(spec);
+  spec.base = {1e13, 1e15, 1e12};  // 10^5-10^6 times the members' own
+  const Structure stiff = BuildPlaneFrameStructure(spec);
+  const Modes near = SolveModes(stiff.stiffness, stiff.mass);
+  const Modes exact = SolveModes(steel.stiffness, steel.mass);
+  for (int k = 0; k < 3; ++k)
+    EXPECT_NEAR(near.eigenvalues[k] / exact.eigenvalues[k], 1.0, 1e-4)
+        << "mode " << k + 1;
+}
+
+TEST(PlaneFrameStructure, BaseSpringsFromAStudyFileAndTheirErrors) {
+  const std::string frame =
+      "name: portal\nmodel:\n  type: plane_frame\n  storeys: 1\n  bays: 1\n"
+      "  storey_height: 3\n  bay_width: 5\n"
+      "  column: {E: 210e9, A: 0.01, I: 8e-5, rho: 7850}\n"
+      "  beam: {E: 210e9, A: 0.01, I: 2e-4, rho: 7850}\n";
+  const Study study = ParseStudyModel(frame + "  base: {rotation: 3e7}\n", "portal.yaml");
+  ASSERT_EQ(study.structure.supports.size(), 2u);
+  EXPECT_EQ(study.structure.supports[0].stiffness, 3e7);
+  for (const auto& [bad, field] : {std::pair<std::string, std::string>{
+                                       "  base: {rotation: -1}\n", "model.base.rotation"},
+                                   {"  base: {}\n", "model.base"},
+                                   {"  base: {spin: 1}\n", "spin"}}) {
+    try {
+      ParseStudyModel(frame + bad, "portal.yaml");
+      ADD_FAILURE() << "accepted " << bad;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(PlaneFrameStructure, RefusesAnInvalidSpecNamingTheField) {
   PlaneFrameSpec spec = Portal();
   spec.bays = 0;
@@ -113,6 +199,12 @@ TEST(PlaneFrameStructure, RefusesAnInvalidSpecNamingTheField) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("model.bays"), std::string::npos) << e.what();
   }
+  spec = Portal();
+  spec.base.rotation = -1;
+  EXPECT_NE(spec.Validate().find("base.rotation: a spring stiffness must be >= 0"),
+            std::string::npos);
+  spec.base.rotation = 1e7;
+  EXPECT_THROW(BuildPlaneFrame(spec), InputError);  // the benchmark frame is clamped
 }
 
 }  // namespace

@@ -113,6 +113,13 @@ std::string PlaneFrameSpec::Validate() const {
     msg << "blocks_per_storey: must be in 1.." << bays << ", got " << blocks_per_storey;
   else if (wet_storeys < 0 || wet_storeys > storeys)
     msg << "wet_storeys: must be in 0.." << storeys << ", got " << wet_storeys;
+  for (const auto& [name, k] :
+       {std::pair<const char*, double>{"horizontal", base.horizontal},
+        {"vertical", base.vertical},
+        {"rotation", base.rotation}}) {
+    if (msg.str().empty() && !(k >= 0 && std::isfinite(k)))
+      msg << "base." << name << ": a spring stiffness must be >= 0 and finite, got " << k;
+  }
   if (!msg.str().empty()) return msg.str();
   std::string bad = CheckSection(column, "column");
   if (bad.empty()) bad = CheckSection(beam, "beam");
@@ -124,6 +131,11 @@ ParametrisedModel BuildPlaneFrame(const PlaneFrameSpec& spec) {
   if (!invalid.empty()) {
     const auto colon = invalid.find(':');
     throw InputError("model." + invalid.substr(0, colon), invalid.substr(colon + 2));
+  }
+  if (!spec.base.rigid()) {
+    throw InputError("model.base",
+                     "base springs are a plane_frame Structure's (the study model); "
+                     "the benchmark frame is clamped");
   }
   const int lines = spec.bays + 1;
   const FrameLayout layout = LayOut(spec);
@@ -220,7 +232,6 @@ Structure BuildPlaneFrameStructure(const PlaneFrameSpec& spec) {
   const std::vector<double>& y = layout.y;
   const auto& members = layout.members;
   const int per_member = spec.elements_per_member;
-  const int n = 3 * static_cast<int>(x.size());
   Structure s;
   s.type = "plane_frame";
   for (std::size_t k = 0; k < x.size(); ++k) {
@@ -231,16 +242,43 @@ Structure BuildPlaneFrameStructure(const PlaneFrameSpec& spec) {
     }
     s.nodes.push_back({name, Eigen::Vector3d(x[k], y[k], 0.0)});
   }
+  // Column bases on springs: a node per column line, a DOF per sprung
+  // direction (-1: rigid), numbered after the frame's own.
+  const std::array<double, 3> base_k = {spec.base.horizontal, spec.base.vertical,
+                                        spec.base.rotation};
+  const std::array<const char*, 3> base_dir = {":ux", ":uy", ":rz"};
+  const std::array<const char*, 3> base_name = {"base horizontal", "base vertical",
+                                                "base rotation"};
+  std::vector<std::array<int, 3>> base_dofs(spec.bays + 1, {-1, -1, -1});
   Triplets kt, mt;
+  if (!spec.base.rigid()) {
+    for (int c = 0; c <= spec.bays; ++c) {
+      const std::string name = "b" + std::to_string(c + 1);
+      for (int d = 0; d < 3; ++d) {
+        if (base_k[d] == 0) continue;
+        base_dofs[c][d] = static_cast<int>(s.dof_labels.size());
+        s.dof_labels.push_back(name + base_dir[d]);
+        s.dof_positions.push_back(0.0);
+        kt.emplace_back(base_dofs[c][d], base_dofs[c][d], base_k[d]);
+        s.supports.push_back({base_dofs[c][d], base_k[d],
+                              base_name[d] + std::string(" at ") + name,
+                              d == 2 ? "N m/rad" : "N/m"});
+      }
+      s.nodes.push_back({name, Eigen::Vector3d(c * spec.bay_width, 0.0, 0.0)});
+    }
+  }
+  const int n = static_cast<int>(s.dof_labels.size());
   for (std::size_t m = 0; m < members.size(); ++m) {
     const FrameMember& mb = members[m];
     const BeamSection& sec = mb.column ? spec.column : spec.beam;
     Triplets ke, me, we;
     for (std::size_t k = m * per_member; k < (m + 1) * per_member; ++k) {
       const FramePiece& p = layout.pieces[k];
-      const std::array<int, 6> d = {p.a < 0 ? -1 : 3 * p.a,
-                                    p.a < 0 ? -1 : 3 * p.a + 1,
-                                    p.a < 0 ? -1 : 3 * p.a + 2,
+      // A base end: the sprung DOFs of its column line's base node, if any.
+      const int line = static_cast<int>(std::lround(p.xa / spec.bay_width));
+      const std::array<int, 6> d = {p.a < 0 ? base_dofs[line][0] : 3 * p.a,
+                                    p.a < 0 ? base_dofs[line][1] : 3 * p.a + 1,
+                                    p.a < 0 ? base_dofs[line][2] : 3 * p.a + 2,
                                     3 * p.b,
                                     3 * p.b + 1,
                                     3 * p.b + 2};
@@ -271,7 +309,20 @@ Structure BuildPlaneFrameStructure(const PlaneFrameSpec& spec) {
   std::ostringstream desc;
   desc << "2D plane frame, " << spec.storeys << " storeys x " << spec.bays << " bays ("
        << spec.storey_height << " m x " << spec.bay_width << " m), " << members.size()
-       << " members of " << per_member << " elements, columns clamped";
+       << " members of " << per_member << " elements, columns ";
+  if (spec.base.rigid()) {
+    desc << "clamped";
+  } else {
+    desc << "on base springs (";
+    bool first = true;
+    for (int d = 0; d < 3; ++d) {
+      if (base_k[d] == 0) continue;
+      desc << (first ? "" : ", ") << std::string(base_name[d]).substr(5) << " "
+           << base_k[d] << " " << (d == 2 ? "N m/rad" : "N/m");
+      first = false;
+    }
+    desc << "; rigid otherwise)";
+  }
   s.description = desc.str();
   return s;
 }

@@ -611,7 +611,7 @@ FrameSection3d ReadTube(const Field& f, const FrameSection3d& defaults) {
 // A 2D plane frame (portal, multi-bay, multi-storey) as a Structure of members.
 Structure ReadPlaneFrame(const Field& m) {
   m.ExpectKeys({"type", "storeys", "bays", "storey_height", "bay_width",
-                "elements_per_member", "wet_storeys", "column", "beam"});
+                "elements_per_member", "wet_storeys", "column", "beam", "base"});
   PlaneFrameSpec spec;
   spec.storeys = m["storeys"].Int();
   spec.bays = m["bays"].Int();
@@ -626,6 +626,15 @@ Structure ReadPlaneFrame(const Field& m) {
     const BeamSection section{s["E"].Positive(), s["A"].Positive(), s["I"].Positive(),
                               s["rho"].Positive()};
     (std::string(which) == "column" ? spec.column : spec.beam) = section;
+  }
+  if (m.Has("base")) {
+    // Springs at every column base; a direction not given stays rigid.
+    const Field b = m["base"];
+    b.ExpectKeys({"horizontal", "vertical", "rotation"});
+    if (b.Has("horizontal")) spec.base.horizontal = b["horizontal"].Positive();
+    if (b.Has("vertical")) spec.base.vertical = b["vertical"].Positive();
+    if (b.Has("rotation")) spec.base.rotation = b["rotation"].Positive();
+    if (spec.base.rigid()) b.Fail("give at least one of horizontal, vertical, rotation");
   }
   spec.blocks_per_storey = 1;
   const std::string invalid = spec.Validate();

@@ -23,6 +23,17 @@
 
 namespace femup {
 
+// Springs to the ground at every column base, per direction (N/m, N/m,
+// N m/rad). Zero: that direction is rigid (its DOF is not in the model). A
+// foundation that is not a rigid clamp (soil, piles, a base plate) is modelled
+// so, and support_flexibility can then soften it.
+struct PlaneFrameBase {
+  double horizontal = 0;  // along x (ux)
+  double vertical = 0;    // along y (uy)
+  double rotation = 0;    // about z (rz)
+  bool rigid() const { return horizontal == 0 && vertical == 0 && rotation == 0; }
+};
+
 struct PlaneFrameSpec {
   int storeys = 10;
   int bays = 5;
@@ -33,6 +44,7 @@ struct PlaneFrameSpec {
   int wet_storeys = 0;        // lowest storeys whose columns carry added mass
   BeamSection column{210e9, 0.02, 4e-4, 7850};
   BeamSection beam{210e9, 0.012, 2.5e-4, 7850};
+  PlaneFrameBase base;  // BuildPlaneFrameStructure only; BuildPlaneFrame: rigid
   // Empty when valid; otherwise "<field>: what is wrong".
   std::string Validate() const;
 };
@@ -48,7 +60,10 @@ ParametrisedModel BuildPlaneFrame(const PlaneFrameSpec& spec);
 // are numbered storey by storey, columns left to right then beams left to right;
 // labels "s<storey>:col<line>" and "s<storey>:beam<bay>" (1-based). DOFs and
 // node names as BuildPlaneFrame; Structure::nodes holds every free node's
-// coordinates (x along the bays, y up). blocks_per_storey is not used. Throws
+// coordinates (x along the bays, y up). With base springs, each column base is
+// a node "b<line>" (after the others) with a DOF per sprung direction, the
+// spring in K, and listed in Structure::supports ("base rotation at b1", ...);
+// the description says which. blocks_per_storey is not used. Throws
 // InputError naming the field for an invalid spec.
 Structure BuildPlaneFrameStructure(const PlaneFrameSpec& spec);
 
