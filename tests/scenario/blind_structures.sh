@@ -26,13 +26,16 @@ if command -v gnuplot > /dev/null; then [ -s blind/reliability.png ] || fail "re
 
 # The plane-frame suite (femup's plane_frame model, frame2d's Timoshenko truth
 # with semi-rigid joints, partial damage, masses between nodes), 3 cases, with a
-# stated model error.
+# stated model error, the frames on base springs (soft foundations among the
+# effects).
 "$PY" -B "$SUITE/run_suite.py" --suite plane_frame --cases 3 --seed 3 --threads 2 \
-  --stated-model-error 0.01 --femup "$FEMUP" -o frames > frames.txt 2> frames.err \
-  || { cat frames.err; fail "the plane_frame suite did not run"; }
+  --stated-model-error 0.01 --foundation springs --femup "$FEMUP" -o frames > frames.txt \
+  2> frames.err || { cat frames.err; fail "the plane_frame suite did not run"; }
 [ "$(wc -l < frames/results.jsonl)" = 3 ] || fail "3 scored frame cases"
 grep -q "type: plane_frame" frames/cases/plane_frame_000.yaml || fail "a plane_frame study"
-json frames/summary.json 'j["stated_model_error"] == 0.01' | grep -q True || fail "stated model error"
+grep -q "  base: {rotation: " frames/cases/plane_frame_000.yaml || fail "base springs in the model"
+json frames/summary.json 'j["stated_model_error"] == 0.01 and j["foundation"] == "springs"' \
+  | grep -q True || fail "stated model error, foundation"
 
 # Bad arguments: a clear message, nothing run.
 if "$PY" -B "$SUITE/run_suite.py" --cases 0 --femup "$FEMUP" -o bad > /dev/null 2> bad.err; then
@@ -43,5 +46,10 @@ if "$PY" -B "$SUITE/run_suite.py" --cases 2 --femup /nonexistent/femup -o bad > 
   fail "a missing femup accepted"
 fi
 grep -q "/nonexistent/femup: not an executable" bad.err || fail "missing femup message"
+if "$PY" -B "$SUITE/run_suite.py" --suite shear_building --foundation springs --cases 2 \
+    --femup "$FEMUP" -o bad > /dev/null 2> bad.err; then
+  fail "--foundation springs accepted on shear buildings"
+fi
+grep -q "only the plane_frame suite has column bases" bad.err || fail "--foundation message"
 [ ! -e bad ] || fail "output written for bad arguments"
 echo "blind_structures: ok"

@@ -17,7 +17,18 @@ families make exactly:
                       mass along the whole beam (storage): an attached mass at a
                       node of that beam (either end or its middle);
   material_scaling    E of every member times s;
+  soft_foundation     (with --foundation springs only) the column bases sit on
+                      rotational springs that the model has too, at the
+                      engineer's estimate (2-20 times a column's 4 E I / h);
+                      the real ones are softer, each base by its own factor
+                      (k / (1 + a u), u uniform in 0.5-1.5: soil under one
+                      footing is not soil under the next), which the model's
+                      support_flexibility (one factor for all) does not make
+                      exactly: support_flexibility;
   none.
+With --foundation springs every case's model and truth stand on those springs
+(so their presence says nothing about the answer), and soft_foundation joins
+the kinds.
 Sizes by the largest relative frequency shift in noise units, as for the shear
 buildings. Sensors: horizontal (ux) at some joints, vertical (uy) at some beam
 middles; 3-5 modes, some cases without shapes.
@@ -34,10 +45,12 @@ from cases import draw_target, largest_shift, measured, size_for_shift
 from frame2d import Frame
 
 KINDS = ["none", "joint_flexibility", "member_damage", "added_floor_mass", "material_scaling"]
+KINDS_ON_SPRINGS = KINDS + ["soft_foundation"]
 # The family each truth should be named by.
 EXPECTED_KIND = {"none": "none", "joint_flexibility": "stiffness_loss",
                  "member_damage": "stiffness_loss", "added_floor_mass": "attached_mass",
-                 "material_scaling": "material_scaling"}
+                 "material_scaling": "material_scaling",
+                 "soft_foundation": "support_flexibility"}
 E_STEEL, G_STEEL, RHO_STEEL = 210e9, 81e9, 7850.0
 PARTS = 8  # truth elements per member (even: a node at each middle)
 
@@ -60,7 +73,7 @@ def model_labels(S, B):
     return joints, middles
 
 
-def random_frame(rng):
+def random_frame(rng, foundation="clamped"):
     """A light steel frame whose members are slender enough for an engineer to
     model them without shear deformation: columns (HE-like, A = 0.9 r^2) of
     slenderness L / r 55-90, beams (IPE-like, A = 0.35 r^2) of 35-60, so the
@@ -73,9 +86,26 @@ def random_frame(rng):
     rc = h / float(rng.uniform(55.0, 90.0))
     rb = L / float(rng.uniform(35.0, 60.0))
     Ac, Ab = 0.9 * rc * rc, 0.35 * rb * rb
-    return dict(storeys=S, bays=B, storey_height=h, bay_width=L, column_I=Ac * rc * rc,
-                column_A=Ac, beam_I=Ab * rb * rb, beam_A=Ab,
-                slab_line_mass=float(rng.uniform(500.0, 2500.0)))
+    p = dict(storeys=S, bays=B, storey_height=h, bay_width=L, column_I=Ac * rc * rc,
+             column_A=Ac, beam_I=Ab * rb * rb, beam_A=Ab,
+             slab_line_mass=float(rng.uniform(500.0, 2500.0)))
+    if foundation == "springs":
+        p["base_rotation"] = float(rng.uniform(2.0, 20.0)) * 4 * E_STEEL * p["column_I"] / h
+    return p
+
+
+def add_bases(f, p, B, L, soften=None):
+    """Column base nodes: clamped, or on rotational springs k (each divided by
+    soften[c] when given)."""
+    base = [f.add_node(c * L, 0.0) for c in range(B + 1)]
+    for c in range(B + 1):
+        if "base_rotation" in p:
+            f.fixed |= {(base[c], 0), (base[c], 1)}
+            k = p["base_rotation"] / (soften[c] if soften is not None else 1.0)
+            f.springs.append((base[c], 2, k))
+        else:
+            f.fixed |= {(base[c], 0), (base[c], 1), (base[c], 2)}
+    return base
 
 
 class Truth:
@@ -85,9 +115,11 @@ class Truth:
         E = E_STEEL * (effect.e_factor(a) if effect else 1.0)
         f = Frame()
         self.joint = {}
-        base = [f.add_node(c * L, 0.0) for c in range(B + 1)]
+        soften = None
+        if effect is not None and effect.kind == "soft_foundation":
+            soften = [1 + a * u for u in effect.spread]
+        base = add_bases(f, p, B, L, soften)
         for c in range(B + 1):
-            f.fixed |= {(base[c], 0), (base[c], 1), (base[c], 2)}
             for j in range(1, S + 1):
                 self.joint[(c, j)] = f.add_node(c * L, j * h)
         self.middle = {}
@@ -152,6 +184,10 @@ class Effect:
         elif kind == "material_scaling":
             self.sign = 1 if rng.random() < 0.5 else -1
             self.a_max = 0.5
+        elif kind == "soft_foundation":
+            self.spread = [float(u) for u in rng.uniform(0.5, 1.5, B + 1)]
+            self.a_max = 50.0  # added compliance over the springs' own (mean)
+            self.detail = dict(spread=self.spread)
         else:
             self.a_max = 0.0
         self.expected = EXPECTED_KIND[kind]
@@ -189,6 +225,8 @@ class Effect:
                     "node " + middles[(s, m)]]
         if self.kind == "material_scaling":
             return ["all elements"]
+        if self.kind == "soft_foundation":
+            return ["supports"]
         return [""]
 
     def describe(self, p, a):
@@ -204,13 +242,17 @@ class Effect:
             return "s%d:%s carries %.0f kg, %s" % (*self.member, m, where)
         if self.kind == "material_scaling":
             return "E factor %.4f" % self.e_factor(a)
+        if self.kind == "soft_foundation":
+            return "base springs softer: k / (1 + %.3g u), u = %s" % (
+                a, ", ".join("%.2f" % u for u in self.spread))
         return "no effect"
 
 
-def make_case(rng, name, design="mixed", noise_free=False, floors=None):
-    p = random_frame(rng)
+def make_case(rng, name, design="mixed", noise_free=False, floors=None, foundation="clamped"):
+    p = random_frame(rng, foundation)
     S, B = p["storeys"], p["bays"]
-    kind = KINDS[int(rng.integers(0, len(KINDS)))]
+    kinds = KINDS_ON_SPRINGS if foundation == "springs" else KINDS
+    kind = kinds[int(rng.integers(0, len(kinds)))]
     modes = int(rng.integers(3, 6)) if design == "informative" else int(rng.integers(2, 6))
     shapes = True if design == "informative" else rng.random() < 2 / 3
     fnoise = [0.001, 0.002, 0.005][int(rng.integers(0, 3))]
@@ -266,10 +308,9 @@ def nominal_gap(p, f_truth, modes):
     slab smeared): a close stand-in for femup's own numbers."""
     f = Frame()
     S, B, h, L = p["storeys"], p["bays"], p["storey_height"], p["bay_width"]
-    base = [f.add_node(c * L, 0.0) for c in range(B + 1)]
+    base = add_bases(f, p, B, L)
     joint = {}
     for c in range(B + 1):
-        f.fixed |= {(base[c], 0), (base[c], 1), (base[c], 2)}
         for j in range(1, S + 1):
             joint[(c, j)] = f.add_node(c * L, j * h)
     for s in range(1, S + 1):
@@ -301,6 +342,10 @@ def study_yaml(s):
             E_STEEL, p["column_A"], p["column_I"], RHO_STEEL),
         "  beam: {E: %.10g, A: %.10g, I: %.10g, rho: %.10g}" % (
             E_STEEL, p["beam_A"], p["beam_I"], RHO_STEEL + p["slab_line_mass"] / p["beam_A"]),
+    ]
+    if "base_rotation" in p:
+        lines.append("  base: {rotation: %.10g}" % p["base_rotation"])
+    lines += [
         "measurements:",
         "  - state: test",
         "    frequencies_hz: %s" % fmt(s["frequencies"]),

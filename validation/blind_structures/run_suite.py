@@ -117,7 +117,8 @@ def summarise(rows, args):
     none = [r for r in rows if r["truth_kind"] == "none"]
     s = dict(
         suite=args.suite, cases=len(rows), seed=args.seed, noise_free=args.noise_free,
-        floors=args.floors, design=args.design, stated_model_error=args.stated_model_error,
+        floors=args.floors, foundation=args.foundation, design=args.design,
+        stated_model_error=args.stated_model_error,
         top1_kind=fraction(rows, "kind_right"), top1_class=fraction(rows, "class_right"),
         informative_cases=len(inf), top1_kind_informative=fraction(inf, "kind_right"),
         top1_class_informative=fraction(inf, "class_right"),
@@ -228,6 +229,9 @@ def main():
     ap.add_argument("--design", default="mixed", choices=["mixed", "informative"])
     ap.add_argument("--floors", default="flexible", choices=["flexible", "stiff"],
                     help="shear_building: beam-to-column stiffness 10-100 or 1000-10000")
+    ap.add_argument("--foundation", default="clamped", choices=["clamped", "springs"],
+                    help="plane_frame: column bases clamped (default), or on rotational "
+                         "springs in model and truth, with soft_foundation among the kinds")
     ap.add_argument("--noise-free", action="store_true",
                     help="draw the noise but do not add it (the studies state it)")
     ap.add_argument("--stated-model-error", type=float, default=0.0,
@@ -240,6 +244,8 @@ def main():
     args = ap.parse_args()
     if args.cases < 1:
         ap.error("--cases must be at least 1")
+    if args.foundation != "clamped" and args.suite != "plane_frame":
+        ap.error("--foundation springs: only the plane_frame suite has column bases")
     if not (0 <= args.stated_model_error < 1):
         ap.error("--stated-model-error must be in [0, 1)")
     if not (os.path.isfile(args.femup) and os.access(args.femup, os.X_OK)):
@@ -252,7 +258,8 @@ def main():
     truths = []
     for i in range(args.cases):
         name = "%s_%03d" % (args.suite, i)
-        study, truth = gen.make_case(rng, name, args.design, args.noise_free, args.floors)
+        study, truth = gen.make_case(rng, name, args.design, args.noise_free, args.floors,
+                                     args.foundation)
         if args.stated_model_error > 0:
             study["frequency_noise"] = math.hypot(study["frequency_noise"],
                                                   args.stated_model_error)

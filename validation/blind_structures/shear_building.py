@@ -252,7 +252,8 @@ class Effect:
         return "no effect"
 
 
-def make_case(rng, name, design="mixed", noise_free=False, floors="flexible"):
+def make_case(rng, name, design="mixed", noise_free=False, floors="flexible",
+              foundation="clamped"):
     """One case: the study's data (chain model + measured modes) and its truth."""
     p = random_building(rng, floors)
     ns = p["storeys"]

@@ -88,7 +88,8 @@ class SummaryTest(unittest.TestCase):
             t["name"] = "c%d" % i
             rows.append(run_suite.score(t, d))
         args = types.SimpleNamespace(suite="shear_building", seed=1, noise_free=False,
-                                     floors="flexible", design="mixed", stated_model_error=0.0)
+                                     floors="flexible", foundation="clamped", design="mixed",
+                                     stated_model_error=0.0)
         s = run_suite.summarise(rows, args)
         self.assertEqual(s["cases"], 4)
         self.assertAlmostEqual(s["top1_kind"], 0.5)
