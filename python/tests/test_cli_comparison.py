@@ -129,3 +129,19 @@ def test_structure_diagnosis_matches_diagnosis_json(run_cli):
             assert m.name == em["name"] and m.unit == em["unit"]
             close(m.value, em["value"], rel=1e-9)
     close(result.ranking.temperature, expected["temperature"])
+
+
+def test_the_two_diagnosis_pipelines_directly_and_their_refusals():
+    cantilever = femup.load_study(str(EXAMPLES / "diagnosis" / "added_mass.yaml"))
+    building = femup.load_study(str(EXAMPLES / "diagnosis" / "shear_building.yaml"))
+    direct = femup.run_diagnosis(cantilever)
+    assert direct.verdict == femup.diagnose(cantilever).verdict
+    structure = femup.run_structure_diagnosis(building)
+    assert (structure.classes[0].kind, structure.classes[0].region) == (
+        "stiffness_loss", "element 3")
+    # Each pipeline refuses the other's model, naming the study.
+    with pytest.raises(femup.InputError, match="model"):
+        femup.run_diagnosis(building)
+    with pytest.raises(femup.InputError):
+        femup.run_structure_diagnosis(
+            femup.load_study(str(EXAMPLES / "space_frame" / "jacket.yaml")))
