@@ -13,6 +13,7 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <Eigen/SparseCholesky>
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <string>
@@ -586,6 +587,88 @@ TEST(SpaceFrameBuild, AddedMassActsOnWetMembersTransversely) {
   // Z: only the wet horizontals, all 7.
   const Eigen::VectorXd uz = Translation(m.num_dofs(), 2);
   EXPECT_NEAR(uz.dot(ma * uz), (3 * 12 + 4 * 15) * mu_hor, 1e-12 * uz.dot(ma * uz));
+}
+
+// The Structure the diagnosis acts on (BuildSpaceFrameStructure) is the
+// generator's own grouping: its elements sum to the model's K and M, each
+// element's stiffness is its stiffness factor's basis, a level's elements'
+// masses sum to that level's mass basis and the wet ones carry their added-mass
+// factor's basis.
+TEST(SpaceFrameStructure, ElementsSumToTheModelAndMatchItsFactors) {
+  SpaceFrameSpec spec;
+  spec.levels = 3;
+  spec.bays_x = 2;
+  spec.bays_y = 1;
+  spec.bay_width_y = 12.0;
+  spec.elements_per_member = 2;
+  spec.blocks_per_level = 2;
+  spec.water_depth = 15.0;
+  const ParametrisedModel m = BuildSpaceFrame(spec);
+  const Structure s = BuildSpaceFrameStructure(spec);
+  EXPECT_EQ(s.type, "space_frame");
+  ASSERT_EQ(s.dof_labels, m.dof_labels());
+  auto max_abs = [](const SparseMatrix& a) {
+    double x = 0;
+    for (int j = 0; j < a.outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(a, j); it; ++it)
+        x = std::max(x, std::abs(it.value()));
+    return x;
+  };
+  const double k_scale = max_abs(m.stiffness());
+  const double m_scale = max_abs(m.mass());
+  EXPECT_LT(max_abs(s.stiffness - m.stiffness()), 1e-12 * k_scale);
+  EXPECT_LT(max_abs(s.mass - m.mass()), 1e-12 * m_scale);
+  const int n = m.num_dofs();
+  SparseMatrix k_sum(n, n), m_sum(n, n);
+  std::vector<SparseMatrix> level_mass(spec.levels, SparseMatrix(n, n));
+  int wet = 0;
+  const std::vector<int> stiffness = m.ParametersOfKind(ParameterKind::kStiffness);
+  ASSERT_EQ(s.elements.size(), stiffness.size());
+  for (std::size_t i = 0; i < s.elements.size(); ++i) {
+    const ElementMatrices& e = s.elements[i];
+    EXPECT_EQ(e.id, static_cast<int>(i) + 1);
+    EXPECT_EQ("stiffness[" + e.label + "]", m.parameter(stiffness[i]).name);
+    EXPECT_LT(max_abs(e.stiffness - m.parameter(stiffness[i]).basis.ToSparse()),
+              1e-12 * k_scale);
+    k_sum += e.stiffness;
+    m_sum += e.mass;
+    const int level = std::stoi(e.label.substr(1, e.label.find(':') - 1));
+    EXPECT_DOUBLE_EQ(e.x0, (level - 1) * spec.level_height);
+    EXPECT_DOUBLE_EQ(e.x1, level * spec.level_height);
+    level_mass[level - 1] += e.mass;
+    const int w = m.FindParameter("added_mass[" + e.label + "]");
+    EXPECT_EQ(e.wet, w >= 0) << e.label;
+    if (w >= 0) {
+      ++wet;
+      EXPECT_LT(max_abs(e.added_mass_basis - m.parameter(w).basis.ToSparse()),
+                1e-12 * m_scale);
+    } else {
+      EXPECT_EQ(e.added_mass_basis.nonZeros(), 0) << e.label;
+    }
+  }
+  EXPECT_EQ(wet, static_cast<int>(m.ParametersOfKind(ParameterKind::kAddedMass).size()));
+  EXPECT_GT(wet, 0);
+  EXPECT_LT(max_abs(k_sum - m.stiffness()), 1e-12 * k_scale);
+  EXPECT_LT(max_abs(m_sum - m.mass()), 1e-12 * m_scale);
+  for (int level = 1; level <= spec.levels; ++level) {
+    const int p = m.FindParameter("mass[l" + std::to_string(level) + "]");
+    ASSERT_GE(p, 0);
+    EXPECT_LT(max_abs(level_mass[level - 1] - m.parameter(p).basis.ToSparse()),
+              1e-12 * m_scale);
+  }
+  // Nodes with their coordinates; attached masses looked for at the six
+  // joints of the top level only.
+  ASSERT_EQ(6 * s.nodes.size(), static_cast<std::size_t>(n));
+  EXPECT_EQ(s.nodes[0].name, "n1");
+  EXPECT_TRUE(s.nodes[0].xyz.isApprox(Eigen::Vector3d(0, 0, 10)));
+  ASSERT_EQ(s.attached_mass_nodes.size(), 6u);
+  for (const std::string& name : s.attached_mass_nodes) {
+    const auto at =
+        std::find_if(s.nodes.begin(), s.nodes.end(),
+                     [&](const ModelNode& node) { return node.name == name; });
+    ASSERT_NE(at, s.nodes.end());
+    EXPECT_DOUBLE_EQ(at->xyz.z(), 30.0) << name;
+  }
 }
 
 TEST(SpaceFrameModes, SparseShiftInvertMatchesDense) {

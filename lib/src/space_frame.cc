@@ -6,6 +6,7 @@
 #include <cmath>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "assembly.h"
@@ -453,6 +454,100 @@ ParametrisedModel BuildSpaceFrame(const SpaceFrameSpec& spec) {
         q, {"wet", kMemberNames[q % kMemberKinds]});
   }
   return model;
+}
+
+Structure BuildSpaceFrameStructure(const SpaceFrameSpec& spec) {
+  const SpaceFrameGeometryData g = SpaceFrameGeometry(spec);
+  const std::vector<SpaceFrameElement>& elements = g.elements;
+  const int n = 6 * static_cast<int>(g.nodes.size());
+  const int blocks = spec.blocks_per_level;
+  const int groups = spec.levels * blocks * kMemberKinds;
+  const BeamTheory theory = spec.theory;
+
+  // The stiffness factors' grouping for stiffness and mass alike; the added-mass
+  // factors' grouping (wet elements only) for the added-mass bases.
+  const Grouping by_group = GroupElements(
+      elements, groups, [&](const SpaceFrameElement& e) { return GroupOf(e, blocks); });
+  const Grouping wet_by_group = GroupElements(
+      elements, groups,
+      [&](const SpaceFrameElement& e) { return e.wet ? GroupOf(e, blocks) : -1; });
+  std::vector<BasisMatrix> k_groups, m_groups, w_groups;
+  Structure s;
+  s.stiffness = AssembleGroups(
+      n, elements, by_group,
+      [&](const SpaceFrameElement& e) {
+        return Frame3dStiffness(SectionOf(spec, e.member), e.end1, e.end2, e.reference,
+                                theory);
+      },
+      true, &k_groups);
+  s.mass = AssembleGroups(
+      n, elements, by_group,
+      [&](const SpaceFrameElement& e) {
+        return Frame3dConsistentMass(SectionOf(spec, e.member), e.end1, e.end2,
+                                     e.reference, theory);
+      },
+      true, &m_groups);
+  AssembleGroups(
+      n, elements, wet_by_group,
+      [&](const SpaceFrameElement& e) {
+        const FrameSection3d& sec = SectionOf(spec, e.member);
+        return Frame3dTransverseMass(sec.rho * sec.A, e.end1, e.end2, e.reference);
+      },
+      false, &w_groups);
+
+  std::ostringstream d;
+  d << "space frame, " << spec.bays_x << " x " << spec.bays_y << " bays, " << spec.levels
+    << " levels of " << spec.level_height << " m, " << ToString(spec.bracing)
+    << " bracing, water " << spec.water_depth << " m";
+  s.type = "space_frame";
+  s.description = d.str();
+  s.length = spec.levels * spec.level_height;
+  s.dof_labels.reserve(n);
+  s.dof_positions.reserve(n);
+  for (std::size_t k = 0; k < g.nodes.size(); ++k) {
+    const std::string node = "n" + std::to_string(k + 1);
+    for (const char* c : {":ux", ":uy", ":uz", ":rx", ":ry", ":rz"}) {
+      s.dof_labels.push_back(node + c);
+      s.dof_positions.push_back(g.nodes[k].z());
+    }
+    s.nodes.push_back({node, g.nodes[k]});
+  }
+  // Shape plots: the sway (ux) of the corner leg at X = Y = 0, bottom to top.
+  std::vector<std::pair<double, int>> leg;
+  for (std::size_t k = 0; k < g.nodes.size(); ++k) {
+    const Eigen::Vector3d& p = g.nodes[k];
+    if (std::abs(p.x()) < 1e-9 && std::abs(p.y()) < 1e-9)
+      leg.emplace_back(p.z(), static_cast<int>(6 * k));
+  }
+  std::sort(leg.begin(), leg.end());
+  for (const auto& [z, dof] : leg) s.plot_dofs.push_back(dof);
+  // Attached-mass candidates: the joints of the top level (the first nodes of
+  // the top level's block in the node order), where decks and equipment sit.
+  const int per_level = (spec.bays_x + 1) * (spec.bays_y + 1);
+  for (int k = (spec.levels - 1) * per_level; k < spec.levels * per_level; ++k)
+    s.attached_mass_nodes.push_back("n" + std::to_string(k + 1));
+
+  const double h = spec.level_height;
+  for (int q = 0; q < groups; ++q) {
+    if (by_group.offset[q + 1] == by_group.offset[q]) continue;
+    const int kind = q % kMemberKinds, block = (q / kMemberKinds) % blocks;
+    const int level = q / (kMemberKinds * blocks) + 1;
+    ElementMatrices e;
+    e.id = static_cast<int>(s.elements.size()) + 1;
+    e.label = "l" + std::to_string(level) + ":" + kMemberNames[kind] +
+              std::to_string(block + 1);
+    e.stiffness = k_groups[q].ToSparse();
+    e.mass = m_groups[q].ToSparse();
+    e.wet = wet_by_group.offset[q + 1] > wet_by_group.offset[q];
+    e.added_mass_basis = e.wet ? w_groups[q].ToSparse() : SparseMatrix(n, n);
+    e.x0 = (level - 1) * h;
+    e.x1 = level * h;
+    k_groups[q] = BasisMatrix();
+    m_groups[q] = BasisMatrix();
+    w_groups[q] = BasisMatrix();
+    s.elements.push_back(std::move(e));
+  }
+  return s;
 }
 
 }  // namespace femup

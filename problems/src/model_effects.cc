@@ -375,7 +375,8 @@ std::vector<std::unique_ptr<ModelEffect>> CreateModelEffects(
           s, EffectRegion{"element " + s.elements[e].label, {e}, {}}));
     }
   } else if (kind == "attached_mass") {
-    // One instance per node with translational DOFs, in DOF order.
+    // One instance per node with translational DOFs, in DOF order (only the
+    // structure's attached_mass_nodes where it names them).
     const double m_ref = ReferenceMass(s);
     std::vector<std::string> order;
     std::map<std::string, std::vector<int>> dofs;
@@ -392,6 +393,9 @@ std::vector<std::unique_ptr<ModelEffect>> CreateModelEffects(
       dofs[node].push_back(i);
     }
     for (const std::string& node : order) {
+      const auto& only = s.attached_mass_nodes;
+      if (!only.empty() && std::find(only.begin(), only.end(), node) == only.end())
+        continue;
       out.push_back(std::make_unique<AttachedMass>(
           s, EffectRegion{"node " + node, {}, dofs[node]}, m_ref, position[node]));
     }

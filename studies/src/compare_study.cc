@@ -28,7 +28,10 @@ CompareResult RunCompare(const std::vector<std::string>& study_paths) {
     const Eigen::VectorXd& d = r.updates.back().solution.x;
     for (int i : study.model.ParametersOfKind(ParameterKind::kAddedMass)) {
       for (int e : study.model.parameter(i).elements) {
-        const int k = study.structure.FindElement(e);
+        // A space frame's factors list geometry elements, not the Structure's
+        // groups (space_frame.h): no element length to take from it.
+        const int k =
+            study.structure.type == "space_frame" ? -1 : study.structure.FindElement(e);
         if (k < 0) continue;
         x0.push_back(study.structure.elements[k].x0);
         x1.push_back(study.structure.elements[k].x1);

@@ -16,6 +16,13 @@ namespace femup {
 StructureDiagnosisResult RunStructureDiagnosis(const Study& study) {
   if (study.measurements.empty())
     throw InputError(study.path, "measurements: missing (nothing to diagnose)");
+  if (study.structure.stiffness.rows() == 0 && study.structure.type == "space_frame") {
+    throw InputError(study.path,
+                     "model: femup diagnose runs on space_frame models up to 60000 DOF "
+                     "(each stiffness group's matrices are held apart); this one has " +
+                         std::to_string(study.model.num_dofs()) +
+                         ": fewer levels, bays or elements_per_member");
+  }
   if (study.structure.stiffness.rows() == 0) {
     throw InputError(
         study.path, "model.type: femup diagnose does not run on " + study.structure.type +

@@ -41,6 +41,10 @@ constexpr long long kFuzzingMaxSpaceFrameDofs = 3000;  // otherwise Validate's 5
 #else
 constexpr int kMaxCantileverElements = 5000;
 #endif
+// Space frames up to this size get a Structure of per-group matrices (about
+// groups x 3 n x n sparse matrices) for femup diagnose; larger ones only
+// what femup run needs.
+constexpr int kMaxDiagnosedSpaceFrameDofs = 60000;
 
 // A YAML node with its field path, for messages like
 // "study.yaml:12:5: model.section.E: expected a number, found 'abc'".
@@ -699,9 +703,16 @@ ParametrisedModel ReadSpaceFrame(const Field& m, Structure* structure) {
   ParametrisedModel model;
   try {
     model = BuildSpaceFrame(spec);
+    if (model.num_dofs() <= kMaxDiagnosedSpaceFrameDofs) {
+      // Every group's matrices, the nodes and heights: femup diagnose acts on them.
+      *structure = BuildSpaceFrameStructure(spec);
+      return model;
+    }
   } catch (const InputError& e) {
     m.Fail(e.what());
   }
+  // Too large to hold each group's matrices (femup diagnose refuses it):
+  // description, labels and heights for femup run.
   std::ostringstream d;
   d << "space frame, " << spec.bays_x << " x " << spec.bays_y << " bays, " << spec.levels
     << " levels of " << spec.level_height << " m, " << ToString(spec.bracing)

@@ -71,7 +71,10 @@ AddedMassSummary SummariseAddedMass(const Study& study, const Eigen::VectorXd& d
     for (int e : model.parameter(i).elements) {
       sum += d[i];
       ++a.wet_elements;
-      const int k = study.structure.FindElement(e);
+      // A space frame's factors list geometry elements, not the Structure's
+      // groups (space_frame.h): no element length to take from it.
+      const int k =
+          study.structure.type == "space_frame" ? -1 : study.structure.FindElement(e);
       if (k >= 0) {
         const ElementMatrices& em = study.structure.elements[k];
         a.wet_length_m += em.x1 - em.x0;

@@ -50,6 +50,7 @@
 
 #include "femup/frame3d.h"
 #include "femup/model.h"
+#include "femup/structure.h"
 
 namespace femup {
 
@@ -128,5 +129,20 @@ SpaceFrameSize SpaceFrameModelSize(const SpaceFrameSpec& spec);
 // Throws InputError naming the field ("model.bays_x", "model.legs.Iy") for an
 // invalid spec.
 ParametrisedModel BuildSpaceFrame(const SpaceFrameSpec& spec);
+
+// The same frame as a Structure (type "space_frame") for the diagnosis
+// (model_effects.h): one element per stiffness group of BuildSpaceFrame, in
+// its order and labelled as its factors ("l2:legs1" for
+// "stiffness[l2:legs1]"), each with the group's stiffness (equal to the
+// factor's basis), the consistent mass of the same elements (a level's groups
+// sum to the basis of "mass[l<k>]"), and, when some of them are wet, the
+// added-mass basis of "added_mass[...]" (else an empty n x n matrix); x0, x1
+// are the bounds of the group's level (m). stiffness and mass are the model's
+// K and M. Nodes: every free node "n<k>" with its coordinates; no supports
+// (the base is clamped). attached_mass_nodes: the joints of the top level.
+// Every group is held as n x n sparse matrices (n = 6 x free nodes), so the
+// memory grows with groups x n: meant for models up to about 10^5 DOF.
+// Throws as BuildSpaceFrame.
+Structure BuildSpaceFrameStructure(const SpaceFrameSpec& spec);
 
 }  // namespace femup

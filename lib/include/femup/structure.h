@@ -58,6 +58,10 @@ struct Structure {
   std::vector<ModelNode> nodes;
   // Supports that are springs in the model (rigid supports have no DOF here).
   std::vector<SupportSpring> supports;
+  // The nodes (ModelNode::name) where the diagnosis looks for an attached
+  // mass; empty: every node with translational DOFs. Large models name a few
+  // (a space frame: the joints of its top level), not thousands of fits.
+  std::vector<std::string> attached_mass_nodes;
   // Index of the element with the given id, or -1.
   int FindElement(int id) const;
 };
