@@ -7,7 +7,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <iomanip>
 #include <random>
 #include <set>
@@ -545,6 +548,131 @@ diagnosis:
   for (const char* k : {"none", "stiffness_loss", "material_scaling", "attached_mass"})
     EXPECT_TRUE(kinds.count(k)) << k;
   EXPECT_NE(StructureDiagnosisReport(r).find("space_frame model"), std::string::npos);
+}
+
+// The bundled example examples/diagnosis/jacket.yaml: its "measured" modes are
+// the generator's with Timoshenko elements, 4 per member (the model: Euler-
+// Bernoulli, 2), and the braces of level 2 softened by 40 % through the
+// generator's own factor; 6 modes, ux and uy at the leg joints, noise 0.2 % /
+// 2 % from a portable draw (mt19937, Box-Muller). Written by
+//   FEMUP_WRITE_JACKET_EXAMPLE=examples/diagnosis/jacket.yaml
+//   build/tests/femup_tests --gtest_filter=JacketExample.*
+// (the variable set on the command).
+// (FEMUP_WRITE_LARGE_JACKET=FILE writes the same for the 10,560-DOF frame of
+// examples/space_frame/jacket.yaml, for timing). Without them the test checks
+// that the example's frequencies are those modes within 5 sigma.
+struct JacketCase {
+  SpaceFrameSpec model;
+  int truth_elements_per_member = 4;
+  std::string damaged = "l2:braces1";
+  double loss = 0.4;
+  int num_modes = 6;
+};
+
+JacketCase SmallJacketCase() {
+  JacketCase c;
+  c.model = SmallJacket();
+  c.model.water_depth = 12;
+  return c;
+}
+
+JacketCase LargeJacketCase() {
+  JacketCase c;
+  c.model.levels = 10;
+  c.model.bays_x = 2;
+  c.model.bays_y = 2;
+  c.model.elements_per_member = 4;
+  c.model.blocks_per_level = 2;
+  c.model.water_depth = 30;
+  c.truth_elements_per_member = 6;
+  c.damaged = "l2:braces1";
+  return c;
+}
+
+Modes TruthModes(const JacketCase& c, ParametrisedModel* truth_out) {
+  SpaceFrameSpec t = c.model;
+  t.theory = BeamTheory::kTimoshenko;
+  t.elements_per_member = c.truth_elements_per_member;
+  ParametrisedModel truth = BuildSpaceFrame(t);
+  Eigen::VectorXd d = Eigen::VectorXd::Zero(truth.num_parameters());
+  d[truth.FindParameter("stiffness[" + c.damaged + "]")] = -c.loss;
+  EigenOptions o;
+  o.num_modes = c.num_modes;
+  const Modes modes = SolveModes(truth.UpdatedStiffness(d), truth.UpdatedDryMass(d), o);
+  *truth_out = std::move(truth);
+  return modes;
+}
+
+std::string JacketYaml(const JacketCase& c, const std::string& name) {
+  ParametrisedModel truth;
+  const Modes modes = TruthModes(c, &truth);
+  const int joints = (c.model.bays_x + 1) * (c.model.bays_y + 1) * c.model.levels;
+  std::vector<std::string> sensors;
+  for (int node = 1; node <= joints; ++node)
+    for (const char* comp : {":ux", ":uy"})
+      sensors.push_back("n" + std::to_string(node) + comp);
+  std::mt19937 rng(20261126);
+  auto normal = [&rng]() {  // Box-Muller on mt19937's own (portable) output
+    const double u1 = (rng() + 1.0) / 4294967297.0, u2 = (rng() + 1.0) / 4294967297.0;
+    return std::sqrt(-2 * std::log(u1)) * std::cos(2 * M_PI * u2);
+  };
+  std::ostringstream y;
+  y << std::setprecision(10);
+  const SpaceFrameSpec& m = c.model;
+  y << "name: " << name << "\ndescription: \"Jacket, braces of " << c.damaged.substr(0, 2)
+    << " damaged\"\nmodel:\n  type: space_frame\n  bays_x: " << m.bays_x
+    << "\n  bays_y: " << m.bays_y << "\n  levels: " << m.levels
+    << "\n  level_height: " << m.level_height << "\n  bay_width_x: " << m.bay_width_x
+    << "\n  bay_width_y: " << m.bay_width_y
+    << "\n  elements_per_member: " << m.elements_per_member
+    << "\n  blocks_per_level: " << m.blocks_per_level
+    << "\n  bracing: x\n  water_depth: " << m.water_depth
+    << "\n  legs: {diameter: 1.2, wall: 0.03}\n  braces: {diameter: 0.6, wall: "
+       "0.015}\n  horizontals: {diameter: 0.6, wall: 0.015}\nmeasurements:\n  - state: "
+       "test\n    frequencies_hz: [";
+  for (int j = 0; j < c.num_modes; ++j)
+    y << (j ? ", " : "") << modes.FrequenciesHz()[j] * (1 + 0.002 * normal());
+  y << "]\n    sensors: [";
+  for (std::size_t i = 0; i < sensors.size(); ++i)
+    y << (i ? ", " : "") << '"' << sensors[i] << '"';
+  y << "]\n    shapes:\n";
+  for (int j = 0; j < c.num_modes; ++j) {
+    Eigen::VectorXd s(sensors.size());
+    for (std::size_t i = 0; i < sensors.size(); ++i)
+      s[static_cast<Eigen::Index>(i)] = modes.shapes(truth.FindDof(sensors[i]), j);
+    const double peak = s.cwiseAbs().maxCoeff();
+    y << "      - [";
+    for (Eigen::Index i = 0; i < s.size(); ++i)
+      y << (i ? ", " : "") << (s[i] + 0.02 * peak * normal()) / peak;
+    y << "]\n";
+  }
+  y << "diagnosis:\n  noise: {frequency: 0.002, shape: 0.02}\n";
+  return y.str();
+}
+
+TEST(JacketExample, DataAreTheTimoshenkoGeneratorsModes) {
+  if (const char* path = std::getenv("FEMUP_WRITE_LARGE_JACKET")) {
+    std::ofstream(path) << JacketYaml(LargeJacketCase(), "jacket_10560_dof");
+  }
+  const JacketCase c = SmallJacketCase();
+  const std::string example = std::string(FEMUP_EXAMPLES_DIR) + "/diagnosis/jacket.yaml";
+  if (const char* path = std::getenv("FEMUP_WRITE_JACKET_EXAMPLE")) {
+    std::ifstream in(example);
+    std::string header, line;
+    while (std::getline(in, line) && line.rfind("#", 0) == 0) header += line + "\n";
+    const std::string text = header + JacketYaml(c, "diagnosis_jacket");
+    std::ofstream(path) << text;
+  }
+  const Study study = LoadStudy(example);
+  ParametrisedModel truth;
+  const Modes modes = TruthModes(c, &truth);
+  ASSERT_EQ(study.measurements.size(), 1u);
+  const Eigen::VectorXd& hz = study.measurements[0].data.frequencies_hz;
+  ASSERT_EQ(hz.size(), c.num_modes);
+  for (int j = 0; j < c.num_modes; ++j)
+    EXPECT_NEAR(hz[j] / modes.FrequenciesHz()[j], 1.0, 5 * 0.002) << j;
+  // The model is the truth's coarser Euler-Bernoulli sibling.
+  EXPECT_EQ(study.model.num_dofs(), BuildSpaceFrame(c.model).num_dofs());
 }
 
 }  // namespace
