@@ -229,6 +229,34 @@ TEST_F(PlotTest, BarSeriesAreOffsetSideBySide) {
   EXPECT_NE(script.find("set xrange [0.5:5.5]"), std::string::npos);
 }
 
+TEST_F(PlotTest, SeriesColourWidthAndEqualAxesReachTheScript) {
+  std::string stem = MakeTempDir() + "/looks";
+  Figure figure;
+  Plot plot;
+  plot.equal_axes = true;
+  PlotSeries line{"line", PlotSeries::Style::kLines, {0, 1}, {0, 1}, {}, {}};
+  line.color = "#1a2B3c";
+  line.width = 4;
+  PlotSeries dots{"dots", PlotSeries::Style::kPoints, {0, 1}, {1, 0}, {}, {}};
+  dots.width = 2.5;
+  plot.series = {line, dots};
+  figure.panels.push_back(plot);
+  ScopedPath no_gnuplot(MakeTempDir());
+  RenderFigure(figure, stem);
+  const std::string script = ReadFile(stem + ".gp");
+  EXPECT_NE(script.find("with lines lw 4 lc rgb '#1a2B3c'"), std::string::npos) << script;
+  EXPECT_NE(script.find("with points pt 7 ps 2.5 title"), std::string::npos);
+  EXPECT_NE(script.find("set size ratio -1"), std::string::npos);
+  // Only #rrggbb reaches gnuplot's script: nothing else can be injected.
+  for (const std::string bad : {"red", "#12345", "#12345g", "#123456' lw 9"}) {
+    figure.panels[0].series[0].color = bad;
+    EXPECT_THROW(RenderFigure(figure, stem), InputError) << bad;
+  }
+  figure.panels[0].series[0].color = "";
+  figure.panels[0].series[0].width = -1;
+  EXPECT_THROW(RenderFigure(figure, stem), InputError);
+}
+
 TEST_F(PlotTest, DataFileHasOneBlockPerSeriesWithNaNForGaps) {
   std::string stem = MakeTempDir() + "/blocks";
   Figure figure = EveryStyleFigure();

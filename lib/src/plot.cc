@@ -174,6 +174,18 @@ void Validate(const Figure& figure, const std::string& stem) {
     for (size_t s = 0; s < plot.series.size(); ++s) {
       const PlotSeries& series = plot.series[s];
       std::string where = SeriesName(p, plot, s, series);
+      const bool hex_color =
+          series.color.size() == 7 && series.color[0] == '#' &&
+          std::all_of(series.color.begin() + 1, series.color.end(), [](char c) {
+            return std::isxdigit(static_cast<unsigned char>(c));
+          });
+      if (!series.color.empty() && !hex_color) {
+        throw InputError(
+            where, "color '" + Printable(series.color) + "' is not of the form #rrggbb");
+      }
+      if (!(series.width >= 0) || !std::isfinite(series.width)) {
+        throw InputError(where, "width must be >= 0 and finite");
+      }
       if (series.x.size() != series.y.size()) {
         throw InputError(where, "x has " + std::to_string(series.x.size()) +
                                     " values but y has " +
@@ -256,18 +268,23 @@ BarLayout LayOutBars(const Plot& plot) {
   return layout;
 }
 
-// The `using` and `with` clauses of one series.
+// The `using` and `with` clauses of one series, with its colour and width
+// (the series' own, or the style's).
 std::string PlotClause(const Plot& plot, const PlotSeries& series, double bar_width,
                        double bar_offset) {
+  const auto width = [&](double style_default) {
+    return Number(series.width > 0 ? series.width : style_default);
+  };
+  const std::string color = series.color.empty() ? "" : " lc rgb '" + series.color + "'";
   switch (series.style) {
     case Style::kLines:
-      return "using 1:2 with lines lw 2";
+      return "using 1:2 with lines lw " + width(2) + color;
     case Style::kPoints:
-      return "using 1:2 with points pt 7 ps 0.8";
+      return "using 1:2 with points pt 7 ps " + width(0.8) + color;
     case Style::kLinesPoints:
-      return "using 1:2 with linespoints lw 1.5 pt 7 ps 0.8";
+      return "using 1:2 with linespoints lw " + width(1.5) + " pt 7 ps 0.8" + color;
     case Style::kErrorBars:
-      return "using 1:2:3:4 with yerrorbars lw 1.5 pt 7 ps 0.8";
+      return "using 1:2:3:4 with yerrorbars lw " + width(1.5) + " pt 7 ps 0.8" + color;
     case Style::kBars: {
       std::string using_clause;
       if (plot.log_x) {
@@ -282,7 +299,7 @@ std::string PlotClause(const Plot& plot, const PlotSeries& series, double bar_wi
         using_clause = "using ($1" + std::string(bar_offset > 0 ? "+" : "") +
                        Number(bar_offset) + "):2:(" + Number(bar_width) + ")";
       }
-      return using_clause + " with boxes fill solid 0.7 border -1";
+      return using_clause + " with boxes fill solid 0.7 border -1" + color;
     }
   }
   return "using 1:2";
@@ -532,6 +549,7 @@ PlotStatus RenderFigure(const Figure& figure, const std::string& stem) {
     } else if (bars.width > 0 && !plot.log_y) {
       script << "set yrange [*<0:0<*]  # bars stand on y = 0\n";
     }
+    if (plot.equal_axes) script << "set size ratio -1  # x and y to the same scale\n";
 
     bool any_title = false;
     for (const auto& series : plot.series) any_title = any_title || !series.title.empty();

@@ -15,6 +15,10 @@ struct PlotSeries {
   std::vector<double> y;
   std::vector<double> y_low;   // kErrorBars only: lower ends
   std::vector<double> y_high;  // kErrorBars only: upper ends
+  // Optional: a colour ("#rrggbb") and a width (lines: line width; points:
+  // point size); empty / 0: gnuplot's next colour and the style's width.
+  std::string color = "";
+  double width = 0;
 };
 
 struct Plot {
@@ -27,6 +31,8 @@ struct Plot {
   // Optional category labels placed at x = 1, 2, ... (parameter names).
   std::vector<std::string> x_tick_labels;
   bool key_outside = false;
+  // The same scale on both axes (a structure's geometry drawn to scale).
+  bool equal_axes = false;
 };
 
 struct Figure {

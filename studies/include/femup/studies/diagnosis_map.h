@@ -1,0 +1,46 @@
+// The diagnosis map: the structure drawn to scale with the probability of each
+// local explanation where it lies — a stiffness loss on its element, an
+// attached mass at its node, a softer support at the supports — so a reader
+// sees at a glance where the gap is and how sure the diagnosis is. Global
+// explanations (material scaling, added mass, none) are named in the title.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "femup/plot.h"
+#include "femup/structure.h"
+#include "femup/studies/effect_ranking.h"
+
+namespace femup {
+
+struct DiagnosisMap {
+  struct Element {
+    std::string region;        // as the ranking names it: "element s1:beam1"
+    std::vector<double> x, y;  // its nodes along it, drawn as a polyline
+  };
+  struct Node {
+    std::string region;  // "node n7"
+    double x = 0, y = 0;
+  };
+  std::vector<Element> elements;
+  std::vector<Node> nodes;
+  std::vector<Node> supports;  // the nodes the support springs act on
+  // true: drawn from the nodes' coordinates; false: a chain or a model without
+  // coordinates, drawn as a column (element k from height k - 1 to k).
+  bool to_scale = false;
+  bool empty() const { return elements.empty(); }
+};
+
+// The geometry of `structure` as the map draws it: elements from the nodes
+// their stiffness touches (coordinates in the x-y plane, or x-z when the model
+// is 3D), nodes with translational DOFs, support nodes.
+DiagnosisMap MapGeometry(const Structure& structure);
+
+// The map's figure: the structure in grey, then each element, node and the
+// supports coloured by the probability of the explanation there (bands
+// >= 0.5, 0.1-0.5, 0.01-0.1), the global explanations in the title.
+Figure DiagnosisMapFigure(const DiagnosisMap& map, const EffectRanking& ranking,
+                          const std::string& title);
+
+}  // namespace femup

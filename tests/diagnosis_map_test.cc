@@ -1,0 +1,124 @@
+// The diagnosis map: a plane frame drawn to scale from its nodes (members as
+// polylines, clamped column feet reaching the ground), a chain drawn as a
+// column, and the probability of each local explanation placed where it lies.
+#include "femup/studies/diagnosis_map.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+
+#include "femup/builders.h"
+#include "femup/plane_frame.h"
+#include "scratch_dir.h"
+
+namespace femup {
+namespace {
+
+PlaneFrameSpec Portal() {
+  PlaneFrameSpec spec;
+  spec.storeys = 1;
+  spec.bays = 1;
+  spec.storey_height = 3.0;
+  spec.bay_width = 5.0;
+  spec.elements_per_member = 2;
+  return spec;
+}
+
+const DiagnosisMap::Element& ElementOf(const DiagnosisMap& map,
+                                       const std::string& region) {
+  for (const auto& e : map.elements)
+    if (e.region == region) return e;
+  ADD_FAILURE() << "no " << region;
+  return map.elements.front();
+}
+
+TEST(DiagnosisMap, DrawsAPlaneFrameToScale) {
+  const DiagnosisMap map = MapGeometry(BuildPlaneFrameStructure(Portal()));
+  EXPECT_TRUE(map.to_scale);
+  ASSERT_EQ(map.elements.size(), 3u);  // two columns, one beam
+  const auto& column = ElementOf(map, "element s1:col2");
+  // From the clamped foot (no DOF) through its middle node to the joint.
+  EXPECT_EQ(column.x, (std::vector<double>{5.0, 5.0, 5.0}));
+  EXPECT_EQ(column.y, (std::vector<double>{0.0, 1.5, 3.0}));
+  const auto& beam = ElementOf(map, "element s1:beam1");
+  EXPECT_EQ(beam.x, (std::vector<double>{0.0, 2.5, 5.0}));
+  EXPECT_EQ(beam.y, (std::vector<double>{3.0, 3.0, 3.0}));
+  // Every free node is a place for an attached mass; no support springs.
+  EXPECT_EQ(map.nodes.size(), 5u);
+  EXPECT_TRUE(map.supports.empty());
+  PlaneFrameSpec sprung = Portal();
+  sprung.base.rotation = 1e8;
+  const DiagnosisMap on_springs = MapGeometry(BuildPlaneFrameStructure(sprung));
+  ASSERT_EQ(on_springs.supports.size(), 2u);
+  EXPECT_EQ(on_springs.supports[1].x, 5.0);
+  EXPECT_EQ(on_springs.supports[1].y, 0.0);
+}
+
+TEST(DiagnosisMap, DrawsAChainAsAColumn) {
+  ChainSpec spec;
+  spec.masses = {1, 1, 1};
+  spec.springs = {10, 10, 10};
+  const DiagnosisMap map = MapGeometry(BuildSpringMassChain(spec));
+  EXPECT_FALSE(map.to_scale);
+  ASSERT_EQ(map.elements.size(), 3u);
+  EXPECT_EQ(map.elements[2].y, (std::vector<double>{2.0, 3.0}));
+  ASSERT_EQ(map.nodes.size(), 3u);
+  EXPECT_EQ(map.nodes[0].region, "node x1");
+  EXPECT_EQ(map.nodes[2].y, 3.0);
+}
+
+RankedClass Class(const std::string& kind, const std::string& region, double p) {
+  RankedClass c;
+  c.kind = kind;
+  c.region = region;
+  c.probability = p;
+  return c;
+}
+
+TEST(DiagnosisMap, PlacesEachExplanationWhereItLiesByItsProbability) {
+  const DiagnosisMap map = MapGeometry(BuildPlaneFrameStructure(Portal()));
+  EffectRanking r;
+  r.classes = {Class("stiffness_loss", "element s1:beam1", 0.62),
+               Class("attached_mass", "node n5", 0.2),
+               Class("stiffness_loss", "element s1:col1", 0.005),
+               Class("material_scaling", "all elements", 0.175)};
+  r.kind_probabilities = {
+      {"stiffness_loss", 0.625}, {"attached_mass", 0.2}, {"material_scaling", 0.175}};
+  const Figure f = DiagnosisMapFigure(map, r, "portal");
+  ASSERT_EQ(f.panels.size(), 1u);
+  const Plot& p = f.panels[0];
+  EXPECT_TRUE(p.equal_axes);
+  EXPECT_NE(p.title.find("everywhere: material_scaling P 0.17"), std::string::npos)
+      << p.title;
+  ASSERT_EQ(p.series.size(), 3u);  // the model, the beam, the node; not col1 (< 0.01)
+  EXPECT_EQ(p.series[0].title, "model");
+  EXPECT_EQ(p.series[1].title, "stiffness loss, P >= 0.5");
+  EXPECT_EQ(p.series[1].y[0], 3.0);
+  EXPECT_TRUE(std::isnan(p.series[1].x.back()));  // polylines broken apart
+  EXPECT_EQ(p.series[2].title, "attached mass, P 0.1-0.5");
+  EXPECT_EQ(p.series[2].style, PlotSeries::Style::kPoints);
+}
+
+TEST(DiagnosisMap, RendersWithGnuplot) {
+  if (!GnuplotAvailable()) GTEST_SKIP() << "gnuplot is not installed";
+  testing::ScratchDir dir;
+  PlaneFrameSpec spec = Portal();
+  spec.base.rotation = 1e8;
+  EffectRanking r;
+  r.classes = {Class("support_flexibility", "supports", 0.7),
+               Class("stiffness_loss", "element s1:col1", 0.3)};
+  r.kind_probabilities = {{"support_flexibility", 0.7}, {"stiffness_loss", 0.3}};
+  const Figure f =
+      DiagnosisMapFigure(MapGeometry(BuildPlaneFrameStructure(spec)), r, "x");
+  EXPECT_EQ(f.panels[0].series.back().title, "softer supports, P 0.7");
+  const PlotStatus status = RenderFigure(f, dir.File("map"));
+  ASSERT_TRUE(status.rendered) << status.message;
+  std::ifstream script(dir.File("map.gp"));
+  const std::string text((std::istreambuf_iterator<char>(script)), {});
+  EXPECT_NE(text.find("set size ratio -1"), std::string::npos);
+  EXPECT_NE(text.find("lc rgb '#e67e22'"), std::string::npos) << text;  // col1's band
+}
+
+}  // namespace
+}  // namespace femup
