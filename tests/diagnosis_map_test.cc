@@ -1,6 +1,7 @@
 // The diagnosis map: a plane frame drawn to scale from its nodes (members as
-// polylines, clamped column feet reaching the ground), a chain drawn as a
-// column, and the probability of each local explanation placed where it lies.
+// the segments their stiffness couples, clamped column feet reaching the
+// ground), a chain drawn as a column, and the probability of each local
+// explanation placed where it lies.
 #include "femup/studies/diagnosis_map.h"
 
 #include <gtest/gtest.h>
@@ -38,12 +39,13 @@ TEST(DiagnosisMap, DrawsAPlaneFrameToScale) {
   EXPECT_TRUE(map.to_scale);
   ASSERT_EQ(map.elements.size(), 3u);  // two columns, one beam
   const auto& column = ElementOf(map, "element s1:col2");
-  // From the clamped foot (no DOF) through its middle node to the joint.
-  EXPECT_EQ(column.x, (std::vector<double>{5.0, 5.0, 5.0}));
-  EXPECT_EQ(column.y, (std::vector<double>{0.0, 1.5, 3.0}));
-  const auto& beam = ElementOf(map, "element s1:beam1");
-  EXPECT_EQ(beam.x, (std::vector<double>{0.0, 2.5, 5.0}));
-  EXPECT_EQ(beam.y, (std::vector<double>{3.0, 3.0, 3.0}));
+  // Segments: joint n2 to its middle node n4, then from the clamped foot (no
+  // DOF, so reached by the member's start height) up to n4.
+  EXPECT_EQ(column.x, (std::vector<double>{5.0, 5.0, 5.0, 5.0}));
+  EXPECT_EQ(column.y, (std::vector<double>{3.0, 1.5, 0.0, 1.5}));
+  const auto& beam = ElementOf(map, "element s1:beam1");  // n1-n5, n2-n5
+  EXPECT_EQ(beam.x, (std::vector<double>{0.0, 2.5, 5.0, 2.5}));
+  EXPECT_EQ(beam.y, (std::vector<double>{3.0, 3.0, 3.0, 3.0}));
   // Every free node is a place for an attached mass; no support springs.
   EXPECT_EQ(map.nodes.size(), 5u);
   EXPECT_TRUE(map.supports.empty());

@@ -549,7 +549,11 @@ PlotStatus RenderFigure(const Figure& figure, const std::string& stem) {
     } else if (bars.width > 0 && !plot.log_y) {
       script << "set yrange [*<0:0<*]  # bars stand on y = 0\n";
     }
-    if (plot.equal_axes) script << "set size ratio -1  # x and y to the same scale\n";
+    if (plot.equal_axes) {
+      // To scale, with a margin: lines on the data's edges stay off the border.
+      script << "set size ratio -1  # x and y to the same scale\n"
+             << "set offsets graph 0.06, graph 0.06, graph 0.06, graph 0.06\n";
+    }
 
     bool any_title = false;
     for (const auto& series : plot.series) any_title = any_title || !series.title.empty();

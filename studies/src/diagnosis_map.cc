@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 #include <sstream>
 
 namespace femup {
@@ -31,6 +32,14 @@ std::map<std::string, double> RegionProbability(const EffectRanking& r,
   return p;
 }
 
+// Each segment of `e`, broken from the next by a NaN point.
+void AddSegments(const DiagnosisMap::Element& e, PlotSeries* series) {
+  for (std::size_t i = 0; i + 1 < e.x.size(); i += 2) {
+    series->x.insert(series->x.end(), {e.x[i], e.x[i + 1], NAN});
+    series->y.insert(series->y.end(), {e.y[i], e.y[i + 1], NAN});
+  }
+}
+
 struct Band {
   double low, high;
   const char* color;
@@ -56,35 +65,40 @@ DiagnosisMap MapGeometry(const Structure& s) {
     DiagnosisMap::Element m;
     m.region = "element " + el.label;
     if (map.to_scale) {
-      // The nodes its stiffness touches, in order along it.
-      std::vector<std::string> names;
+      // Node pairs its stiffness couples: the segments to draw.
+      std::set<std::pair<std::string, std::string>> pairs;
+      std::set<std::string> touched;
       for (int k = 0; k < el.stiffness.outerSize(); ++k) {
         for (SparseMatrix::InnerIterator it(el.stiffness, k); it; ++it) {
           if (it.value() == 0) continue;
-          const std::string node = NodeOf(s.dof_labels[it.row()]);
-          if (where.count(node) &&
-              std::find(names.begin(), names.end(), node) == names.end())
-            names.push_back(node);
+          const std::string a = NodeOf(s.dof_labels[it.row()]);
+          const std::string b = NodeOf(s.dof_labels[it.col()]);
+          if (!where.count(a) || !where.count(b)) continue;
+          touched.insert(a);
+          if (a < b) pairs.insert({a, b});
         }
       }
-      std::vector<std::pair<double, double>> points;
-      for (const auto& n : names) points.push_back(plane(where[n]));
-      std::sort(points.begin(), points.end());
-      // A vertical member whose end sits on a rigid support (a node without
-      // DOFs, so not among its points) reaches down to the height it starts at.
-      const bool vertical = !points.empty() &&
-                            std::all_of(points.begin(), points.end(), [&](const auto& q) {
-                              return std::abs(q.first - points.front().first) < 1e-9;
-                            });
-      if (vertical && el.x1 > el.x0) {
-        if (points.front().second > el.x0 + 1e-9)
-          points.insert(points.begin(), {points.front().first, el.x0});
-        if (points.back().second < el.x1 - 1e-9)
-          points.push_back({points.back().first, el.x1});
+      for (const auto& [a, b] : pairs) {
+        const auto [xa, ya] = plane(where[a]);
+        const auto [xb, yb] = plane(where[b]);
+        m.x.insert(m.x.end(), {xa, xb});
+        m.y.insert(m.y.end(), {ya, yb});
       }
-      for (const auto& [x, y] : points) {
-        m.x.push_back(x);
-        m.y.push_back(y);
+      // A vertical member standing on a rigid support: its foot has no DOF,
+      // so no pair reaches it; draw it down to the height the member starts.
+      if (!touched.empty() && el.x1 > el.x0) {
+        const double x = plane(where[*touched.begin()]).first;
+        double low = INFINITY;
+        bool vertical = true;
+        for (const auto& n : touched) {
+          const auto [nx, ny] = plane(where[n]);
+          vertical = vertical && std::abs(nx - x) < 1e-9;
+          low = std::min(low, ny);
+        }
+        if (vertical && low > el.x0 + 1e-9) {
+          m.x.insert(m.x.end(), {x, x});
+          m.y.insert(m.y.end(), {el.x0, low});
+        }
       }
     } else {
       m.x = {0.0, 0.0};
@@ -138,12 +152,7 @@ Figure DiagnosisMapFigure(const DiagnosisMap& map, const EffectRanking& ranking,
   frame.style = PlotSeries::Style::kLines;
   frame.color = "#b0b0b0";
   frame.width = 1.5;
-  for (const auto& e : map.elements) {
-    frame.x.insert(frame.x.end(), e.x.begin(), e.x.end());
-    frame.y.insert(frame.y.end(), e.y.begin(), e.y.end());
-    frame.x.push_back(NAN);
-    frame.y.push_back(NAN);
-  }
+  for (const auto& e : map.elements) AddSegments(e, &frame);
   frame.title = "model";
   p.series.push_back(frame);
 
@@ -156,10 +165,7 @@ Figure DiagnosisMapFigure(const DiagnosisMap& map, const EffectRanking& ranking,
     for (const auto& e : map.elements) {
       const auto it = loss.find(e.region);
       if (it == loss.end() || it->second < b.low || it->second >= b.high) continue;
-      s.x.insert(s.x.end(), e.x.begin(), e.x.end());
-      s.y.insert(s.y.end(), e.y.begin(), e.y.end());
-      s.x.push_back(NAN);
-      s.y.push_back(NAN);
+      AddSegments(e, &s);
     }
     if (s.x.empty()) continue;
     s.title = std::string("stiffness loss, ") + b.label;

@@ -38,6 +38,7 @@ StructureDiagnosisResult RunStructureDiagnosis(const Study& study) {
   r.model_type = study.structure.type;
   r.dof_labels = study.model.dof_labels();
   r.confidence = spec.confidence;
+  r.map = MapGeometry(study.structure);
 
   EffectRankingOptions options;
   options.kinds = spec.candidates;
@@ -145,6 +146,10 @@ void WriteStructureDiagnosisOutputs(const StructureDiagnosisResult& r, bool plot
   p.series.push_back(bars);
   f.panels.push_back(p);
   RenderStaged(f, "effects", out, warnings);
+  if (!r.map.empty()) {
+    RenderStaged(DiagnosisMapFigure(r.map, k, "Where: " + r.study_name), "diagnosis_map",
+                 out, warnings);
+  }
 }
 
 std::string StructureDiagnosisReport(const StructureDiagnosisResult& r) {

@@ -16,8 +16,11 @@ namespace femup {
 
 struct DiagnosisMap {
   struct Element {
-    std::string region;        // as the ranking names it: "element s1:beam1"
-    std::vector<double> x, y;  // its nodes along it, drawn as a polyline
+    std::string region;  // as the ranking names it: "element s1:beam1"
+    // Its segments, each from (x[2i], y[2i]) to (x[2i+1], y[2i+1]): the pairs
+    // of nodes its stiffness couples (a member: node to node along it; a
+    // group of members: each of them).
+    std::vector<double> x, y;
   };
   struct Node {
     std::string region;  // "node n7"
@@ -32,9 +35,11 @@ struct DiagnosisMap {
   bool empty() const { return elements.empty(); }
 };
 
-// The geometry of `structure` as the map draws it: elements from the nodes
-// their stiffness touches (coordinates in the x-y plane, or x-z when the model
-// is 3D), nodes with translational DOFs, support nodes.
+// The geometry of `structure` as the map draws it: each element as the
+// segments between the nodes its stiffness couples (coordinates in the x-y
+// plane, or x-z when the model is 3D; a vertical member whose foot is a rigid
+// support, which has no DOF, reaches down to its start height), nodes with
+// translational DOFs, support nodes.
 DiagnosisMap MapGeometry(const Structure& structure);
 
 // The map's figure: the structure in grey, then each element, node and the

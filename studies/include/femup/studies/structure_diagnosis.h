@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "femup/output_dir.h"
+#include "femup/studies/diagnosis_map.h"
 #include "femup/studies/effect_ranking.h"
 #include "femup/studies/study.h"
 
@@ -24,6 +25,7 @@ struct StructureDiagnosisResult {
   EffectRanking ranking;
   double confidence = 0.9;
   StatedPriors priors;  // as the study states them (diagnosis.priors, weights)
+  DiagnosisMap map;     // the model's geometry, for diagnosis_map.png
 };
 
 // Throws InputError (naming the study file and field) for a study without
@@ -34,8 +36,9 @@ StructureDiagnosisResult RunStructureDiagnosis(const Study& study);
 
 // diagnosis.json (every class with kind, region, probability, chi2, evidence,
 // parameters and magnitudes; the families' probabilities; the noise
-// temperature; the families that do not apply and why; the stated priors) and
-// effects.png (the families' probabilities).
+// temperature; the families that do not apply and why; the stated priors),
+// effects.png (the families' probabilities) and diagnosis_map.png (where:
+// diagnosis_map.h).
 void WriteStructureDiagnosisOutputs(const StructureDiagnosisResult& r, bool plots,
                                     OutputDir* out, std::vector<std::string>* warnings);
 
