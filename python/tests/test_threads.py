@@ -25,14 +25,16 @@ def test_a_diagnosis_runs_while_python_keeps_running():
     result = {}
 
     def work():
-        result["diagnosis"] = femup.diagnose(study)
-        done.set()
+        try:
+            result["diagnosis"] = femup.diagnose(study)
+        finally:
+            done.set()  # also when it raises: the loop below must end
 
     worker = threading.Thread(target=work)
     start = time.perf_counter()
     worker.start()
     ticks = 0
-    while not done.is_set():
+    while not done.is_set() and time.perf_counter() - start < 300:
         time.perf_counter()  # the same work per iteration as the calibration
         ticks += 1
     elapsed = time.perf_counter() - start
