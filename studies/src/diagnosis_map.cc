@@ -14,13 +14,6 @@ std::string NodeOf(const std::string& label) {
   return colon == std::string::npos ? label : label.substr(0, colon);
 }
 
-bool IsTranslation(const std::string& label) {
-  const auto colon = label.find(':');
-  if (colon == std::string::npos) return true;  // a chain's "x3": one translation
-  const std::string c = label.substr(colon + 1);
-  return c == "ux" || c == "uy" || c == "uz" || c == "u" || c == "v" || c == "w";
-}
-
 // Probability of each region for the given kinds.
 std::map<std::string, double> RegionProbability(const EffectRanking& r,
                                                 const std::vector<std::string>& kinds) {
@@ -106,13 +99,12 @@ DiagnosisMap MapGeometry(const Structure& s) {
     }
     if (!m.x.empty()) map.elements.push_back(std::move(m));
   }
-  // Nodes that carry a translation (where an attached mass may sit).
+  // Every node of the model, where the ranking may place an attached mass
+  // (the figure marks only those it names).
   std::vector<std::string> seen;
   for (std::size_t i = 0; i < s.dof_labels.size(); ++i) {
     const std::string node = NodeOf(s.dof_labels[i]);
-    if (!IsTranslation(s.dof_labels[i]) ||
-        std::find(seen.begin(), seen.end(), node) != seen.end())
-      continue;
+    if (std::find(seen.begin(), seen.end(), node) != seen.end()) continue;
     seen.push_back(node);
     DiagnosisMap::Node n;
     n.region = "node " + node;

@@ -38,8 +38,8 @@ struct DiagnosisMap {
 // The geometry of `structure` as the map draws it: each element as the
 // segments between the nodes its stiffness couples (coordinates in the x-y
 // plane, or x-z when the model is 3D; a vertical member whose foot is a rigid
-// support, which has no DOF, reaches down to its start height), nodes with
-// translational DOFs, support nodes.
+// support, which has no DOF, reaches down to its start height), the nodes
+// with DOFs, support nodes.
 DiagnosisMap MapGeometry(const Structure& structure);
 
 // The map's figure: the structure in grey, then each element, node and the
