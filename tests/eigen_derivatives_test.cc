@@ -243,6 +243,114 @@ TEST(EigenDerivatives, RepeatedEigenvalueIsReportedNotFactorised) {
                InputError);
 }
 
+// The reduced matrix is factorised as L D L' (no pivoting) where that is
+// accurate: on a cantilever it is, and the derivative agrees with an LU solve
+// of the same reduced system.
+TEST(EigenDerivatives, SymmetricFactorIsUsedWhereItIsAccurate) {
+  CantileverSpec spec;
+  spec.node_heights = UniformHeights(1.9, 10);
+  spec.section = BeamSection{206e9, 8.8e-4, 8.53e-8, 7850};
+  spec.water_depth = 1.5;
+  const ParametrisedModel model = BuildModel(BuildCantilever(spec), PaperParameterPlan());
+  const SparseMatrix k = model.stiffness(), m = model.mass();
+  const Modes modes = SolveModes(k, m);
+  int p = 0;
+  while (model.parameter(p).kind != ParameterKind::kStiffness) ++p;
+  const SparseMatrix dk = model.parameter(p).basis.ToSparse();
+  for (int j : {0, 3}) {
+    const Eigen::VectorXd phi = modes.shapes.col(j);
+    const double lambda = modes.eigenvalues[j];
+    const NelsonSolver solver(k, m, lambda, phi);
+    ASSERT_TRUE(solver.ok()) << solver.message();
+    EXPECT_FALSE(solver.uses_lu()) << "mode " << j + 1;
+    // The same derivative from a dense solve of the bordered system
+    // [K - lambda M, M phi; phi' M, 0] [v; mu] = [f; -0.5 phi' dM phi]
+    // (Lee and Jung's algebraic method), an independent formulation.
+    const Eigen::Index n = phi.size();
+    const Eigen::MatrixXd a = Eigen::MatrixXd(k) - lambda * Eigen::MatrixXd(m);
+    const Eigen::VectorXd mphi = m * phi;
+    const double dlambda = phi.dot(dk * phi);
+    Eigen::MatrixXd bordered = Eigen::MatrixXd::Zero(n + 1, n + 1);
+    bordered.topLeftCorner(n, n) = a;
+    bordered.topRightCorner(n, 1) = -mphi;
+    bordered.bottomLeftCorner(1, n) = -mphi.transpose();
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n + 1);
+    rhs.head(n) = -(dk * phi) + dlambda * mphi;
+    const Eigen::VectorXd dense = bordered.fullPivLu().solve(rhs).head(n);
+    const EigenpairDerivative d = solver.Derivative(dk, SparseMatrix());
+    EXPECT_NEAR(d.eigenvalue, dlambda, 1e-12 * std::abs(dlambda));
+    EXPECT_LT((d.eigenvector - dense).norm(), 1e-8 * dense.norm()) << "mode " << j + 1;
+  }
+}
+
+// Where L D L' meets a zero pivot (it does not pivot), the reduced matrix is
+// factorised by LU instead, and the derivative is still exact.
+TEST(EigenDerivatives, ZeroPivotFallsBackToLu) {
+  // K - 2 I = [0 0 0; 0 0 1; 0 1 0]: phi = e1 (lambda = 2), and the reduced
+  // matrix [0 1; 1 0] has a zero first pivot in any symmetric order.
+  Eigen::MatrixXd kd = 2 * Eigen::MatrixXd::Identity(3, 3);
+  kd(1, 2) = kd(2, 1) = 1;
+  const SparseMatrix k = Sparse(kd);
+  const SparseMatrix m = Sparse(Eigen::MatrixXd::Identity(3, 3));
+  const Eigen::VectorXd phi = Eigen::Vector3d(1, 0, 0);
+  const NelsonSolver solver(k, m, 2.0, phi);
+  ASSERT_TRUE(solver.ok()) << solver.message();
+  EXPECT_TRUE(solver.uses_lu());
+  Eigen::MatrixXd dkd = Eigen::MatrixXd::Zero(3, 3);
+  dkd(0, 1) = dkd(1, 0) = 3;
+  dkd(0, 2) = dkd(2, 0) = 5;
+  const EigenpairDerivative d = solver.Derivative(Sparse(dkd), SparseMatrix());
+  // dlambda = phi' dK phi = 0; f = -dK phi = (0, -3, -5); [0 1; 1 0] v = f
+  // gives v = (0, -5, -3); c = -phi' v = 0.
+  EXPECT_NEAR(d.eigenvalue, 0.0, 1e-15);
+  EXPECT_LT((d.eigenvector - Eigen::Vector3d(0, -5, -3)).norm(), 1e-14);
+}
+
+// A repeated eigenvalue: K = diag(1, 1, 4), M = I; lambda = 1 has the
+// eigenspace {e1, e2}, and any phi = (cos t, sin t, 0) is an eigenvector. dK
+// couples the eigenspace with e3 only, so to first order every phi stays an
+// eigenvector and moves by v3 e3 with 3 v3 = -(dK phi)_3 (the closed form).
+TEST(EigenDerivatives, RepeatedEigenvalueWithItsEigenspace) {
+  const SparseMatrix k = Sparse(Eigen::Vector3d(1, 1, 4).asDiagonal().toDenseMatrix());
+  const SparseMatrix m = Sparse(Eigen::MatrixXd::Identity(3, 3));
+  Eigen::MatrixXd cluster = Eigen::MatrixXd::Zero(3, 2);
+  cluster(0, 0) = cluster(1, 1) = 1;
+  Eigen::MatrixXd dkd = Eigen::MatrixXd::Zero(3, 3);
+  dkd(0, 2) = dkd(2, 0) = 2;
+  dkd(1, 2) = dkd(2, 1) = -5;
+  const SparseMatrix dk = Sparse(dkd);
+  for (double t : {0.0, 0.3, 1.2}) {
+    const Eigen::Vector3d phi(std::cos(t), std::sin(t), 0);
+    EXPECT_FALSE(NelsonSolver(k, m, 1.0, phi).ok()) << "one row removed is singular";
+    const NelsonSolver solver(k, m, 1.0, phi, cluster);
+    ASSERT_TRUE(solver.ok()) << solver.message();
+    const EigenpairDerivative d = solver.Derivative(dk, SparseMatrix());
+    EXPECT_NEAR(d.eigenvalue, 0.0, 1e-15);
+    const double v3 = -(2 * std::cos(t) - 5 * std::sin(t)) / 3;
+    EXPECT_LT((d.eigenvector - Eigen::Vector3d(0, 0, v3)).norm(), 1e-14) << t;
+    // A mass change keeps phi' M phi = 1: -0.5 phi' dM phi phi inside.
+    const SparseMatrix dm = Sparse(Eigen::MatrixXd::Identity(3, 3));
+    const EigenpairDerivative dmass = solver.Derivative(SparseMatrix(), dm);
+    EXPECT_NEAR(dmass.eigenvalue, -1.0, 1e-15);  // -lambda phi' dM phi
+    EXPECT_LT((dmass.eigenvector + 0.5 * phi).norm(), 1e-14) << t;
+  }
+  // With a one-column "eigenspace" the solver is Nelson's own.
+  const Eigen::Vector3d e3(0, 0, 1);
+  const EigenpairDerivative a =
+      NelsonSolver(k, m, 4.0, e3).Derivative(dk, SparseMatrix());
+  const EigenpairDerivative b =
+      NelsonSolver(k, m, 4.0, e3, Eigen::MatrixXd(e3)).Derivative(dk, SparseMatrix());
+  EXPECT_GT(a.eigenvector.norm(), 1.0);
+  EXPECT_LT((a.eigenvector - b.eigenvector).norm(), 1e-15);
+  // Bad eigenspaces.
+  EXPECT_THROW(NelsonSolver(k, m, 1.0, Eigen::Vector3d(1, 0, 0), 2 * cluster), InputError)
+      << "not M-orthonormal";
+  EXPECT_THROW(NelsonSolver(k, m, 4.0, Eigen::Vector3d(0, 0, 1), cluster), InputError)
+      << "phi outside";
+  EXPECT_THROW(NelsonSolver(k, m, 1.0, Eigen::Vector3d(1, 0, 0), Eigen::MatrixXd(2, 2)),
+               InputError);
+}
+
 TEST(EigenDerivatives, BadInputThrows) {
   const SparseMatrix k = Sparse(Eigen::Vector2d(1, 4).asDiagonal().toDenseMatrix());
   const SparseMatrix m = Sparse(Eigen::MatrixXd::Identity(2, 2));

@@ -1,5 +1,6 @@
 #include "femup/problems/eigen_sensitivity.h"
 
+#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -56,6 +57,73 @@ bool Fail(std::string* why, const std::string& message) {
   return false;
 }
 
+// Model eigenvalues this close (relative) are one repeated eigenvalue: a
+// symmetric structure's pairs (a square jacket's sway modes in x and y) come out
+// of the eigensolver equal to about 1e-12, with eigenvectors in an arbitrary
+// rotation of their eigenspace that changes from one solve to the next.
+constexpr double kRepeatedEigenvalueTolerance = 1e-6;
+
+// Where paired model modes have a repeated eigenvalue, their eigenvectors are
+// replaced by the M-orthonormal combinations of the eigenspace that best match
+// the measured shapes paired with them at the sensors, and each keeps the eigenspace
+// for its derivative. Without this the shape residuals jump from one
+// evaluation to the next by the eigensolver's arbitrary rotation. The Jacobian
+// rows of these modes move the eigenspace (NelsonSolver with the cluster) but
+// hold the fitted rotation: an approximation (5 % of the column on a square
+// frame's mass, EigenSensitivity.RepeatedEigenvaluesAreRotatedToTheMeasuredShapes)
+// that slows the last iterations, not where they converge. An
+// eigenspace that may extend beyond the modes solved (it holds the last one)
+// is left as it is.
+template <typename Terms>
+void RotateRepeatedModes(const StateTerms& st, const Modes& modes,
+                         const std::vector<int>& pairing, std::vector<Terms>* terms) {
+  const Eigen::Index num = modes.size();
+  Eigen::Index first = 0;
+  while (first < num) {
+    Eigen::Index last = first;  // the eigenspace is modes first..last
+    while (last + 1 < num &&
+           modes.eigenvalues[last + 1] - modes.eigenvalues[last] <=
+               kRepeatedEigenvalueTolerance * std::abs(modes.eigenvalues[last + 1])) {
+      ++last;
+    }
+    std::vector<Eigen::Index> measured;
+    for (std::size_t j = 0; j < pairing.size(); ++j) {
+      if (pairing[j] >= first && pairing[j] <= last)
+        measured.push_back(static_cast<Eigen::Index>(j));
+    }
+    if (last > first && last + 1 < num && !measured.empty()) {
+      const Eigen::MatrixXd basis = modes.shapes.middleCols(first, last - first + 1);
+      const Eigen::MatrixXd at_sensors = basis(st.sensors, Eigen::all);
+      const Eigen::MatrixXd targets = st.targets(Eigen::all, measured);
+      // Each measured shape's least-squares combination of the eigenspace at
+      // the sensors, normalised; then the nearest orthonormal set (the polar
+      // factor), which keeps the combinations M-orthonormal eigenvectors. Exact
+      // data in any rotation give that rotation back.
+      Eigen::MatrixXd combination =
+          at_sensors.jacobiSvd(Eigen::ComputeThinU | Eigen::ComputeThinV).solve(targets);
+      bool seen = true;
+      for (Eigen::Index q = 0; q < combination.cols(); ++q) {
+        const double norm = combination.col(q).norm();
+        if (!(norm > 0) || !std::isfinite(norm)) seen = false;
+        if (seen) combination.col(q) /= norm;
+      }
+      if (!seen) {  // the sensors do not see a measured mode in this eigenspace
+        first = last + 1;
+        continue;
+      }
+      Eigen::JacobiSVD<Eigen::MatrixXd> svd(combination,
+                                            Eigen::ComputeThinU | Eigen::ComputeThinV);
+      const Eigen::MatrixXd rotation = svd.matrixU() * svd.matrixV().transpose();
+      for (std::size_t q = 0; q < measured.size(); ++q) {
+        Terms& t = (*terms)[static_cast<std::size_t>(measured[q])];
+        t.phi = basis * rotation.col(static_cast<Eigen::Index>(q));
+        t.cluster = basis;
+      }
+    }
+    first = last + 1;
+  }
+}
+
 // Residuals (and Jacobian rows) of one state, given K~ and the state's M~ at x.
 bool EvaluateState(const Context& c, const StateTerms& st, const Eigen::VectorXd& x,
                    const SparseMatrix& k, const SparseMatrix& m, Eigen::VectorXd* r,
@@ -95,14 +163,18 @@ bool EvaluateState(const Context& c, const StateTerms& st, const Eigen::VectorXd
     int row = 0;
     double lambda = 0, lambda_weight = 0, c_scale = 1;
     Eigen::VectorXd phi, s, dc_ds;
+    Eigen::MatrixXd cluster;  // phi's eigenspace when its eigenvalue is repeated
   };
   std::vector<ModeTerms> terms(st.lambdas.size());
+  for (Eigen::Index j = 0; j < st.lambdas.size(); ++j) {
+    terms[j].phi = modes.shapes.col(pairing[j]);
+  }
+  if (st.shape_residuals) RotateRepeatedModes(st, modes, pairing, &terms);
   for (Eigen::Index j = 0; j < st.lambdas.size(); ++j) {
     ModeTerms& t = terms[j];
     t.row = st.first_row + static_cast<int>(j) * st.rows_per_mode();
     const int row = t.row;
     t.lambda = modes.eigenvalues[pairing[j]];
-    t.phi = modes.shapes.col(pairing[j]);
     t.lambda_weight = 1.0 / (st.lambdas[j] * c.frequency_sigma);
     (*r)[row] = (t.lambda / st.lambdas[j] - 1.0) / c.frequency_sigma;
 
@@ -154,7 +226,9 @@ bool EvaluateState(const Context& c, const StateTerms& st, const Eigen::VectorXd
     const Eigen::Index num_sensors = static_cast<Eigen::Index>(st.sensors.size());
     std::unique_ptr<NelsonSolver> nelson;
     if (st.shape_residuals) {
-      nelson = std::make_unique<NelsonSolver>(k, m, t.lambda, t.phi);
+      nelson = t.cluster.cols() > 1
+                   ? std::make_unique<NelsonSolver>(k, m, t.lambda, t.phi, t.cluster)
+                   : std::make_unique<NelsonSolver>(k, m, t.lambda, t.phi);
       if (!nelson->ok()) {
         std::ostringstream msg;
         msg << st.name << " mode " << j + 1 << " (model mode " << pairing[j] + 1
