@@ -84,6 +84,31 @@ TEST(EffectRanking, NamesTheDamagedStorey) {
 // its shapes are right: the frequencies' noise is scaled (a temperature of
 // their own) and the shapes', which fit, is not, so the shapes still point to
 // the damaged storey rather than to an effect that absorbs the form error.
+// The instances are fitted in parallel (options.threads); the ranking is the
+// same bits on one thread and on three.
+TEST(EffectRanking, DoesNotDependOnTheThreadCount) {
+  ChainSpec truth = ShearBuilding();
+  truth.springs[2] *= 0.8;
+  const Structure nominal = BuildSpringMassChain(ShearBuilding());
+  EffectRankingOptions one = Options(), three = Options();
+  one.threads = 1;
+  three.threads = 3;
+  const EffectRanking a = RankModelEffects(nominal, {Measured(truth, 7)}, one);
+  const EffectRanking b = RankModelEffects(nominal, {Measured(truth, 7)}, three);
+  ASSERT_EQ(a.classes.size(), b.classes.size());
+  ASSERT_GT(a.classes.size(), 5u);
+  for (std::size_t i = 0; i < a.classes.size(); ++i) {
+    EXPECT_EQ(a.classes[i].kind, b.classes[i].kind) << i;
+    EXPECT_EQ(a.classes[i].region, b.classes[i].region) << i;
+    EXPECT_EQ(a.classes[i].chi2, b.classes[i].chi2) << i;
+    EXPECT_EQ(a.classes[i].probability, b.classes[i].probability) << i;
+    EXPECT_EQ(a.classes[i].theta, b.classes[i].theta) << i;
+  }
+  EffectRankingOptions bad = Options();
+  bad.threads = -1;
+  EXPECT_NE(bad.Validate().find("threads"), std::string::npos);
+}
+
 TEST(EffectRanking, FormErrorInFrequenciesIsTemperedApartFromTheShapes) {
   ChainSpec truth = ShearBuilding();
   truth.springs[2] *= 0.8;

@@ -51,6 +51,24 @@ TEST(ParallelFor, ReportsProgressAfterEveryIndex) {
   }
 }
 
+// A loop inside a parallel loop's body runs on that body's thread alone.
+TEST(ParallelFor, NestedLoopsRunOnTheirCallingThread) {
+  std::vector<int> inner_workers(4, -1);
+  ParallelFor(4, 2, [&](int i) {
+    inner_workers[static_cast<std::size_t>(i)] = ParallelWorkers(8, 8);
+    std::vector<int> seen(8, 0);
+    ParallelFor(8, 8, [&](int j) { seen[static_cast<std::size_t>(j)] += 1; });
+    for (int v : seen) EXPECT_EQ(v, 1);
+  });
+  for (int w : inner_workers) EXPECT_EQ(w, 1);
+  // Outside any loop the count is what was asked for again.
+  EXPECT_EQ(ParallelWorkers(8, 3), 3);
+  // A loop on one thread does not mark its body as nested.
+  int inner = 0;
+  ParallelFor(1, 4, [&](int) { inner = ParallelWorkers(8, 3); });
+  EXPECT_EQ(inner, 3);
+}
+
 TEST(ParallelFor, NothingToDo) {
   std::atomic<int> calls{0};
   ParallelFor(0, 4, [&](int) { ++calls; });

@@ -5,11 +5,26 @@
 #include <exception>
 #include <limits>
 #include <mutex>
+#include <optional>
 #include <system_error>
 #include <thread>
 #include <vector>
 
 namespace femup {
+namespace {
+
+// True on a thread while it runs the body of a parallel loop of more than one
+// thread: a loop started there runs on that thread alone (the blind benchmark's
+// cases in parallel, each ranking its effects, do not start threads squared).
+thread_local bool tls_in_parallel_loop = false;
+
+struct InParallelLoop {
+  bool previous = tls_in_parallel_loop;
+  InParallelLoop() { tls_in_parallel_loop = true; }
+  ~InParallelLoop() { tls_in_parallel_loop = previous; }
+};
+
+}  // namespace
 
 int DefaultThreadCount() {
   const unsigned n = std::thread::hardware_concurrency();
@@ -18,6 +33,7 @@ int DefaultThreadCount() {
 
 int ParallelWorkers(int count, int threads) {
   if (count <= 0) return 0;
+  if (tls_in_parallel_loop) return 1;
   if (threads < 1) threads = DefaultThreadCount();
   return std::min(threads, count);
 }
@@ -39,6 +55,8 @@ void ParallelForWorkers(int count, int threads,
   std::mutex error_mutex;
   std::exception_ptr error;
   const auto worker = [&](int id) {
+    std::optional<InParallelLoop> nested;
+    if (pool_size > 1) nested.emplace();
     for (int i = next++; i < count; i = next++) {
       if (i > failed) break;
       try {

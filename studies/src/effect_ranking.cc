@@ -10,6 +10,7 @@
 #include <string_view>
 
 #include "femup/errors.h"
+#include "femup/parallel.h"
 #include "femup/problems/effect_priors.h"
 #include "femup/problems/model_effect_pencil.h"
 #include "femup/solvers/nonlinear_solver.h"
@@ -115,6 +116,7 @@ std::string EffectRankingOptions::Validate() const {
     return "frequency_sigma: must be positive and finite";
   if (!(shape_sigma > 0) || !std::isfinite(shape_sigma))
     return "shape_sigma: must be positive and finite";
+  if (threads < 0) return "threads: must be >= 0 (0: every core)";
   const auto names = AvailableNonlinearSolvers();
   if (std::find(names.begin(), names.end(), solver) == names.end())
     return "solver: unknown nonlinear solver '" + solver + "'";
@@ -221,14 +223,29 @@ EffectRanking RankModelEffects(const Structure& structure_in,
   std::vector<Eigen::VectorXd> residuals = {nominal};
   std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>> boxes = {{}};
   std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>> normals = {{}};
+  // Every instance's fit, in parallel (each writes its own slot), then the
+  // classes in the families' and instances' order.
+  std::vector<std::shared_ptr<const ModelEffect>> effects;
+  std::vector<std::size_t> effect_kind;
   for (std::size_t k = 0; k < kinds.size(); ++k) {
+    for (auto& instance : instances[k]) {
+      effects.emplace_back(std::move(instance));
+      effect_kind.push_back(k);
+    }
+  }
+  std::vector<Fit> fits(effects.size());
+  ParallelFor(static_cast<int>(effects.size()), options.threads, [&](int i) {
+    fits[static_cast<std::size_t>(i)] = FitInstance(
+        structure, effects[static_cast<std::size_t>(i)], states, fit, *solver);
+  });
+  for (std::size_t e = 0; e < effects.size(); ++e) {
+    const std::size_t k = effect_kind[e];
     const std::string& kind = kinds[k];
-    std::vector<std::unique_ptr<ModelEffect>>& made = instances[k];
     const double log_prior =
-        log_family_prior(kind) - std::log(static_cast<double>(made.size()));
-    for (auto& instance : made) {
-      std::shared_ptr<const ModelEffect> effect(std::move(instance));
-      const Fit f = FitInstance(structure, effect, states, fit, *solver);
+        log_family_prior(kind) - std::log(static_cast<double>(instances[k].size()));
+    {
+      const std::shared_ptr<const ModelEffect>& effect = effects[e];
+      const Fit& f = fits[e];
       if (!f.ok) continue;
       RankedClass c;
       c.kind = kind;

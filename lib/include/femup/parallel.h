@@ -20,6 +20,8 @@ int DefaultThreadCount();
 
 // Runs body(0), ..., body(count - 1) on min(threads, count) threads (threads
 // < 1: DefaultThreadCount()); with 1 thread, in order on the calling thread.
+// A loop started inside the body of a loop running on several threads runs on
+// its calling thread alone (nested loops do not multiply threads).
 // When the system gives fewer threads than asked, those it gives share the
 // work. `progress`, when set, is called after each index as (indices done,
 // count), from the worker threads, possibly concurrently; it must not throw.

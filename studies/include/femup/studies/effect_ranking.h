@@ -53,6 +53,8 @@ struct EffectRankingOptions {
   double shape_sigma = 0.02;       // of a shape entry, relative to the largest
   bool use_shapes = true;
   std::string solver = "ceres";  // a NonlinearSolver name
+  // Instances fitted at once (0: every core). The ranking does not depend on it.
+  int threads = 0;
   // What the study states about the families (empty: their defaults). Each
   // family it names must be among those tried.
   StatedPriors priors;
