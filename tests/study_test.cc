@@ -267,6 +267,21 @@ measurements:
                "found 1000000000"});
 }
 
+// Fuzzing (issue 25, session 20's campaign): a seed of 2.2e29 was converted to
+// unsigned long long out of range (undefined behaviour, UBSan's report). A seed
+// is a whole number from 0 to 2^53. fuzz/regressions/study/.
+TEST(Study, SeedsOutOfRangeAreInputErrors) {
+  const std::string noise = "noise_study:\n  levels: [0.01]\n  seed: ";
+  ExpectError("huge_seed.yaml", kChain + noise + "2.2e29\n",
+              {"noise_study.seed: expected a whole number from 0 to 2^53", "2.2e29"});
+  ExpectError("fraction_seed.yaml", kChain + noise + "1.5\n",
+              {"noise_study.seed: expected a whole number"});
+  ExpectError("negative_seed.yaml", kChain + noise + "-3\n",
+              {"noise_study.seed: expected a whole number"});
+  EXPECT_EQ(ParseStudy(kChain + noise + "9007199254740992\n", "s.yaml").noise_study->seed,
+            9007199254740992ull);
+}
+
 // The text of a study, without a file: errors name the path given.
 TEST(Study, ParseStudyReadsTextAndNamesThePath) {
   const Study s = ParseStudy(kChain, "in_memory/chain.yaml");

@@ -145,6 +145,16 @@ class Field {
     if (v != std::floor(v) || std::abs(v) > 1e9) Fail("expected a whole number");
     return static_cast<int>(v);
   }
+  // A random seed: a whole number from 0 to 2^53 (the integers a double holds
+  // exactly), so that a seed is read as written and never converted out of
+  // range (found by fuzzing: 2.2e29 overflowed unsigned long long).
+  unsigned long long Seed() const {
+    const double v = Num();
+    if (!(v >= 0 && v <= 9007199254740992.0) || v != std::floor(v))
+      Fail("expected a whole number from 0 to 2^53 = 9007199254740992, found " +
+           node_.Scalar());
+    return static_cast<unsigned long long>(v);
+  }
   bool Bool() const {
     const std::string s = Str();
     if (s == "true" || s == "yes" || s == "on") return true;
@@ -916,7 +926,7 @@ RecordsSpec ReadRecords(const Field& f, const ParametrisedModel& model) {
     if (r.cutoff_hz > r.sample_rate_hz / 2)
       f["cutoff_hz"].Fail("is above the Nyquist frequency (half the sample rate)");
   }
-  if (f.Has("seed")) r.seed = static_cast<unsigned long long>(f["seed"].NonNegative());
+  if (f.Has("seed")) r.seed = f["seed"].Seed();
   std::set<std::string> names, files;
   for (const Field& sf : f["states"].Items()) {
     sf.ExpectKeys({"state", "immersion", "damping", "water", "file"});
@@ -1626,10 +1636,7 @@ Study ReadStudy(const YAML::Node& root, const std::string& path, bool model_only
       spec.draws = nf["draws"].Int();
       if (spec.draws < 1) nf["draws"].Fail("expected at least one draw");
     }
-    if (nf.Has("seed")) {
-      const double s = nf["seed"].NonNegative();
-      spec.seed = static_cast<unsigned long long>(s);
-    }
+    if (nf.Has("seed")) spec.seed = nf["seed"].Seed();
     if (nf.Has("distribution") &&
         !NoiseDistributionFromString(nf["distribution"].Str(), &spec.distribution)) {
       nf["distribution"].Fail("expected gaussian or uniform");
