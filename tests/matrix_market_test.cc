@@ -427,7 +427,7 @@ TEST(MatrixMarketSizeLimitsTest, SparseReadRefusesHugeDimensionsWithFewEntries) 
       CatchInputError([] { ParseMatrixMarket(BANNER "1 2147483647 0\n", "huge.mtx"); });
   ExpectContains(error.what(),
                  "a 1 x 2147483647 matrix with 0 entries would need 8 GiB of row and "
-                 "column indices; expected at most 4194304 (2^22) rows and columns, or "
+                 "column indices; expected at most 4194304 rows and columns, or "
                  "more only with at least one entry per 16 rows (columns): here at least "
                  "134217728");
   // An array file with no entries (0 rows) says the same.

@@ -326,7 +326,8 @@ class Reader {
         Fail("size line: a " + size + " matrix read dense has " +
              std::to_string(entries) + " entries (" +
              Bytes(8.0 * static_cast<double>(entries)) + "); expected at most " +
-             std::to_string(kMatrixMarketMaxDenseEntries) + " (2^26 doubles, 512 MiB)");
+             std::to_string(kMatrixMarketMaxDenseEntries) + " (" +
+             Bytes(8.0 * static_cast<double>(kMatrixMarketMaxDenseEntries)) + ")");
       }
       return;
     }
@@ -339,7 +340,7 @@ class Reader {
            Bytes(4.0 * static_cast<double>(parsed_.rows + parsed_.cols)) +
            " of row and column indices; expected at most " +
            std::to_string(kMatrixMarketFreeDimension) +
-           " (2^22) rows and columns, or more only with at least one entry per " +
+           " rows and columns, or more only with at least one entry per " +
            std::to_string(kMatrixMarketDimensionPerEntry) +
            " rows (columns): here at least " +
            std::to_string((dimension + kMatrixMarketDimensionPerEntry - 1) /

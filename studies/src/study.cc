@@ -37,7 +37,7 @@ namespace fs = std::filesystem;
 // 7 s there).
 #ifdef FUZZING_BUILD_MODE_UNSAFE_FOR_PRODUCTION
 constexpr int kMaxCantileverElements = 100;
-constexpr long long kFuzzingMaxSpaceFrameDofs = 3000;  // otherwise Validate's 5e7
+constexpr long long kFuzzingMaxSpaceFrameDofs = 600;  // otherwise Validate's 5e7
 #else
 constexpr int kMaxCantileverElements = 5000;
 #endif

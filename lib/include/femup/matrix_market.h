@@ -27,8 +27,18 @@ namespace femup {
 //    An element matrix of a 10^6-DOF model in global DOFs, with a few entries,
 //    is read; "1 2147483647 0" (8 GiB of indices for nothing) is refused. For an
 //    array file the entries are rows x cols (the lower triangle for symmetric).
+//  A build for fuzzing (FUZZING_BUILD_MODE_UNSAFE_FOR_PRODUCTION, scripts/fuzz.sh)
+//  takes 2^20 dense entries and a free dimension of 2^16: the fuzzer otherwise
+//  fills its corpus with legitimate size lines near the limits, each a second
+//  of assembling empty rows under the sanitizers, and explores the reader at a
+//  quarter of its speed. The checks themselves are the same code.
+#ifdef FUZZING_BUILD_MODE_UNSAFE_FOR_PRODUCTION
+inline constexpr long long kMatrixMarketMaxDenseEntries = 1LL << 20;
+inline constexpr long long kMatrixMarketFreeDimension = 1LL << 16;
+#else
 inline constexpr long long kMatrixMarketMaxDenseEntries = 1LL << 26;
 inline constexpr long long kMatrixMarketFreeDimension = 1LL << 22;
+#endif
 inline constexpr long long kMatrixMarketDimensionPerEntry = 16;
 
 // Reads a real or integer matrix, "coordinate" or "array", general or symmetric
