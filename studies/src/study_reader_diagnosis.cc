@@ -1,0 +1,268 @@
+// The diagnosis section of a study file (femup diagnose): noise, candidate
+// effects, held-out modes, the solver and evidence; and the stated priors and
+// weights, checked against the families, quantities and regions of the study's
+// model (docs/diagnosis.md).
+#include <algorithm>
+#include <memory>
+#include <set>
+
+#include "femup/errors.h"
+#include "femup/problems/effect_priors.h"
+#include "femup/problems/effects.h"
+#include "femup/problems/model_effects.h"
+#include "study_reader.h"
+
+namespace femup::study_reader {
+namespace {
+
+std::string Listed(const std::vector<std::string>& items) {
+  std::string list;
+  for (const auto& x : items) list += (list.empty() ? "" : ", ") + x;
+  return list;
+}
+
+// A family named under diagnosis.priors or diagnosis.weights (at `at`) must be
+// one the diagnosis of this model tries.
+void CheckStatedFamily(const Field& at, const std::string& kind, const Study& study,
+                       const DiagnosisSpec& d) {
+  const bool cantilever = study.cantilever.has_value();
+  const std::vector<std::string> known =
+      cantilever ? AvailableEffects() : ModelEffectKinds();
+  if (std::find(known.begin(), known.end(), kind) == known.end()) {
+    at.Fail("unknown family '" + kind + "' (the " + study.structure.type +
+            " model's families: " + Listed(known) + ")");
+  }
+  if (!d.candidates.empty() &&
+      std::find(d.candidates.begin(), d.candidates.end(), kind) == d.candidates.end()) {
+    at.Fail(kind + " is not among diagnosis.candidates (" + Listed(d.candidates) +
+            "): state priors for the families the diagnosis tries");
+  }
+  if (cantilever && d.candidates.empty()) {
+    const std::vector<std::string> tried = DefaultEffects();
+    if (std::find(tried.begin(), tried.end(), kind) == tried.end()) {
+      at.Fail(kind + " is not among the default candidates (" + Listed(tried) +
+              "); list it in diagnosis.candidates");
+    }
+  }
+  if (!cantilever) {
+    for (const FamilyApplicability& a : ApplicableModelEffects(study.structure)) {
+      if (a.kind == kind && !a.why_not.empty()) {
+        at.Fail(kind + " does not apply to this " + study.structure.type +
+                " model: " + a.why_not);
+      }
+    }
+  }
+}
+
+// diagnosis.priors and diagnosis.weights, checked against the study's model:
+// the family's quantities on this model, their ranges, the regions it can act
+// at (docs/diagnosis.md, "Stated priors").
+void ReadStatedPriors(const Field& f, const Study& study, DiagnosisSpec* d) {
+  const bool cantilever = study.cantilever.has_value();
+  if (f.Has("priors")) {
+    const Field pf = f["priors"];
+    if (!pf.IsMap()) pf.Fail("expected a mapping of families to what is known of them");
+    for (const auto& kv : pf.node()) {
+      const std::string kind = pf.Key(kv.first);
+      const Field ff = pf[kind];
+      CheckStatedFamily(ff, kind, study, *d);
+      if (!ff.IsMap() || ff.node().size() == 0) {
+        ff.Fail(
+            "expected a mapping of the family's quantities (and regions) to what is "
+            "known of them");
+      }
+      // The family's parameters on this model, and (any structure but the
+      // cantilever) its instances, for the regions.
+      std::vector<EffectParameter> params;
+      std::vector<std::unique_ptr<ModelEffect>> instances;
+      try {
+        if (cantilever) {
+          params = CreateEffect(kind)->Parameters(*study.cantilever);
+        } else {
+          instances = CreateModelEffects(kind, study.structure);
+          if (!instances.empty()) params = instances.front()->Parameters();
+        }
+      } catch (const InputError& e) {
+        ff.Fail(e.what());
+      }
+      std::vector<std::string> keys;
+      for (const EffectParameter& p : params)
+        if (!p.quantity.empty()) keys.push_back(p.quantity);
+      if (!cantilever) keys.push_back("regions");
+      FamilyPrior prior;
+      prior.kind = kind;
+      for (const auto& q : ff.node()) {
+        const std::string key = ff.Key(q.first);
+        const Field v = ff[key];
+        if (key == "regions" && cantilever) {
+          v.Fail(
+              "the cantilever's effects are placed by a fitted height, not by region: "
+              "state x_m: [from, to] (m above the support) for attached_mass or "
+              "stiffness_loss");
+        }
+        if (key == "regions") {
+          for (const Field& item : v.Items()) prior.regions.push_back(item.Str());
+          if (prior.regions.empty()) v.Fail("expected at least one element or node");
+          try {
+            KeepStatedRegions(CreateModelEffects(kind, study.structure), study.structure,
+                              prior);
+          } catch (const InputError& e) {
+            const std::string what = std::string(e.what()).substr(e.where().size() + 2);
+            const std::size_t open = e.where().find('[');
+            if (open == std::string::npos) v.Fail(what);
+            v.Items()[std::stoul(e.where().substr(open + 1)) - 1].Fail(what);
+          }
+          continue;
+        }
+        if (std::find(keys.begin(), keys.end(), key) == keys.end()) {
+          v.Fail("unknown key for " + kind + " on this " + study.structure.type +
+                 " model (expected one of: " + Listed(keys) + ")");
+        }
+        QuantityPrior qp;
+        qp.quantity = key;
+        if (v.IsSequence()) {
+          const std::vector<Field> ends = v.Items();
+          if (ends.size() != 2)
+            v.Fail("expected [lower, upper] or {normal: [mean, std]}");
+          qp.lower = ends[0].Num();
+          qp.upper = ends[1].Num();
+          if (qp.lower > qp.upper)
+            v.Fail("lower " + ends[0].Str() + " > upper " + ends[1].Str());
+          if (qp.lower == qp.upper) {
+            v.Fail("lower = upper = " + ends[0].Str() +
+                   " leaves nothing to fit (state a range, or {normal: [mean, std]})");
+          }
+        } else if (v.IsMap()) {
+          v.ExpectKeys({"normal"});
+          const std::vector<Field> ms = v["normal"].Items();
+          if (ms.size() != 2) v["normal"].Fail("expected [mean, std]");
+          qp.normal = true;
+          qp.mean = ms[0].Num();
+          qp.sigma = ms[1].Num();
+          if (!(qp.sigma > 0))
+            ms[1].Fail("expected a positive standard deviation, found " + ms[1].Str());
+          if (cantilever && d->evidence == "sampled") {
+            v.Fail(
+                "a normal prior needs diagnosis.evidence: laplace (the sampled evidence "
+                "draws from uniform priors); state a range [lower, upper] instead");
+          }
+        } else {
+          v.Fail("expected [lower, upper] or {normal: [mean, std]}");
+        }
+        FamilyPrior one;
+        one.kind = kind;
+        one.quantities = {qp};
+        try {
+          ApplyFamilyPrior(params, one);
+        } catch (const InputError& e) {
+          v.Fail(std::string(e.what()).substr(e.where().size() + 2));
+        }
+        prior.quantities.push_back(qp);
+      }
+      d->priors.families.push_back(std::move(prior));
+    }
+  }
+  if (f.Has("weights")) {
+    const Field wf = f["weights"];
+    if (!wf.IsMap()) wf.Fail("expected a mapping of families (and none) to weights");
+    for (const auto& kv : wf.node()) {
+      const std::string kind = wf.Key(kv.first);
+      const Field w = wf[kind];
+      if (kind != "none") CheckStatedFamily(w, kind, study, *d);
+      d->priors.weights[kind] = w.Positive();
+    }
+  }
+  const std::string invalid = d->priors.Validate();
+  if (!invalid.empty()) f.Fail(invalid);
+}
+
+}  // namespace
+
+DiagnosisSpec ReadDiagnosis(const Field& f, const Study& study) {
+  f.ExpectKeys({"noise", "candidates", "max_effects", "held_out", "use_shapes",
+                "mesh_error", "form_error", "localise", "solver", "confidence",
+                "evidence", "evidence_samples", "priors", "weights"});
+  DiagnosisSpec d;
+  if (f.Has("noise")) {
+    const Field n = f["noise"];
+    n.ExpectKeys({"frequency", "shape"});
+    if (n.Has("frequency")) {
+      d.frequency_noise = n["frequency"].Positive();
+      if (d.frequency_noise >= 0.5)
+        n["frequency"].Fail("a relative standard deviation: expected 0 < value < 0.5");
+    }
+    if (n.Has("shape")) {
+      d.shape_noise = n["shape"].Positive();
+      if (d.shape_noise >= 1)
+        n["shape"].Fail("relative to the largest entry: expected 0 < value < 1");
+    }
+  }
+  if (f.Has("candidates")) {
+    const std::vector<std::string> known = AvailableEffects();
+    std::set<std::string> seen;
+    for (const Field& item : f["candidates"].Items()) {
+      const std::string k = item.Str();
+      if (std::find(known.begin(), known.end(), k) == known.end()) {
+        std::string list;
+        for (const auto& x : known) list += (list.empty() ? "" : ", ") + x;
+        item.Fail("unknown effect '" + k + "' (expected " + list + ")");
+      }
+      if (!seen.insert(k).second) item.Fail("effect '" + k + "' is listed twice");
+      d.candidates.push_back(k);
+    }
+    if (d.candidates.empty()) f["candidates"].Fail("expected at least one effect");
+  }
+  if (f.Has("max_effects")) {
+    d.max_effects = f["max_effects"].Int();
+    if (d.max_effects < 1 || d.max_effects > 2)
+      f["max_effects"].Fail("expected 1 (single effects) or 2 (also pairs)");
+  }
+  if (f.Has("held_out")) {
+    const Field h = f["held_out"];
+    if (h.IsScalar()) {
+      d.held_out = h.Str();
+      if (d.held_out != "auto" && d.held_out != "none")
+        h.Fail("expected auto, none or a list of {state, mode}");
+    } else {
+      d.held_out = "list";
+      for (const Field& item : h.Items()) {
+        item.ExpectKeys({"state", "mode"});
+        d.held_out_modes.emplace_back(item["state"].Str(), item["mode"].Int());
+      }
+    }
+  }
+  if (f.Has("use_shapes")) d.use_shapes = f["use_shapes"].Bool();
+  if (f.Has("mesh_error")) d.mesh_error = f["mesh_error"].Bool();
+  if (f.Has("form_error")) {
+    d.form_error = f["form_error"].Num();
+    if (!(d.form_error >= 0 && d.form_error < 1))
+      f["form_error"].Fail(
+          "a fraction of the nominal misfit: expected 0 <= value < 1, found " +
+          f["form_error"].Str());
+  }
+  if (f.Has("localise")) d.localise = f["localise"].Bool();
+  if (f.Has("solver")) {
+    d.solver = f["solver"].Str();
+    if (d.solver != "ceres" && d.solver != "ipopt")
+      f["solver"].Fail("expected ceres or ipopt, found '" + d.solver + "'");
+  }
+  if (f.Has("confidence")) {
+    d.confidence = f["confidence"].Num();
+    if (!(d.confidence > 0.5 && d.confidence < 1))
+      f["confidence"].Fail("expected a probability between 0.5 and 1");
+  }
+  if (f.Has("evidence")) {
+    d.evidence = f["evidence"].Str();
+    if (d.evidence != "sampled" && d.evidence != "laplace")
+      f["evidence"].Fail("expected sampled or laplace, found '" + d.evidence + "'");
+  }
+  if (f.Has("evidence_samples")) {
+    d.evidence_samples = f["evidence_samples"].Int();
+    if (d.evidence_samples < 100 || d.evidence_samples > 1000000)
+      f["evidence_samples"].Fail("expected a number of draws from 100 to 1000000");
+  }
+  ReadStatedPriors(f, study, &d);
+  return d;
+}
+
+}  // namespace femup::study_reader
