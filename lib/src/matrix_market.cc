@@ -499,6 +499,9 @@ class Reader {
 // Calls f(i, j, value) for each value of an array file, in file order.
 template <typename F>
 void ForEachArrayValue(const Parsed& p, F f) {
+  // An empty matrix has no value: without this, "0 2147483647" read dense walks
+  // 2^31 empty columns (seconds, found by the session-21 fuzzing campaign).
+  if (p.rows == 0 || p.cols == 0) return;
   size_t k = 0;
   for (Eigen::Index j = 0; j < p.cols; ++j) {
     for (Eigen::Index i = p.symmetric ? j : 0; i < p.rows; ++i) f(i, j, p.values[k++]);

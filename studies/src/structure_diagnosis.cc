@@ -193,6 +193,11 @@ std::string StructureDiagnosisReport(const StructureDiagnosisResult& r) {
       o << "  " << m.name << " " << std::setprecision(4) << std::defaultfloat << m.value;
       if (!m.unit.empty() && m.unit.front() != '1') o << " " << m.unit;
     }
+    if (!c.equivalent.empty()) {
+      o << "  (the same change as:";
+      for (const std::string& e : c.equivalent) o << " " << e << ";";
+      o << " together P " << std::setprecision(3) << std::fixed << c.group_probability << ")";
+    }
     o << "\n";
   }
   for (const std::string& s : k.skipped) o << "not applicable: " << s << "\n";

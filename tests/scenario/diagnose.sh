@@ -239,6 +239,12 @@ refused "added mass on a dry chain" chain.yaml "diagnosis.candidates" "added_mas
 [ "$(json shear/diagnosis.json "abs(j['classes'][0]['magnitudes'][0]['value'] - 0.25) < 0.03")" \
   = True ] || fail "shear loss: $(json shear/diagnosis.json "j['classes'][0]['magnitudes']")"
 grep -q "verdict: stiffness_loss at element 3" shear.txt || fail "shear report: $(cat shear.txt)"
+# On a chain the ground spring and the first storey are one spring: their fits
+# are the same change, named as such in the JSON and on the terminal.
+[ "$(json shear/diagnosis.json "[c['equivalent'] for c in j['classes'] if c['kind'] == 'support_flexibility']")" \
+  = "[['stiffness_loss at element 1']]" ] || fail "shear equivalence: $(json shear/diagnosis.json "[(c['kind'], c['region'], c['equivalent']) for c in j['classes']]")"
+grep -q "support_flexibility at supports .*(the same change as: stiffness_loss at element 1; together P" \
+  shear.txt || fail "shear equivalence on the terminal: $(cat shear.txt)"
 # A plane frame (study model type plane_frame) with an unmodelled 2 t machine on
 # the first-floor beam's middle node (data made by numpy's own frame elements).
 "$FEMUP" diagnose "$ROOT/examples/diagnosis/portal_frame.yaml" -o portal --no-plots > portal.txt \
