@@ -1,5 +1,6 @@
 #include "femup/problems/eigen_sensitivity.h"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
@@ -11,6 +12,7 @@
 #include "femup/eigen_derivatives.h"
 #include "femup/errors.h"
 #include "femup/parallel.h"
+#include "femup/sparse_cholesky.h"
 
 namespace femup {
 namespace {
@@ -44,6 +46,7 @@ struct Context {
   double min_mac = 0;
   int threads = 1;  // modes whose Jacobian rows are computed at once
   EigenOptions eigen;
+  std::shared_ptr<const RitzBasis> ritz;  // null: the full model
   std::vector<int> prior_index;  // parameters with a prior
   Eigen::VectorXd prior_mean;    // n (zero when none given)
   Eigen::VectorXd prior_sigma;   // n, used at prior_index
@@ -124,17 +127,49 @@ void RotateRepeatedModes(const StateTerms& st, const Modes& modes,
   }
 }
 
-// Residuals (and Jacobian rows) of one state, given K~ and the state's M~ at x.
+// The projected pencil of a state's immersion, when the problem has a Ritz basis.
+struct Reduced {
+  const Eigen::MatrixXd* basis = nullptr;       // V, n x r
+  const Eigen::MatrixXd* mass_basis = nullptr;  // M(x0) V
+  Eigen::MatrixXd k, m;                         // V' K(x) V, V' M(x) V
+};
+
+// V' B V for a derivative basis B, from B's own DOFs.
+Eigen::MatrixXd Project(const BasisMatrix& b, const Eigen::MatrixXd& v) {
+  const Eigen::MatrixXd at_dofs = v(b.dofs(), Eigen::all);
+  return at_dofs.transpose() * b.RestrictedProduct(v);
+}
+
+// Residuals (and Jacobian rows) of one state, given K~ and the state's M~ at x
+// (or, with `reduced`, their projections).
 bool EvaluateState(const Context& c, const StateTerms& st, const Eigen::VectorXd& x,
-                   const SparseMatrix& k, const SparseMatrix& m, Eigen::VectorXd* r,
-                   Eigen::MatrixXd* jac, std::string* why) {
-  EigenOptions eigen = c.eigen;
-  eigen.num_modes = st.num_model_modes;
+                   const SparseMatrix& k, const SparseMatrix& m, const Reduced* reduced,
+                   Eigen::VectorXd* r, Eigen::MatrixXd* jac, std::string* why) {
   Modes modes;
-  try {
-    modes = SolveModes(k, m, eigen);
-  } catch (const InputError& e) {
-    return Fail(why, st.name + ": eigen-solve failed: " + e.what());
+  Eigen::VectorXd reduced_values;   // every eigenvalue of the projected pencil
+  Eigen::MatrixXd reduced_vectors;  // its eigenvectors, V' M V-orthonormal
+  if (reduced != nullptr) {
+    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solver(reduced->k,
+                                                                     reduced->m);
+    if (solver.info() != Eigen::Success || !solver.eigenvalues().allFinite()) {
+      return Fail(why, st.name +
+                           ": the reduced eigen-solve failed (the projected mass matrix "
+                           "is not positive definite)");
+    }
+    reduced_values = solver.eigenvalues();
+    reduced_vectors = solver.eigenvectors();
+    const Eigen::Index count =
+        std::min<Eigen::Index>(st.num_model_modes, reduced_values.size());
+    modes.eigenvalues = reduced_values.head(count);
+    modes.shapes = *reduced->basis * reduced_vectors.leftCols(count);
+  } else {
+    EigenOptions eigen = c.eigen;
+    eigen.num_modes = st.num_model_modes;
+    try {
+      modes = SolveModes(k, m, eigen);
+    } catch (const InputError& e) {
+      return Fail(why, st.name + ": eigen-solve failed: " + e.what());
+    }
   }
   if (modes.size() < st.lambdas.size()) {
     return Fail(why, st.name + ": the eigen-solve returned too few modes");
@@ -219,6 +254,52 @@ bool EvaluateState(const Context& c, const StateTerms& st, const Eigen::VectorXd
   PencilDerivatives derivatives;
   c.pencil->Derivatives(x, st.wet, &derivatives);
   const int num_parameters = c.pencil->num_parameters();
+  if (reduced != nullptr) {
+    // Modal expansion over every projected mode outside the paired mode's
+    // eigenspace: d phi = sum_k q_k' (dK - lambda dM) q / (lambda - lambda_k) q_k
+    // - (q' dM q / 2) q, lifted by V (the same fixed-rotation rule as above for
+    // repeated eigenvalues).
+    const Eigen::MatrixXd& v = *reduced->basis;
+    const Eigen::MatrixXd v_at_sensors = v(st.sensors, Eigen::all);
+    std::vector<Eigen::VectorXd> q(terms.size());
+    for (std::size_t j = 0; j < terms.size(); ++j) {
+      q[j] = reduced->mass_basis->transpose() * terms[j].phi;
+    }
+    for (int p = 0; p < num_parameters; ++p) {
+      const BasisMatrix* dk = derivatives.stiffness[p];
+      const BasisMatrix* dm = derivatives.mass[p];
+      if (dk == nullptr && dm == nullptr) continue;
+      const Eigen::MatrixXd dkr = dk != nullptr ? Project(*dk, v) : Eigen::MatrixXd();
+      const Eigen::MatrixXd dmr = dm != nullptr ? Project(*dm, v) : Eigen::MatrixXd();
+      for (std::size_t j = 0; j < terms.size(); ++j) {
+        const ModeTerms& t = terms[j];
+        Eigen::VectorXd g = Eigen::VectorXd::Zero(q[j].size());
+        double mass_form = 0;
+        if (dk != nullptr) g += dkr * q[j];
+        if (dm != nullptr) {
+          const Eigen::VectorXd dm_q = dmr * q[j];
+          g -= t.lambda * dm_q;
+          mass_form = q[j].dot(dm_q);
+        }
+        (*jac)(t.row, p) = t.lambda_weight * q[j].dot(g);
+        if (!st.shape_residuals) continue;
+        Eigen::VectorXd coefficient = reduced_vectors.transpose() * g;
+        for (Eigen::Index i = 0; i < coefficient.size(); ++i) {
+          const double gap = t.lambda - reduced_values[i];
+          coefficient[i] = std::abs(gap) <= kRepeatedEigenvalueTolerance * std::abs(t.lambda)
+                               ? 0.0
+                               : coefficient[i] / gap;
+        }
+        const Eigen::VectorXd dq = reduced_vectors * coefficient - 0.5 * mass_form * q[j];
+        const Eigen::VectorXd ds = v_at_sensors * dq;
+        const Eigen::Index num_sensors = static_cast<Eigen::Index>(st.sensors.size());
+        jac->block(t.row + 1, p, num_sensors, 1) =
+            st.shape_weights.col(static_cast<Eigen::Index>(j))
+                .cwiseProduct(t.dc_ds.dot(ds) * t.s + t.c_scale * ds);
+      }
+    }
+    return true;
+  }
   std::vector<std::string> failure(st.lambdas.size());
   ParallelFor(static_cast<int>(st.lambdas.size()), c.threads, [&](int j) {
     const ModeTerms& t = terms[j];
@@ -270,12 +351,29 @@ bool Evaluate(const Context& c, const Eigen::VectorXd& x, Eigen::VectorXd* r,
   r->setZero(c.num_residuals);
   if (jac != nullptr) jac->setZero(c.num_residuals, n);
   try {
-    // Assembled once per immersion that a state needs.
+    // Assembled (and projected) once per immersion that a state needs.
     SparseMatrix k[2], m[2];
+    Reduced reduced[2];
     for (const StateTerms& st : c.states) {
       const int w = st.wet ? 1 : 0;
-      if (m[w].size() == 0) c.pencil->Assemble(x, st.wet, &k[w], &m[w]);
-      if (!EvaluateState(c, st, x, k[w], m[w], r, jac, why)) return false;
+      if (m[w].size() == 0) {
+        c.pencil->Assemble(x, st.wet, &k[w], &m[w]);
+        if (c.ritz) {
+          Reduced& red = reduced[w];
+          red.basis = st.wet ? &c.ritz->wet : &c.ritz->dry;
+          red.mass_basis = st.wet ? &c.ritz->mass_times_wet : &c.ritz->mass_times_dry;
+          const Eigen::MatrixXd& v = *red.basis;
+          red.k = v.transpose() * (k[w].selfadjointView<Eigen::Lower>() * v);
+          red.m = v.transpose() * (m[w].selfadjointView<Eigen::Lower>() * v);
+          // Symmetric to rounding, for the dense solver.
+          red.k = (0.5 * (red.k + red.k.transpose())).eval();
+          red.m = (0.5 * (red.m + red.m.transpose())).eval();
+        }
+      }
+      if (!EvaluateState(c, st, x, k[w], m[w], c.ritz ? &reduced[w] : nullptr, r, jac,
+                         why)) {
+        return false;
+      }
     }
   } catch (const InputError& e) {
     return Fail(why, e.what());
@@ -378,6 +476,22 @@ NonlinearProblem BuildOutputErrorProblem(std::shared_ptr<const ParametrisedPenci
   c.min_mac = options.min_mac;
   c.threads = options.threads;
   c.eigen = options.eigen;
+  c.ritz = options.ritz;
+  if (c.ritz) {
+    for (const ModalData& data : states) {
+      const bool wet = data.immersion == Immersion::kWet;
+      const Eigen::MatrixXd& v = wet ? c.ritz->wet : c.ritz->dry;
+      const Eigen::MatrixXd& mv = wet ? c.ritz->mass_times_wet : c.ritz->mass_times_dry;
+      if (v.rows() != num_dofs || v.cols() == 0 || mv.rows() != v.rows() ||
+          mv.cols() != v.cols()) {
+        std::ostringstream msg;
+        msg << "the " << (wet ? "wet" : "dry") << " basis is " << v.rows() << " x "
+            << v.cols() << " (M V " << mv.rows() << " x " << mv.cols()
+            << "); expected " << num_dofs << " rows (one per DOF) and at least one column";
+        throw InputError("options.ritz", msg.str());
+      }
+    }
+  }
 
   NonlinearProblem problem;
   int row = 0;
@@ -475,6 +589,99 @@ NonlinearProblem BuildOutputErrorProblem(std::shared_ptr<const ParametrisedPenci
     return Evaluate(*shared, x, residuals, jacobian, why);
   };
   return problem;
+}
+
+std::shared_ptr<const RitzBasis> BuildRitzBasis(const ParametrisedPencil& pencil,
+                                                const std::vector<ModalData>& states,
+                                                const EigenSensitivityOptions& options,
+                                                const Eigen::VectorXd& x0) {
+  const std::string invalid = options.Validate();
+  if (!invalid.empty()) throw InputError("eigen sensitivity options", invalid);
+  const int n = pencil.num_dofs();
+  const int num_parameters = pencil.num_parameters();
+  if (states.empty()) throw InputError("states", "no measured state is given");
+  if (x0.size() != num_parameters || !x0.allFinite()) {
+    throw InputError("start", "has " + std::to_string(x0.size()) +
+                                  " entries or a NaN; expected " +
+                                  std::to_string(num_parameters) + " finite ones");
+  }
+  auto basis = std::make_shared<RitzBasis>();
+  for (const bool wet : {false, true}) {
+    int paired = 0;  // the most modes a state of this immersion pairs
+    for (std::size_t i = 0; i < states.size(); ++i) {
+      if ((states[i].immersion == Immersion::kWet) != wet) continue;
+      states[i].Validate(n, "states." + std::to_string(i + 1));
+      paired = std::max(paired, std::min(n, states[i].num_modes() + options.extra_modes));
+    }
+    if (paired == 0) continue;
+    SparseMatrix k, m;
+    pencil.Assemble(x0, wet, &k, &m);
+    EigenOptions eigen = options.eigen;
+    eigen.num_modes = paired + options.extra_modes;
+    if (eigen.num_modes >= n) {  // the whole space: every mode, densely
+      eigen.method = EigenOptions::Method::kDense;
+      eigen.num_modes = n;
+    }
+    const Modes modes = SolveModes(k, m, eigen);
+    PencilDerivatives derivatives;
+    pencil.Derivatives(x0, wet, &derivatives);
+
+    // Static corrections of the paired modes, by one factorisation of
+    // K - sigma M, positive definite for sigma below the lowest eigenvalue.
+    const double top = std::max(modes.eigenvalues.cwiseAbs().maxCoeff(), 1e-300);
+    const double sigma = -0.5 * std::max(modes.eigenvalues[0], 1e-3 * top);
+    std::vector<Eigen::VectorXd> loads;
+    const int corrected = std::min(paired, modes.size());
+    for (int i = 0; i < corrected; ++i) {
+      const Eigen::VectorXd phi = modes.shapes.col(i);
+      for (int p = 0; p < num_parameters; ++p) {
+        for (const BasisMatrix* b : {derivatives.stiffness[p], derivatives.mass[p]}) {
+          if (b == nullptr) continue;
+          Eigen::VectorXd load = Eigen::VectorXd::Zero(n);
+          b->AddProductTo(1.0, phi, &load);
+          if (load.squaredNorm() > 0) loads.push_back(std::move(load));
+        }
+      }
+    }
+    Eigen::MatrixXd columns(n, modes.size() + static_cast<Eigen::Index>(loads.size()));
+    columns.leftCols(modes.size()) = modes.shapes;
+    if (!loads.empty()) {
+      Eigen::MatrixXd rhs(n, static_cast<Eigen::Index>(loads.size()));
+      for (std::size_t j = 0; j < loads.size(); ++j)
+        rhs.col(static_cast<Eigen::Index>(j)) = loads[j];
+      const SparseMatrix shifted = k - sigma * m;
+      SparseCholeskyOptions chol;
+      chol.name = std::string(wet ? "wet" : "dry") + " K - sigma M at the basis point";
+      columns.rightCols(rhs.cols()) = SparseCholesky(shifted, chol).Solve(rhs);
+    }
+    // M-orthonormal columns: each to unit M-norm, then the Gram matrix's
+    // eigenvectors; directions of relative norm below 1e-6 are dropped.
+    Eigen::MatrixXd mass_columns = m.selfadjointView<Eigen::Lower>() * columns;
+    for (Eigen::Index j = 0; j < columns.cols(); ++j) {
+      const double norm2 = columns.col(j).dot(mass_columns.col(j));
+      if (!(norm2 > 0) || !std::isfinite(norm2)) {
+        throw InputError("ritz basis", "a basis vector has M-norm " +
+                                           std::to_string(norm2) +
+                                           "; the mass matrix is not positive definite");
+      }
+      columns.col(j) /= std::sqrt(norm2);
+      mass_columns.col(j) /= std::sqrt(norm2);
+    }
+    Eigen::MatrixXd gram = columns.transpose() * mass_columns;
+    gram = (0.5 * (gram + gram.transpose())).eval();
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(gram);
+    const Eigen::VectorXd& s = eig.eigenvalues();  // ascending
+    const double keep_above = 1e-12 * s.maxCoeff();
+    Eigen::Index first = 0;
+    while (first < s.size() && !(s[first] > keep_above)) ++first;
+    const Eigen::Index r = s.size() - first;
+    const Eigen::MatrixXd scale =
+        eig.eigenvectors().rightCols(r) *
+        s.tail(r).cwiseSqrt().cwiseInverse().asDiagonal();
+    (wet ? basis->wet : basis->dry) = columns * scale;
+    (wet ? basis->mass_times_wet : basis->mass_times_dry) = mass_columns * scale;
+  }
+  return basis;
 }
 
 }  // namespace femup

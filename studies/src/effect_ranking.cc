@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <boost/math/special_functions/gamma.hpp>
 #include <cmath>
+#include <cstdlib>
 #include <map>
 #include <memory>
 #include <string_view>
@@ -43,28 +44,86 @@ bool SameSpan(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, double cosine)
 
 // The best start is the one with the least misfit, the stated normal priors'
 // residuals included (the posterior's mode); chi2, the residual and the
-// Jacobian kept are the data's alone.
+// Jacobian kept are the data's alone. With `ritz`, each start is searched on a
+// Ritz basis built there, and the full model's fits start where the searches
+// ended (the best, and any other that ended elsewhere within 10 of its misfit).
 Fit FitInstance(const std::shared_ptr<const Structure>& structure,
                 const std::shared_ptr<const ModelEffect>& effect,
                 const std::vector<ModalData>& states,
-                const EigenSensitivityOptions& options, const NonlinearSolver& solver) {
+                const EigenSensitivityOptions& options, const NonlinearSolver& solver,
+                bool ritz) {
   Fit best;
   double best_misfit = 0;
   const std::vector<EffectParameter> params = effect->Parameters();
-  for (const Eigen::VectorXd& start : effect->Starts()) {
+  auto solve = [&](const Eigen::VectorXd& start, const EigenSensitivityOptions& o,
+                   NonlinearSolution* sol) {
     const NonlinearProblem data =
-        BuildModelEffectFitProblem(structure, {effect}, states, options, start);
+        BuildModelEffectFitProblem(structure, {effect}, states, o, start);
     const NonlinearProblem problem = WithPriorResiduals(data, params);
-    const NonlinearSolution sol = solver.Solve(problem);
-    if (sol.residual.size() != problem.num_residuals || !sol.residual.allFinite() ||
-        sol.jacobian.rows() != problem.num_residuals) {
-      continue;
+    *sol = solver.Solve(problem);
+    return sol->residual.size() == problem.num_residuals && sol->residual.allFinite() &&
+           sol->jacobian.rows() == problem.num_residuals
+               ? data.num_residuals
+               : -1;
+  };
+  std::vector<Eigen::VectorXd> starts = effect->Starts();
+  if (ritz) {
+    // The searches, on the reduced models; a start whose basis cannot be built
+    // (its pencil does not solve) is searched on the full model.
+    std::vector<std::pair<double, Eigen::VectorXd>> ends;
+    const ModelEffectPencil pencil(structure, {effect});
+    // A search that ends where the reduced model no longer matches the full
+    // one (their misfits differ by more than 1 + 1e-3 of it: the basis was
+    // built too far away) is searched again on a basis built where it ended,
+    // up to kRebases times; then the full fit takes over from there anyway.
+    constexpr int kRebases = 3;
+    const NonlinearProblem full_data =
+        BuildModelEffectFitProblem(structure, {effect}, states, options, starts.front());
+    const NonlinearProblem full = WithPriorResiduals(full_data, params);
+    for (const Eigen::VectorXd& start : starts) {
+      Eigen::VectorXd from = start;
+      double misfit = 0;
+      bool searched = false;
+      for (int round = 0; round <= kRebases; ++round) {
+        EigenSensitivityOptions reduced = options;
+        try {
+          reduced.ritz = BuildRitzBasis(pencil, states, options, from);
+        } catch (const InputError&) {
+          break;
+        }
+        NonlinearSolution sol;
+        if (solve(from, reduced, &sol) < 0) break;
+        from = sol.x;
+        misfit = sol.residual.squaredNorm();
+        searched = true;
+        Eigen::VectorXd r;
+        std::string why;
+        if (!full.evaluate(from, &r, nullptr, &why)) break;
+        if (std::abs(r.squaredNorm() - misfit) <= 1 + 1e-3 * misfit) break;
+        misfit = r.squaredNorm();
+      }
+      ends.emplace_back(searched ? misfit : 0.0, from);
     }
+    std::sort(ends.begin(), ends.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first; });
+    starts.clear();
+    for (const auto& [misfit, x] : ends) {
+      if (!starts.empty() && misfit > ends.front().first + 10) break;
+      bool same = false;
+      for (const Eigen::VectorXd& s : starts)
+        same = same || (s - x).lpNorm<Eigen::Infinity>() <= 1e-3;
+      if (!same) starts.push_back(x);
+    }
+  }
+  for (const Eigen::VectorXd& start : starts) {
+    NonlinearSolution sol;
+    const int rows = solve(start, options, &sol);
+    if (rows < 0) continue;
     const double misfit = sol.residual.squaredNorm();
     if (!best.ok || misfit < best_misfit) {
-      const Eigen::VectorXd residual = sol.residual.head(data.num_residuals);
+      const Eigen::VectorXd residual = sol.residual.head(rows);
       best = {true,     sol.summary.usable(),
-              sol.x,    sol.jacobian.topRows(data.num_residuals),
+              sol.x,    sol.jacobian.topRows(rows),
               residual, residual.squaredNorm()};
       best_misfit = misfit;
     }
@@ -196,7 +255,19 @@ EffectRanking RankModelEffects(const Structure& structure_in,
   // evaluation at 600 DOF, and every fit evaluates hundreds of times.
   if (structure->type == "space_frame")
     fit.eigen.method = EigenOptions::Method::kSparseShiftInvert;
-  const auto solver = CreateNonlinearSolver(options.solver);
+  // The fits stop when the misfit changes by less than 1e-10 of itself: the
+  // eigen-solver's tolerance (1e-10) puts a noise of about 1e-12 of the misfit
+  // on every evaluation, so the solvers' default 1e-14 was never met and a
+  // converged fit went on with some 15 rejected steps, each a full evaluation,
+  // until its step fell below 1e-14 (docs/diagnosis.md, the 10^4-DOF jacket).
+  // A change of 1e-10 of a misfit of 1e3 is 1e-7 of a chi2 unit.
+  NonlinearSolverOptions solver_options;
+  solver_options.function_tolerance = 1e-10;
+  solver_options.verbose = std::getenv("FEMUP_VERBOSE_FITS") != nullptr;
+  const auto solver = CreateNonlinearSolver(options.solver, solver_options);
+  const bool ritz =
+      options.ritz_min_dofs >= 0 && structure->dof_labels.size() >=
+                                        static_cast<std::size_t>(options.ritz_min_dofs);
 
   int shape_modes = 0;
   for (const ModalData& d : states)
@@ -235,8 +306,9 @@ EffectRanking RankModelEffects(const Structure& structure_in,
   }
   std::vector<Fit> fits(effects.size());
   ParallelFor(static_cast<int>(effects.size()), options.threads, [&](int i) {
-    fits[static_cast<std::size_t>(i)] = FitInstance(
-        structure, effects[static_cast<std::size_t>(i)], states, fit, *solver);
+    fits[static_cast<std::size_t>(i)] =
+        FitInstance(structure, effects[static_cast<std::size_t>(i)], states, fit, *solver,
+                    ritz);
   });
   for (std::size_t e = 0; e < effects.size(); ++e) {
     const std::size_t k = effect_kind[e];

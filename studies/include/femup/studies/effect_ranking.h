@@ -55,6 +55,13 @@ struct EffectRankingOptions {
   std::string solver = "ceres";  // a NonlinearSolver name
   // Instances fitted at once (0: every core). The ranking does not depend on it.
   int threads = 0;
+  // Models with at least this many DOFs (negative: none) search each start's
+  // fit on a Ritz basis built at that start (eigen_sensitivity.h: the lowest
+  // modes and their static corrections for the instance's unknowns), then
+  // finish the best start (and any other that ends elsewhere within a chi2 of
+  // 10 of it) on the full model, from where the search ended: what is reported
+  // is always the full model's fit.
+  int ritz_min_dofs = 3000;
   // What the study states about the families (empty: their defaults). Each
   // family it names must be among those tried.
   StatedPriors priors;
