@@ -747,6 +747,30 @@ TEST(ImportMatrixMarketStructureTest, OnlyLocalElementsAndDefaults) {
   ExpectEntries(s.elements[1].stiffness, Eigen::MatrixXd::Zero(3, 3));
 }
 
+// The size taken from the elements' largest DOF is limited as a size line is:
+// one element at DOF 72812093 made a model of 72,812,094 DOFs (gigabytes of
+// labels and indices; found by the session-21 fuzzing campaign,
+// fuzz/regressions/study/matrix_market_element_dof_huge.yaml).
+TEST(ImportMatrixMarketStructureTest, ASizeFromOneHugeDofIsAnError) {
+  MatrixMarketModelSpec spec;
+  MatrixMarketElement a;
+  a.stiffness_file = "e1_k.mtx";
+  a.mass_file = "e1_m.mtx";
+  a.dofs = {72812093};
+  spec.elements = {a};
+  const InputError error =
+      CatchInputError([&] { ImportMatrixMarketStructure(spec, kModelDir); });
+  EXPECT_EQ(error.where(), "model.elements");
+  ExpectContains(error.what(),
+                 "the largest DOF in the elements' dofs (72812093) makes a model of "
+                 "72812094 DOFs, of which the elements reach 1; expected at most 4194304 "
+                 "DOFs");
+  // Within the free dimension it is read.
+  a.dofs = {100000};
+  spec.elements = {a};
+  EXPECT_EQ(ImportMatrixMarketStructure(spec, kModelDir).dof_labels.size(), 100001u);
+}
+
 TEST(ImportMatrixMarketStructureTest, AbsolutePathsIgnoreBaseDir) {
   MatrixMarketModelSpec spec = ChainSpec();
   spec.stiffness_file = kModelDir + "/k.mtx";

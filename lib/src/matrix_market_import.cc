@@ -165,6 +165,26 @@ Structure ImportMatrixMarketStructure(const MatrixMarketModelSpec& spec,
       for (int dof : element.dofs) n = std::max<long long>(n, dof + 1LL);
     }
     n_source = "the largest DOF in the elements' dofs";
+    // The size comes from one number of the study: checked as a Matrix Market
+    // size line is (a model of 72,812,094 DOFs from one element reaching one
+    // DOF allocated gigabytes of labels and indices; found by fuzzing).
+    std::vector<int> reached;
+    for (const MatrixMarketElement& element : spec.elements)
+      reached.insert(reached.end(), element.dofs.begin(), element.dofs.end());
+    std::sort(reached.begin(), reached.end());
+    const long long distinct =
+        std::unique(reached.begin(), reached.end()) - reached.begin();
+    if (n > std::max(kMatrixMarketFreeDimension, kMatrixMarketDimensionPerEntry * distinct)) {
+      throw InputError(
+          "model.elements",
+          "the largest DOF in the elements' dofs (" + std::to_string(n - 1) +
+              ") makes a model of " + std::to_string(n) + " DOFs, of which the elements reach " +
+              std::to_string(distinct) + "; expected at most " +
+              std::to_string(kMatrixMarketFreeDimension) +
+              " DOFs, or more only where the elements reach at least one DOF in " +
+              std::to_string(kMatrixMarketDimensionPerEntry) +
+              " (give model.dof_labels or a global matrix to set a larger size)");
+    }
   }
   if (n < 0) {
     throw InputError(
