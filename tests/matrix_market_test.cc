@@ -447,10 +447,12 @@ TEST(MatrixMarketSizeLimitsTest, EmptyArraysWithAHugeDimensionAreReadAtOnce) {
   // 0 x 2147483647 holds no value and is within every limit. Read dense it used
   // to walk its 2^31 empty columns (seconds; minutes under the sanitizers), found
   // by the session-21 fuzzing campaign. Now it returns at once, either way round.
-  const Eigen::MatrixXd wide = ParseMatrixMarketDense(ARRAY_BANNER "0 2147483647\n", "w.mtx");
+  const Eigen::MatrixXd wide =
+      ParseMatrixMarketDense(ARRAY_BANNER "0 2147483647\n", "w.mtx");
   EXPECT_EQ(wide.rows(), 0);
   EXPECT_EQ(wide.cols(), 2147483647);
-  const Eigen::MatrixXd tall = ParseMatrixMarketDense(ARRAY_BANNER "2147483647 0\n", "t.mtx");
+  const Eigen::MatrixXd tall =
+      ParseMatrixMarketDense(ARRAY_BANNER "2147483647 0\n", "t.mtx");
   EXPECT_EQ(tall.rows(), 2147483647);
   EXPECT_EQ(tall.cols(), 0);
 }

@@ -174,13 +174,14 @@ Structure ImportMatrixMarketStructure(const MatrixMarketModelSpec& spec,
     std::sort(reached.begin(), reached.end());
     const long long distinct =
         std::unique(reached.begin(), reached.end()) - reached.begin();
-    if (n > std::max(kMatrixMarketFreeDimension, kMatrixMarketDimensionPerEntry * distinct)) {
+    if (n >
+        std::max(kMatrixMarketFreeDimension, kMatrixMarketDimensionPerEntry * distinct)) {
       throw InputError(
           "model.elements",
           "the largest DOF in the elements' dofs (" + std::to_string(n - 1) +
-              ") makes a model of " + std::to_string(n) + " DOFs, of which the elements reach " +
-              std::to_string(distinct) + "; expected at most " +
-              std::to_string(kMatrixMarketFreeDimension) +
+              ") makes a model of " + std::to_string(n) +
+              " DOFs, of which the elements reach " + std::to_string(distinct) +
+              "; expected at most " + std::to_string(kMatrixMarketFreeDimension) +
               " DOFs, or more only where the elements reach at least one DOF in " +
               std::to_string(kMatrixMarketDimensionPerEntry) +
               " (give model.dof_labels or a global matrix to set a larger size)");

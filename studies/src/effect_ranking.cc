@@ -62,7 +62,7 @@ Fit FitInstance(const std::shared_ptr<const Structure>& structure,
     const NonlinearProblem problem = WithPriorResiduals(data, params);
     *sol = solver.Solve(problem);
     return sol->residual.size() == problem.num_residuals && sol->residual.allFinite() &&
-           sol->jacobian.rows() == problem.num_residuals
+                   sol->jacobian.rows() == problem.num_residuals
                ? data.num_residuals
                : -1;
   };
@@ -122,8 +122,7 @@ Fit FitInstance(const std::shared_ptr<const Structure>& structure,
     const double misfit = sol.residual.squaredNorm();
     if (!best.ok || misfit < best_misfit) {
       const Eigen::VectorXd residual = sol.residual.head(rows);
-      best = {true,     sol.summary.usable(),
-              sol.x,    sol.jacobian.topRows(rows),
+      best = {true,     sol.summary.usable(),  sol.x, sol.jacobian.topRows(rows),
               residual, residual.squaredNorm()};
       best_misfit = misfit;
     }
@@ -266,8 +265,8 @@ EffectRanking RankModelEffects(const Structure& structure_in,
   solver_options.verbose = std::getenv("FEMUP_VERBOSE_FITS") != nullptr;
   const auto solver = CreateNonlinearSolver(options.solver, solver_options);
   const bool ritz =
-      options.ritz_min_dofs >= 0 && structure->dof_labels.size() >=
-                                        static_cast<std::size_t>(options.ritz_min_dofs);
+      options.ritz_min_dofs >= 0 &&
+      structure->dof_labels.size() >= static_cast<std::size_t>(options.ritz_min_dofs);
 
   int shape_modes = 0;
   for (const ModalData& d : states)
@@ -306,9 +305,8 @@ EffectRanking RankModelEffects(const Structure& structure_in,
   }
   std::vector<Fit> fits(effects.size());
   ParallelFor(static_cast<int>(effects.size()), options.threads, [&](int i) {
-    fits[static_cast<std::size_t>(i)] =
-        FitInstance(structure, effects[static_cast<std::size_t>(i)], states, fit, *solver,
-                    ritz);
+    fits[static_cast<std::size_t>(i)] = FitInstance(
+        structure, effects[static_cast<std::size_t>(i)], states, fit, *solver, ritz);
   });
   for (std::size_t e = 0; e < effects.size(); ++e) {
     const std::size_t k = effect_kind[e];

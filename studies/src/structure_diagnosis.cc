@@ -196,7 +196,8 @@ std::string StructureDiagnosisReport(const StructureDiagnosisResult& r) {
     if (!c.equivalent.empty()) {
       o << "  (the same change as:";
       for (const std::string& e : c.equivalent) o << " " << e << ";";
-      o << " together P " << std::setprecision(3) << std::fixed << c.group_probability << ")";
+      o << " together P " << std::setprecision(3) << std::fixed << c.group_probability
+        << ")";
     }
     o << "\n";
   }
