@@ -334,16 +334,26 @@ TEST(EigenSensitivity, JacobianMatchesFiniteDifferences) {
   }
 }
 
-TEST(EigenSensitivity, CantileverJacobianMatchesFiniteDifferences) {
+// The paper's cantilever (10 elements, water to 1.5 m) with factors drawn
+// from `seed`, and 3 air + 3 water modes seen by the ten transverse sensors
+// with 1 % noise.
+struct NoisyCantilever {
+  ParametrisedModel model;
+  Eigen::VectorXd truth;
+  std::vector<ModalData> data;
+};
+NoisyCantilever PaperCantileverData(unsigned seed) {
   CantileverSpec spec;
   spec.node_heights = UniformHeights(1.9, 10);
   spec.section = BeamSection{206e9, 8.8e-4, 8.53e-8, 7850};
   spec.water_depth = 1.5;
   spec.added_mass_basis = AddedMassBasis::kTransverse;
-  const ParametrisedModel model = BuildModel(BuildCantilever(spec), PaperParameterPlan());
-  std::mt19937_64 rng(9);
+  NoisyCantilever out{BuildModel(BuildCantilever(spec), PaperParameterPlan()), {}, {}};
+  const ParametrisedModel& model = out.model;
+  std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(-0.05, 0.15);
-  Eigen::VectorXd truth(model.num_parameters());
+  Eigen::VectorXd& truth = out.truth;
+  truth.resize(model.num_parameters());
   for (int i = 0; i < truth.size(); ++i) truth[i] = u(rng);
   // Ten transverse sensors, as in the paper's experiment.
   std::vector<int> sensors;
@@ -352,11 +362,17 @@ TEST(EigenSensitivity, CantileverJacobianMatchesFiniteDifferences) {
   }
   NoiseModel noise;
   noise.level = 0.01;
-  std::vector<ModalData> data = {
+  out.data = {
       AtSensors(PredictModes(model, truth, Immersion::kDry, 3, "air"), sensors),
       AtSensors(PredictModes(model, truth, Immersion::kWet, 3, "water"), sensors)};
-  for (ModalData& d : data) d = Corrupt(d, noise, &rng);
-  const NonlinearProblem p = BuildEigenSensitivityProblem(model, data, {});
+  for (ModalData& d : out.data) d = Corrupt(d, noise, &rng);
+  return out;
+}
+
+TEST(EigenSensitivity, CantileverJacobianMatchesFiniteDifferences) {
+  const NoisyCantilever c = PaperCantileverData(9);
+  const ParametrisedModel& model = c.model;
+  const NonlinearProblem p = BuildEigenSensitivityProblem(model, c.data, {});
   EXPECT_EQ(p.residual_labels[1], "air mode 1 shape n1:ux");
   // Larger steps than for the chain: the eigensolver's rounding on this stiff
   // pencil enters the differences as 1/h.
@@ -370,26 +386,9 @@ TEST(EigenSensitivity, CantileverJacobianMatchesFiniteDifferences) {
 // and a Jacobian by modal expansion over every mode that matches Nelson's
 // (another formulation of the same derivative).
 TEST(EigenSensitivity, RitzBasisOfTheWholeSpaceGivesTheFullProblem) {
-  CantileverSpec spec;
-  spec.node_heights = UniformHeights(1.9, 10);
-  spec.section = BeamSection{206e9, 8.8e-4, 8.53e-8, 7850};
-  spec.water_depth = 1.5;
-  spec.added_mass_basis = AddedMassBasis::kTransverse;
-  const ParametrisedModel model = BuildModel(BuildCantilever(spec), PaperParameterPlan());
-  std::mt19937_64 rng(11);
-  std::uniform_real_distribution<double> u(-0.05, 0.15);
-  Eigen::VectorXd truth(model.num_parameters());
-  for (int i = 0; i < truth.size(); ++i) truth[i] = u(rng);
-  std::vector<int> sensors;
-  for (int node = 1; node <= 10; ++node) {
-    sensors.push_back(model.FindDof("n" + std::to_string(node) + ":ux"));
-  }
-  NoiseModel noise;
-  noise.level = 0.01;
-  std::vector<ModalData> data = {
-      AtSensors(PredictModes(model, truth, Immersion::kDry, 3, "air"), sensors),
-      AtSensors(PredictModes(model, truth, Immersion::kWet, 3, "water"), sensors)};
-  for (ModalData& d : data) d = Corrupt(d, noise, &rng);
+  const NoisyCantilever c = PaperCantileverData(11);
+  const ParametrisedModel& model = c.model;
+  const std::vector<ModalData>& data = c.data;
   EigenSensitivityOptions options;
   options.extra_modes = model.num_dofs();  // the basis: every mode
   const ModelPencil pencil(model);
@@ -402,7 +401,7 @@ TEST(EigenSensitivity, RitzBasisOfTheWholeSpaceGivesTheFullProblem) {
   reduced.extra_modes = 4;
   const NonlinearProblem full = BuildEigenSensitivityProblem(model, data, options);
   const NonlinearProblem ritz = BuildEigenSensitivityProblem(model, data, reduced);
-  for (const Eigen::VectorXd& x : {x0, Eigen::VectorXd(0.5 * truth)}) {
+  for (const Eigen::VectorXd& x : {x0, Eigen::VectorXd(0.5 * c.truth)}) {
     Eigen::VectorXd rf, rr;
     Eigen::MatrixXd jf, jr;
     std::string why;
