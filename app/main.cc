@@ -369,11 +369,10 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (*bench) {
-      const std::string invalid = bench_options.Validate();
-      if (!invalid.empty()) {
-        std::string flag = invalid.substr(0, invalid.find(':'));
+      if (const femup::Invalid bad = bench_options.Validate()) {
+        std::string flag = bad.field;
         std::replace(flag.begin(), flag.end(), '_', '-');  // form_error: --form-error
-        throw femup::InputError("--" + flag, invalid.substr(invalid.find(':') + 2));
+        throw femup::InputError("--" + flag, bad.message);
       }
       std::filesystem::create_directories(bench_out);
       femup::BenchmarkResult result;
@@ -421,10 +420,8 @@ int main(int argc, char** argv) {
       return result.solution.summary.usable() ? 0 : 3;
     }
     if (*noise) {
-      const std::string invalid = noise_run.Validate();
-      if (!invalid.empty())
-        throw femup::InputError("--" + invalid.substr(0, invalid.find(':')),
-                                invalid.substr(invalid.find(':') + 2));
+      if (const femup::Invalid bad = noise_run.Validate())
+        throw femup::InputError("--" + bad.field, bad.message);
       femup::Study study = femup::LoadStudy(noise_opts.study);
       RequireMeasurements(study);
       ApplyOverride(noise_opts, &study);

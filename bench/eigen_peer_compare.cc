@@ -106,8 +106,8 @@ Size ParseSize(const std::string& item) {
     s.spec.blocks_per_level = 1;
   }
   s.spec.elements_per_member = 4;
-  const std::string invalid = s.spec.Validate();
-  if (!invalid.empty()) throw CLI::ValidationError("--dofs", item + ": " + invalid);
+  if (const femup::Invalid bad = s.spec.Validate())
+    throw CLI::ValidationError("--dofs", item + ": " + bad.ToString());
   return s;
 }
 

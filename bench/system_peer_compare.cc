@@ -92,8 +92,8 @@ femup::SpaceFrameSpec ParseSize(const std::string& item) {
     }
   }
   spec.water_depth = spec.levels * spec.level_height + 1;  // every member wet
-  const std::string invalid = spec.Validate();
-  if (!invalid.empty()) throw CLI::ValidationError("--size", item + ": " + invalid);
+  if (const femup::Invalid bad = spec.Validate())
+    throw CLI::ValidationError("--size", item + ": " + bad.ToString());
   return spec;
 }
 

@@ -159,27 +159,28 @@ TEST(BayesOracle, RefusesWhatItDoesNotModel) {
   }
   OracleOptions few;
   few.samples = 10;
-  EXPECT_NE(few.Validate().find("samples"), std::string::npos);
+  EXPECT_NE(few.Validate().ToString().find("samples"), std::string::npos);
   EXPECT_THROW(BayesOracle(study, SingleSuite(), few), InputError);
   OracleOptions unknown;
   unknown.kinds = {"corrosion"};
-  EXPECT_NE(unknown.Validate().find("'corrosion'"), std::string::npos);
+  EXPECT_NE(unknown.Validate().ToString().find("'corrosion'"), std::string::npos);
 }
 
 TEST(BenchmarkOptions, ValidatesTheOracleSettings) {
   BenchmarkOptions o;
-  EXPECT_EQ(o.Validate(), "");  // mixed suite, oracle off
+  EXPECT_EQ(o.Validate().ToString(), "");  // mixed suite, oracle off
   o.oracle = "weak";
-  EXPECT_NE(o.Validate().find("single suite"), std::string::npos) << o.Validate();
+  EXPECT_NE(o.Validate().ToString().find("single suite"), std::string::npos)
+      << o.Validate().ToString();
   o.suite = "single";
-  EXPECT_EQ(o.Validate(), "");
+  EXPECT_EQ(o.Validate().ToString(), "");
   o.oracle = "all";
-  EXPECT_EQ(o.Validate(), "");
+  EXPECT_EQ(o.Validate().ToString(), "");
   o.oracle = "maybe";
-  EXPECT_EQ(o.Validate().rfind("oracle: ", 0), 0u) << o.Validate();
+  EXPECT_EQ(o.Validate().field, "oracle") << o.Validate().ToString();
   o.oracle = "weak";
   o.oracle_samples = 10;
-  EXPECT_EQ(o.Validate().rfind("oracle_samples: ", 0), 0u) << o.Validate();
+  EXPECT_EQ(o.Validate().field, "oracle_samples") << o.Validate().ToString();
 }
 
 }  // namespace

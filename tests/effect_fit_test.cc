@@ -179,7 +179,7 @@ std::vector<PredictedMode> UniformCantileverModes(int elements) {
     st.modes.push_back(m);
   }
   data.states.push_back(st);
-  EXPECT_EQ(data.Validate(), "");
+  EXPECT_EQ(data.Validate().ToString(), "");
   std::vector<PredictedState> pred;
   std::string why;
   EXPECT_TRUE(PredictEffectModes(data, {}, Eigen::VectorXd(), &pred, &why)) << why;
@@ -264,7 +264,7 @@ TEST(EffectFit, ExactDataGiveZeroResiduals) {
   // A second state without shapes: frequencies only.
   data.states.push_back(StateFrom(ref, {}, 3, false));
   data.states[1].state = "frequencies only";
-  ASSERT_EQ(data.Validate(), "");
+  ASSERT_EQ(data.Validate().ToString(), "");
   EXPECT_EQ(NumEffectResiduals(data), 4 * (1 + 10) + 3);
   EXPECT_EQ(EffectDegreesOfFreedom(data), 4 * 10 + 3);
   std::vector<PredictedState> pred;
@@ -296,7 +296,7 @@ TEST(EffectFit, ExactDataGiveZeroResiduals) {
   Eigen::VectorXd own(10);
   for (int j = 0; j < 10; ++j) own[j] = 0.01 * (j + 1);
   data.states[0].modes[1].shape_sigma = own;
-  ASSERT_EQ(data.Validate(), "");
+  ASSERT_EQ(data.Validate().ToString(), "");
   const Eigen::VectorXd r3 = EffectResiduals(data, pred);
   ASSERT_EQ(r3.size(), r2.size());
   for (int j = 0; j < 10; ++j) {
@@ -373,7 +373,7 @@ TEST(EffectFit, CompanionModesKeepThePairingDistinctAcrossDataSets) {
   third.frequency_hz = ref.hz[2];
   third.shape = ref.at_sensors.col(2);
   data.states[0].companions.push_back(third);
-  EXPECT_EQ(data.Validate(), "");
+  EXPECT_EQ(data.Validate().ToString(), "");
   ASSERT_TRUE(PredictEffectModes(data, {}, Eigen::VectorXd(), &pred, &why)) << why;
   ASSERT_EQ(pred[0].modes.size(), 1u);
   EXPECT_EQ(pred[0].modes[0].model_mode, 4);
@@ -452,7 +452,7 @@ TEST(EffectFit, SemiAnalyticJacobianOfPairsAndWetStatesAgreesWithDifferences) {
   wet.immersion = Immersion::kWet;
   for (ObservedMode& m : wet.modes) m.frequency_hz *= 0.9;
   data.states = {dry, wet};
-  ASSERT_EQ(data.Validate(), "");
+  ASSERT_EQ(data.Validate().ToString(), "");
   const std::map<std::string, Eigen::VectorXd> truths = Truths();
   std::vector<std::string> kinds;
   for (const auto& [kind, x] : truths) kinds.push_back(kind);
@@ -493,7 +493,7 @@ TEST(EffectFit, ProblemCarriesNamesBoundsAndStart) {
     EXPECT_EQ(p.lower[i], params[i].lower);
     EXPECT_EQ(p.upper[i], params[i].upper);
   }
-  EXPECT_EQ(p.Validate(), "");
+  EXPECT_EQ(p.Validate().ToString(), "");
 }
 
 TEST(EffectFit, CeresRecoversEachFamilyFromExactSyntheticData) {
@@ -555,7 +555,7 @@ EffectFitData ValidData() {
 }
 
 void ExpectRejected(const EffectFitData& data, const std::vector<std::string>& parts) {
-  const std::string v = data.Validate();
+  const std::string v = data.Validate().ToString();
   EXPECT_FALSE(v.empty());
   for (const std::string& p : parts)
     EXPECT_NE(v.find(p), std::string::npos) << "'" << p << "' not in: " << v;
@@ -563,7 +563,7 @@ void ExpectRejected(const EffectFitData& data, const std::vector<std::string>& p
   ExpectInputError([&] { BuildEffectFitProblem(data, {e.get()}, Vec({0.0})); }, parts);
 }
 
-TEST(EffectFitInput, ValidDataPass) { EXPECT_EQ(ValidData().Validate(), ""); }
+TEST(EffectFitInput, ValidDataPass) { EXPECT_EQ(ValidData().Validate().ToString(), ""); }
 
 TEST(EffectFitInput, NoStates) {
   EffectFitData data = ValidData();

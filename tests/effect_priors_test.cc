@@ -172,26 +172,29 @@ TEST(EffectPriors, QuantitiesTheFamilyLacksAndValuesOutsideTheirDomainAreRefused
 
 TEST(EffectPriors, ValidateNamesTheField) {
   StatedPriors p;
-  EXPECT_EQ(p.Validate(), "");
+  EXPECT_EQ(p.Validate().ToString(), "");
   EXPECT_TRUE(p.empty());
   p.families = {Prior("attached_mass", {Range("mass_kg", 0.01, 0.002)})};
-  EXPECT_EQ(p.Validate(), "priors.attached_mass.mass_kg: lower 0.01 > upper 0.002");
+  EXPECT_EQ(p.Validate().ToString(),
+            "priors.attached_mass.mass_kg: lower 0.01 > upper 0.002");
   p.families = {Prior("attached_mass", {Range("mass_kg", 0.01, 0.01)})};
-  EXPECT_TRUE(Has(p.Validate(), "priors.attached_mass.mass_kg: lower = upper"))
-      << p.Validate();
+  EXPECT_TRUE(Has(p.Validate().ToString(), "priors.attached_mass.mass_kg: lower = upper"))
+      << p.Validate().ToString();
   p.families = {Prior("material_scaling", {Normal("factor", 1, 0)})};
-  EXPECT_TRUE(Has(p.Validate(), "priors.material_scaling.factor: normal"))
-      << p.Validate();
+  EXPECT_TRUE(Has(p.Validate().ToString(), "priors.material_scaling.factor: normal"))
+      << p.Validate().ToString();
   p.families = {
       Prior("material_scaling", {Normal("factor", 1, 0.1), Normal("factor", 1, 0.1)})};
-  EXPECT_TRUE(Has(p.Validate(), "stated twice")) << p.Validate();
+  EXPECT_TRUE(Has(p.Validate().ToString(), "stated twice")) << p.Validate().ToString();
   p.families = {Prior("stiffness_loss", {}, {"3", "3"})};
-  EXPECT_TRUE(Has(p.Validate(), "priors.stiffness_loss.regions[2]")) << p.Validate();
+  EXPECT_TRUE(Has(p.Validate().ToString(), "priors.stiffness_loss.regions[2]"))
+      << p.Validate().ToString();
   p.families.clear();
   p.weights = {{"none", 1}, {"stiffness_loss", -2}};
-  EXPECT_TRUE(Has(p.Validate(), "weights.stiffness_loss")) << p.Validate();
+  EXPECT_TRUE(Has(p.Validate().ToString(), "weights.stiffness_loss"))
+      << p.Validate().ToString();
   p.weights = {{"none", 3}, {"stiffness_loss", 2}};
-  EXPECT_EQ(p.Validate(), "");
+  EXPECT_EQ(p.Validate().ToString(), "");
   EXPECT_EQ(p.Weight("none"), 3);
   EXPECT_EQ(p.Weight("attached_mass"), 1);
 }

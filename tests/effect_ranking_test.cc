@@ -108,7 +108,7 @@ TEST(EffectRanking, DoesNotDependOnTheThreadCount) {
   }
   EffectRankingOptions bad = Options();
   bad.threads = -1;
-  EXPECT_NE(bad.Validate().find("threads"), std::string::npos);
+  EXPECT_NE(bad.Validate().ToString().find("threads"), std::string::npos);
 }
 
 TEST(EffectRanking, FormErrorInFrequenciesIsTemperedApartFromTheShapes) {

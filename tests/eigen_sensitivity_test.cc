@@ -126,7 +126,7 @@ TEST(EigenSensitivity, JacobianDoesNotDependOnTheThreadCount) {
   EXPECT_EQ(j1, j3);
   EXPECT_GT(j1.cwiseAbs().maxCoeff(), 0.0);
   three.threads = 0;
-  EXPECT_NE(three.Validate().find("threads"), std::string::npos);
+  EXPECT_NE(three.Validate().ToString().find("threads"), std::string::npos);
 }
 
 // A square frame's sway modes in x and y share one eigenvalue, and the

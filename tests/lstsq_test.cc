@@ -274,7 +274,7 @@ TEST(LinearSolverFactory, NamesAndErrors) {
   for (double tol : {0.0, -1e-3, 1.0, std::numeric_limits<double>::quiet_NaN()}) {
     LinearSolverOptions options;
     options.relative_rank_tolerance = tol;
-    EXPECT_NE(options.Validate(), "") << tol;
+    EXPECT_NE(options.Validate().ToString(), "") << tol;
     try {
       CreateLinearSolver("lstsq", options);
       ADD_FAILURE() << "no exception for tolerance " << tol;
@@ -283,7 +283,7 @@ TEST(LinearSolverFactory, NamesAndErrors) {
           << e.what();
     }
   }
-  EXPECT_EQ(LinearSolverOptions().Validate(), "");
+  EXPECT_EQ(LinearSolverOptions().Validate().ToString(), "");
 }
 
 TEST(LinearSolverFactory, InvalidOptionErrorNamesTheField) {
@@ -310,51 +310,59 @@ TEST(SolverStatus, Names) {
 
 TEST(LinearProblem, ValidateMessages) {
   const LinearProblem good = Problem(RandomMatrix(4, 3, 10), RandomMatrix(4, 1, 11));
-  EXPECT_EQ(good.Validate(), "");
+  EXPECT_EQ(good.Validate().ToString(), "");
 
   LinearProblem p = good;
   p.b = Eigen::VectorXd::Zero(5);
-  EXPECT_NE(p.Validate().find("4 rows but b has 5"), std::string::npos) << p.Validate();
+  EXPECT_NE(p.Validate().ToString().find("4 rows but b has 5"), std::string::npos)
+      << p.Validate().ToString();
 
   p = good;
   p.names.pop_back();
-  EXPECT_NE(p.Validate().find("2 names for 3 unknowns"), std::string::npos)
-      << p.Validate();
+  EXPECT_NE(p.Validate().ToString().find("2 names for 3 unknowns"), std::string::npos)
+      << p.Validate().ToString();
 
   p = good;
   p.groups = {"mass"};
-  EXPECT_NE(p.Validate().find("groups"), std::string::npos) << p.Validate();
+  EXPECT_NE(p.Validate().ToString().find("groups"), std::string::npos)
+      << p.Validate().ToString();
 
   p = good;
   p.row_labels = {"r1"};
-  EXPECT_NE(p.Validate().find("row labels"), std::string::npos) << p.Validate();
+  EXPECT_NE(p.Validate().ToString().find("row labels"), std::string::npos)
+      << p.Validate().ToString();
 
   p = good;
   p.A(1, 2) = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_NE(p.Validate().find("A has a NaN"), std::string::npos) << p.Validate();
+  EXPECT_NE(p.Validate().ToString().find("A has a NaN"), std::string::npos)
+      << p.Validate().ToString();
 
   p = good;
   p.b[0] = std::numeric_limits<double>::infinity();
-  EXPECT_NE(p.Validate().find("b has a NaN"), std::string::npos) << p.Validate();
+  EXPECT_NE(p.Validate().ToString().find("b has a NaN"), std::string::npos)
+      << p.Validate().ToString();
 
   p = good;
   p.fixed = {{3, 1.0}};
-  EXPECT_NE(p.Validate().find("index 3 is outside 0..2"), std::string::npos)
-      << p.Validate();
+  EXPECT_NE(p.Validate().ToString().find("index 3 is outside 0..2"), std::string::npos)
+      << p.Validate().ToString();
   p.fixed = {{-1, 1.0}};
-  EXPECT_NE(p.Validate().find("outside"), std::string::npos) << p.Validate();
+  EXPECT_NE(p.Validate().ToString().find("outside"), std::string::npos)
+      << p.Validate().ToString();
 
   p = good;
   p.fixed = {{1, 1.0}, {1, 2.0}};
-  EXPECT_NE(p.Validate().find("x2 is fixed twice"), std::string::npos) << p.Validate();
+  EXPECT_NE(p.Validate().ToString().find("x2 is fixed twice"), std::string::npos)
+      << p.Validate().ToString();
 
   p = good;
   p.fixed = {{0, std::numeric_limits<double>::quiet_NaN()}};
-  EXPECT_NE(p.Validate().find("not finite"), std::string::npos) << p.Validate();
+  EXPECT_NE(p.Validate().ToString().find("not finite"), std::string::npos)
+      << p.Validate().ToString();
 
   p = good;
   p.fixed = {{0, 1.0}, {1, 1.0}, {2, 1.0}};
-  EXPECT_NE(p.Validate(), "");
+  EXPECT_NE(p.Validate().ToString(), "");
 
   // The solver refuses an invalid problem before any work.
   p = good;

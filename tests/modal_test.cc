@@ -177,22 +177,22 @@ TEST(SolveModes, BadInputThrows) {
 }
 
 TEST(EigenOptions, Validate) {
-  EXPECT_EQ(EigenOptions().Validate(), "");
+  EXPECT_EQ(EigenOptions().Validate().ToString(), "");
   EigenOptions o;
   o.num_modes = 0;
-  EXPECT_NE(o.Validate(), "");
+  EXPECT_NE(o.Validate().ToString(), "");
   o = EigenOptions();
   o.dense_limit = 0;
-  EXPECT_NE(o.Validate(), "");
+  EXPECT_NE(o.Validate().ToString(), "");
   o = EigenOptions();
   o.shift = std::nan("");
-  EXPECT_NE(o.Validate(), "");
+  EXPECT_NE(o.Validate().ToString(), "");
   o = EigenOptions();
   o.tolerance = 0;
-  EXPECT_NE(o.Validate(), "");
+  EXPECT_NE(o.Validate().ToString(), "");
   o = EigenOptions();
   o.max_iterations = 0;
-  EXPECT_NE(o.Validate(), "");
+  EXPECT_NE(o.Validate().ToString(), "");
 }
 
 TEST(Modes, FrequenciesHzOfHandValues) {

@@ -206,7 +206,7 @@ TEST_P(NistLinearTest, CertifiedValuesAreConsistent) {
 TEST_P(NistLinearTest, ProblemIsTheDoubleDesign) {
   const NistLinearDataset d = ReadNistLinear(LinearFile(GetParam().name));
   const LinearProblem p = d.Problem();
-  EXPECT_EQ(p.Validate(), "");
+  EXPECT_EQ(p.Validate().ToString(), "");
   EXPECT_EQ(p.A, d.Design<double>());
   EXPECT_EQ(p.b, d.response.cast<double>());
   EXPECT_EQ(p.names, d.parameter_names);

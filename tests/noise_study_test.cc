@@ -149,7 +149,7 @@ TEST(NoiseStudyThreads, RejectsZeroThreadsNamingTheField) {
   Study study = LoadStudy(Example("paper_chain_noise.yaml"));
   NoiseRunOptions options;
   options.threads = 0;
-  EXPECT_NE(options.Validate().find("threads"), std::string::npos);
+  EXPECT_NE(options.Validate().ToString().find("threads"), std::string::npos);
   try {
     RunNoiseStudy(study, options);
     FAIL() << "no error for 0 threads";

@@ -193,13 +193,13 @@ TEST(Corrupt, InvalidLevelsThrow) {
                        std::numeric_limits<double>::infinity()}) {
     NoiseModel noise;
     noise.level = level;
-    EXPECT_NE(noise.Validate(), "") << level;
+    EXPECT_NE(noise.Validate().ToString(), "") << level;
     std::mt19937_64 rng(1);
     EXPECT_THROW(Corrupt(clean, noise, &rng), InputError) << level;
   }
   NoiseModel ok;
   ok.level = 0.99;
-  EXPECT_EQ(ok.Validate(), "");
+  EXPECT_EQ(ok.Validate().ToString(), "");
 }
 
 TEST(Corrupt, NonPositiveEigenvalueThrows) {

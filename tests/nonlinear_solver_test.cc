@@ -663,40 +663,41 @@ TEST(CheckKkt, EqualBoundsAcceptEitherSign) {
 
 TEST(NonlinearProblem, ValidateSaysWhatIsWrong) {
   NonlinearProblem p = Rosenbrock();
-  EXPECT_EQ(p.Validate(), "");
+  EXPECT_EQ(p.Validate().ToString(), "");
   NonlinearProblem q = p;
   q.lower = Eigen::Vector2d(-2, 0);
   q.upper = Eigen::Vector2d(2, 0.5);
-  EXPECT_NE(q.Validate().find("the start 1 of x2 is outside its bounds [0, 0.5]"),
-            std::string::npos)
-      << q.Validate();
+  EXPECT_NE(
+      q.Validate().ToString().find("the start 1 of x2 is outside its bounds [0, 0.5]"),
+      std::string::npos)
+      << q.Validate().ToString();
   q = p;
   q.fixed = {{0, 1.0}, {0, 2.0}};
-  EXPECT_EQ(q.Validate(), "x1 is fixed twice");
+  EXPECT_EQ(q.Validate().ToString(), "x1 is fixed twice");
   q = p;
   q.fixed = {{0, 1.0}, {1, 2.0}};
-  EXPECT_EQ(q.Validate(), "every parameter is fixed");
+  EXPECT_EQ(q.Validate().ToString(), "every parameter is fixed");
   q = p;
   q.fixed = {{5, 1.0}};
-  EXPECT_EQ(q.Validate(), "fixed parameter index 5 is outside 0..1");
+  EXPECT_EQ(q.Validate().ToString(), "fixed parameter index 5 is outside 0..1");
   q = p;
   q.lower = Eigen::Vector3d(0, 0, 0);
-  EXPECT_NE(q.Validate().find("bounds have 3 lower"), std::string::npos);
+  EXPECT_NE(q.Validate().ToString().find("bounds have 3 lower"), std::string::npos);
   q = p;
   q.equality_matrix = Eigen::MatrixXd::Ones(1, 3);
   q.equality_rhs = Eigen::VectorXd::Ones(1);
-  EXPECT_NE(q.Validate().find("equality_matrix is 1 x 3"), std::string::npos);
+  EXPECT_NE(q.Validate().ToString().find("equality_matrix is 1 x 3"), std::string::npos);
   q = p;
   q.evaluate = nullptr;
-  EXPECT_EQ(q.Validate(), "no evaluate function");
+  EXPECT_EQ(q.Validate().ToString(), "no evaluate function");
   q = p;
   q.num_residuals = 0;
-  EXPECT_EQ(q.Validate(), "num_residuals must be positive, got 0");
+  EXPECT_EQ(q.Validate().ToString(), "num_residuals must be positive, got 0");
   // A NaN start of a fixed parameter is harmless: the fixed value replaces it.
   q = p;
   q.initial[0] = std::nan("");
   q.fixed = {{0, 1.0}};
-  EXPECT_EQ(q.Validate(), "");
+  EXPECT_EQ(q.Validate().ToString(), "");
 }
 
 TEST(NonlinearProblem, FreeUnknownsAndBounds) {
@@ -724,7 +725,7 @@ TEST(NonlinearProblem, AsNonlinearWeightsTheResiduals) {
   lp.upper = Eigen::Vector2d(kInf, 0.25);
   lp.fixed = {};
   const NonlinearProblem p = AsNonlinear(lp, Eigen::Vector2d(0, 1));
-  EXPECT_EQ(p.Validate(), "");
+  EXPECT_EQ(p.Validate().ToString(), "");
   EXPECT_EQ(p.num_residuals, 3);
   EXPECT_EQ(p.initial, Eigen::Vector2d(0.5, 0.25));  // clipped into the bounds
   EXPECT_TRUE(p.residuals_whitened);

@@ -201,8 +201,9 @@ TEST(PlaneFrameStructure, RefusesAnInvalidSpecNamingTheField) {
   }
   spec = Portal();
   spec.base.rotation = -1;
-  EXPECT_NE(spec.Validate().find("base.rotation: a spring stiffness must be >= 0"),
-            std::string::npos);
+  EXPECT_NE(
+      spec.Validate().ToString().find("base.rotation: a spring stiffness must be >= 0"),
+      std::string::npos);
   spec.base.rotation = 1e7;
   EXPECT_THROW(BuildPlaneFrame(spec), InputError);  // the benchmark frame is clamped
 }

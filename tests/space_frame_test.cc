@@ -351,7 +351,7 @@ TEST(SpaceFrameElement, BadInputNamesTheProblem) {
     bad.*field = -1;
     expect([&] { Frame3dLocalStiffness(bad, 1.0); },
            std::string("frame section.") + name);
-    EXPECT_EQ(bad.Validate().rfind(std::string(name) + ":", 0), 0u) << bad.Validate();
+    EXPECT_EQ(bad.Validate().field, name) << bad.Validate().ToString();
   }
   FrameSection3d bad = s;
   bad.G = 0;
@@ -737,7 +737,7 @@ TEST(SpaceFrameInput, BadSpecNamesTheField) {
             << e.what();
       }
     }
-    EXPECT_EQ(spec.Validate().rfind(field + ":", 0), 0u) << spec.Validate();
+    EXPECT_EQ(spec.Validate().field, field) << spec.Validate().ToString();
   };
   SpaceFrameSpec s;
   s.levels = 0;
@@ -793,7 +793,7 @@ TEST(SpaceFrameInput, BadSpecNamesTheField) {
   s.legs.shear_area_y = 0;
   expect(s, "legs.shear_area_y");
   s = {};
-  EXPECT_EQ(s.Validate(), "");
+  EXPECT_EQ(s.Validate().ToString(), "");
 }
 
 }  // namespace

@@ -233,12 +233,12 @@ TEST(TimeResponse, BadInputNamesTheField) {
   const SparseMatrix k = Sparse(ChainStiffness());
   const SparseMatrix m = Sparse(Eigen::MatrixXd::Identity(3, 3));
   const TimeResponseOptions good = Options(100.0, 1.0, ResponseQuantity::kAcceleration);
-  EXPECT_EQ(good.Validate(), "");
+  EXPECT_EQ(good.Validate().ToString(), "");
   EXPECT_EQ(WhereOf(k, m, 0, good), "(no error)");
 
   TimeResponseOptions o = good;
   o.sample_rate_hz = 0;
-  EXPECT_EQ(o.Validate().rfind("sample_rate_hz: ", 0), 0u) << o.Validate();
+  EXPECT_EQ(o.Validate().field, "sample_rate_hz") << o.Validate().ToString();
   EXPECT_EQ(WhereOf(k, m, 0, o), "time_response.sample_rate_hz");
   o = good;
   o.duration_s = std::nan("");

@@ -16,12 +16,6 @@ namespace {
 
 using Complex = std::complex<double>;
 
-[[noreturn]] void ThrowField(const std::string& prefix, const std::string& invalid) {
-  const std::size_t colon = invalid.find(':');
-  if (colon == std::string::npos) throw InputError(prefix, invalid);
-  throw InputError(prefix + "." + invalid.substr(0, colon), invalid.substr(colon + 2));
-}
-
 // Checks the records; returns the number of samples.
 int CheckRecords(const std::vector<Eigen::MatrixXd>& refs, double sample_rate_hz,
                  const std::string& prefix) {
@@ -300,62 +294,70 @@ const char* ToString(PoleStatus status) {
 namespace {
 
 // Checks shared by EraOptions and StabilisationOptions::era (order excluded).
-std::string ValidateHankelAndLimits(const EraOptions& o) {
+Invalid ValidateHankelAndLimits(const EraOptions& o) {
+  std::string field;
   std::ostringstream msg;
+  auto at = [&](const char* name) -> std::ostream& {
+    field = name;
+    return msg;
+  };
   if (o.block_rows < 0) {
-    msg << "block_rows: must be >= 0 (0 = automatic), got " << o.block_rows;
+    at("block_rows") << "must be >= 0 (0 = automatic), got " << o.block_rows;
   } else if (o.block_columns < 0) {
-    msg << "block_columns: must be >= 0 (0 = automatic), got " << o.block_columns;
+    at("block_columns") << "must be >= 0 (0 = automatic), got " << o.block_columns;
   } else if (o.max_hankel_size < 1) {
-    msg << "max_hankel_size: must be >= 1, got " << o.max_hankel_size;
+    at("max_hankel_size") << "must be >= 1, got " << o.max_hankel_size;
   } else if (o.first_sample < 0) {
-    msg << "first_sample: must be >= 0, got " << o.first_sample;
+    at("first_sample") << "must be >= 0, got " << o.first_sample;
   } else if (!(o.max_damping_ratio > 0) || !std::isfinite(o.max_damping_ratio)) {
-    msg << "max_damping_ratio: must be positive and finite, got " << o.max_damping_ratio;
+    at("max_damping_ratio") << "must be positive and finite, got " << o.max_damping_ratio;
   } else if (!(o.min_emac >= 0 && o.min_emac <= 1)) {
-    msg << "min_emac: must be in [0, 1], got " << o.min_emac;
+    at("min_emac") << "must be in [0, 1], got " << o.min_emac;
   } else if (!(o.min_mpc >= 0 && o.min_mpc <= 1)) {
-    msg << "min_mpc: must be in [0, 1], got " << o.min_mpc;
+    at("min_mpc") << "must be in [0, 1], got " << o.min_mpc;
   }
-  return msg.str();
+  return {field, msg.str()};
 }
 
 }  // namespace
 
-std::string EraOptions::Validate() const {
+Invalid EraOptions::Validate() const {
   if (order < 1) {
-    return "order: must be >= 1 (2 states per mode), got " + std::to_string(order);
+    return {"order", "must be >= 1 (2 states per mode), got " + std::to_string(order)};
   }
   return ValidateHankelAndLimits(*this);
 }
 
-std::string StabilisationOptions::Validate() const {
+Invalid StabilisationOptions::Validate() const {
+  std::string field;
   std::ostringstream msg;
+  auto at = [&](const char* name) -> std::ostream& {
+    field = name;
+    return msg;
+  };
   if (min_order < 1) {
-    msg << "min_order: must be >= 1, got " << min_order;
+    at("min_order") << "must be >= 1, got " << min_order;
   } else if (max_order < min_order) {
-    msg << "max_order: must be >= min_order (" << min_order << "), got " << max_order;
+    at("max_order") << "must be >= min_order (" << min_order << "), got " << max_order;
   } else if (order_step < 1) {
-    msg << "order_step: must be >= 1, got " << order_step;
+    at("order_step") << "must be >= 1, got " << order_step;
   } else if (!(frequency_tolerance > 0) || !std::isfinite(frequency_tolerance)) {
-    msg << "frequency_tolerance: must be positive (relative, 0.01 = 1 %), got "
-        << frequency_tolerance;
+    at("frequency_tolerance") << "must be positive (relative, 0.01 = 1 %), got "
+                              << frequency_tolerance;
   } else if (!(damping_tolerance > 0) || !std::isfinite(damping_tolerance)) {
-    msg << "damping_tolerance: must be positive (relative, 0.05 = 5 %), got "
-        << damping_tolerance;
+    at("damping_tolerance") << "must be positive (relative, 0.05 = 5 %), got "
+                            << damping_tolerance;
   } else if (!(mac_tolerance >= 0 && mac_tolerance <= 1)) {
-    msg << "mac_tolerance: must be in [0, 1], got " << mac_tolerance;
+    at("mac_tolerance") << "must be in [0, 1], got " << mac_tolerance;
   } else {
-    const std::string era_invalid = ValidateHankelAndLimits(era);
-    if (!era_invalid.empty()) return "era." + era_invalid;
+    return ValidateHankelAndLimits(era).Under("era");
   }
-  return msg.str();
+  return {field, msg.str()};
 }
 
 EraResult RunEra(const std::vector<Eigen::MatrixXd>& references, double sample_rate_hz,
                  const EraOptions& options) {
-  const std::string invalid = options.Validate();
-  if (!invalid.empty()) ThrowField("era", invalid);
+  ThrowIfInvalid(options.Validate(), "era");
   const Factorisation f =
       Factorise(references, sample_rate_hz, options, options.order, "era");
   Realisation r = Realise(f, options.order, options);
@@ -383,8 +385,7 @@ EraResult RunEra(const Eigen::MatrixXd& records, double sample_rate_hz,
 StabilisationDiagram BuildStabilisationDiagram(
     const std::vector<Eigen::MatrixXd>& references, double sample_rate_hz,
     const StabilisationOptions& options) {
-  const std::string invalid = options.Validate();
-  if (!invalid.empty()) ThrowField("stabilisation", invalid);
+  ThrowIfInvalid(options.Validate(), "stabilisation");
   const Factorisation f = Factorise(references, sample_rate_hz, options.era,
                                     options.max_order, "stabilisation");
   StabilisationDiagram out;
@@ -440,8 +441,7 @@ StabilisationDiagram BuildStabilisationDiagram(const Eigen::MatrixXd& records,
 std::vector<StableMode> PickStableModes(const StabilisationDiagram& diagram,
                                         const StabilisationOptions& options,
                                         int min_consecutive) {
-  const std::string invalid = options.Validate();
-  if (!invalid.empty()) ThrowField("stabilisation", invalid);
+  ThrowIfInvalid(options.Validate(), "stabilisation");
   if (min_consecutive < 1) {
     throw InputError("stabilisation.min_consecutive",
                      "must be >= 1, got " + std::to_string(min_consecutive));

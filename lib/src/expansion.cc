@@ -10,22 +10,18 @@
 
 namespace femup {
 
-std::string ExpansionOptions::Validate() const {
+Invalid ExpansionOptions::Validate() const {
   if (method != "serep" && method != "lsq" && method != "dynamic")
-    return "method: expected serep, lsq or dynamic, got '" + method + "'";
-  if (num_modes < 0) return "num_modes: must be >= 0";
-  return "";
+    return {"method", "expected serep, lsq or dynamic, got '" + method + "'"};
+  if (num_modes < 0) return {"num_modes", "must be >= 0"};
+  return {};
 }
 
 ExpandedShape ExpandShape(const SparseMatrix& stiffness, const SparseMatrix& mass,
                           const Modes& model_modes, const std::vector<int>& sensors,
                           const Eigen::VectorXd& measured, double eigenvalue,
                           const ExpansionOptions& options) {
-  const std::string invalid = options.Validate();
-  if (!invalid.empty()) {
-    const auto colon = invalid.find(':');
-    throw InputError("expansion." + invalid.substr(0, colon), invalid.substr(colon + 2));
-  }
+  ThrowIfInvalid(options.Validate(), "expansion");
   const int n = static_cast<int>(stiffness.rows());
   const int s = static_cast<int>(sensors.size());
   if (measured.size() != s || s == 0) {

@@ -15,11 +15,7 @@ bool PositiveFinite(double x) { return x > 0 && std::isfinite(x); }
 bool NonNegativeFinite(double x) { return x >= 0 && std::isfinite(x); }
 
 void Check(const FrameSection3d& s, double length, BeamTheory theory) {
-  const std::string bad = s.Validate(theory);
-  if (!bad.empty()) {
-    const auto colon = bad.find(':');
-    throw InputError("frame section." + bad.substr(0, colon), bad.substr(colon + 2));
-  }
+  ThrowIfInvalid(s.Validate(theory), "frame section");
   if (!PositiveFinite(length)) {
     throw InputError("frame element", "length must be positive and finite");
   }
@@ -122,26 +118,26 @@ bool BeamTheoryFromString(const std::string& text, BeamTheory* theory) {
   return false;
 }
 
-std::string FrameSection3d::Validate(BeamTheory theory) const {
+Invalid FrameSection3d::Validate(BeamTheory theory) const {
   const std::pair<const char*, double> positive[] = {{"E", E},   {"A", A}, {"Iy", Iy},
                                                      {"Iz", Iz}, {"J", J}, {"rho", rho}};
   for (const auto& [name, value] : positive) {
-    if (!PositiveFinite(value))
-      return std::string(name) + ": must be positive and finite";
+    if (!PositiveFinite(value)) return {name, "must be positive and finite"};
   }
-  if (!NonNegativeFinite(G)) return "G: must be >= 0 and finite (0: from nu)";
-  if (G == 0 && !(nu > -1 && nu <= 0.5)) return "nu: must be in (-1, 0.5] when G is 0";
-  if (!NonNegativeFinite(Ip)) return "Ip: must be >= 0 and finite (0: Iy + Iz)";
+  if (!NonNegativeFinite(G)) return {"G", "must be >= 0 and finite (0: from nu)"};
+  if (G == 0 && !(nu > -1 && nu <= 0.5))
+    return {"nu", "must be in (-1, 0.5] when G is 0"};
+  if (!NonNegativeFinite(Ip)) return {"Ip", "must be >= 0 and finite (0: Iy + Iz)"};
   const bool timoshenko = theory == BeamTheory::kTimoshenko;
   const std::pair<const char*, double> shear[] = {{"shear_area_y", shear_area_y},
                                                   {"shear_area_z", shear_area_z}};
   for (const auto& [name, value] : shear) {
     if (timoshenko ? !PositiveFinite(value) : !NonNegativeFinite(value)) {
-      return std::string(name) + (timoshenko ? ": must be positive for a Timoshenko beam"
-                                             : ": must be >= 0 and finite");
+      return {name, timoshenko ? "must be positive for a Timoshenko beam"
+                               : "must be >= 0 and finite"};
     }
   }
-  return "";
+  return {};
 }
 
 FrameSection3d CircularTube(double diameter, double wall, double E, double nu,

@@ -53,19 +53,20 @@ Eigen::VectorXd Modes::FrequenciesHz() const {
   return f;
 }
 
-std::string EigenOptions::Validate() const {
-  if (num_modes == 0 || num_modes < -1) return "num_modes must be -1 (all) or >= 1";
-  if (dense_limit < 1) return "dense_limit must be >= 1";
-  if (!std::isfinite(shift)) return "shift must be finite";
-  if (!(tolerance > 0)) return "tolerance must be positive";
-  if (max_iterations < 1) return "max_iterations must be >= 1";
-  return "";
+Invalid EigenOptions::Validate() const {
+  if (num_modes == 0 || num_modes < -1)
+    return {"num_modes", "num_modes must be -1 (all) or >= 1"};
+  if (dense_limit < 1) return {"dense_limit", "dense_limit must be >= 1"};
+  if (!std::isfinite(shift)) return {"shift", "shift must be finite"};
+  if (!(tolerance > 0)) return {"tolerance", "tolerance must be positive"};
+  if (max_iterations < 1) return {"max_iterations", "max_iterations must be >= 1"};
+  return {};
 }
 
 Modes SolveModes(const SparseMatrix& stiffness, const SparseMatrix& mass,
                  const EigenOptions& options) {
-  const std::string invalid = options.Validate();
-  if (!invalid.empty()) throw InputError("eigen options", invalid);
+  if (const Invalid bad = options.Validate())
+    throw InputError("eigen options", bad.message);
   const Eigen::Index n = stiffness.rows();
   if (stiffness.cols() != n || mass.rows() != n || mass.cols() != n) {
     std::ostringstream msg;

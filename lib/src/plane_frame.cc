@@ -18,14 +18,14 @@ using internal::FromTriplets;
 using internal::Scatter;
 using internal::Triplets;
 
-std::string CheckSection(const BeamSection& s, const std::string& field) {
+Invalid CheckSection(const BeamSection& s, const std::string& field) {
   const double v[4] = {s.E, s.A, s.I, s.rho};
   for (double x : v) {
     if (!(x > 0) || !std::isfinite(x)) {
-      return field + ": E, A, I and rho must be positive and finite";
+      return {field, "E, A, I and rho must be positive and finite"};
     }
   }
-  return "";
+  return {};
 }
 
 // The frame's geometry, shared by both builders: free nodes (the joints, column
@@ -97,41 +97,43 @@ FrameLayout LayOut(const PlaneFrameSpec& spec) {
 
 }  // namespace
 
-std::string PlaneFrameSpec::Validate() const {
+Invalid PlaneFrameSpec::Validate() const {
+  std::string field;
   std::ostringstream msg;
+  auto at = [&](const std::string& name) -> std::ostream& {
+    field = name;
+    return msg;
+  };
   if (storeys < 1)
-    msg << "storeys: must be >= 1, got " << storeys;
+    at("storeys") << "must be >= 1, got " << storeys;
   else if (bays < 1)
-    msg << "bays: must be >= 1, got " << bays;
+    at("bays") << "must be >= 1, got " << bays;
   else if (!(storey_height > 0) || !std::isfinite(storey_height))
-    msg << "storey_height: must be positive and finite";
+    at("storey_height") << "must be positive and finite";
   else if (!(bay_width > 0) || !std::isfinite(bay_width))
-    msg << "bay_width: must be positive and finite";
+    at("bay_width") << "must be positive and finite";
   else if (elements_per_member < 1)
-    msg << "elements_per_member: must be >= 1, got " << elements_per_member;
+    at("elements_per_member") << "must be >= 1, got " << elements_per_member;
   else if (blocks_per_storey < 1 || blocks_per_storey > bays)
-    msg << "blocks_per_storey: must be in 1.." << bays << ", got " << blocks_per_storey;
+    at("blocks_per_storey") << "must be in 1.." << bays << ", got " << blocks_per_storey;
   else if (wet_storeys < 0 || wet_storeys > storeys)
-    msg << "wet_storeys: must be in 0.." << storeys << ", got " << wet_storeys;
+    at("wet_storeys") << "must be in 0.." << storeys << ", got " << wet_storeys;
   for (const auto& [name, k] :
        {std::pair<const char*, double>{"horizontal", base.horizontal},
         {"vertical", base.vertical},
         {"rotation", base.rotation}}) {
-    if (msg.str().empty() && !(k >= 0 && std::isfinite(k)))
-      msg << "base." << name << ": a spring stiffness must be >= 0 and finite, got " << k;
+    if (field.empty() && !(k >= 0 && std::isfinite(k)))
+      at(std::string("base.") + name)
+          << "a spring stiffness must be >= 0 and finite, got " << k;
   }
-  if (!msg.str().empty()) return msg.str();
-  std::string bad = CheckSection(column, "column");
-  if (bad.empty()) bad = CheckSection(beam, "beam");
+  if (!field.empty()) return {field, msg.str()};
+  Invalid bad = CheckSection(column, "column");
+  if (bad.ok()) bad = CheckSection(beam, "beam");
   return bad;
 }
 
 ParametrisedModel BuildPlaneFrame(const PlaneFrameSpec& spec) {
-  const std::string invalid = spec.Validate();
-  if (!invalid.empty()) {
-    const auto colon = invalid.find(':');
-    throw InputError("model." + invalid.substr(0, colon), invalid.substr(colon + 2));
-  }
+  ThrowIfInvalid(spec.Validate(), "model");
   if (!spec.base.rigid()) {
     throw InputError("model.base",
                      "base springs are a plane_frame Structure's (the study model); "
@@ -222,11 +224,7 @@ ParametrisedModel BuildPlaneFrame(const PlaneFrameSpec& spec) {
 namespace femup {
 
 Structure BuildPlaneFrameStructure(const PlaneFrameSpec& spec) {
-  const std::string invalid = spec.Validate();
-  if (!invalid.empty()) {
-    const auto colon = invalid.find(':');
-    throw InputError("model." + invalid.substr(0, colon), invalid.substr(colon + 2));
-  }
+  ThrowIfInvalid(spec.Validate(), "model");
   const FrameLayout layout = LayOut(spec);
   const std::vector<double>& x = layout.x;
   const std::vector<double>& y = layout.y;

@@ -22,18 +22,9 @@ using internal::Triplets;
 constexpr int kMemberKinds = 3;  // legs, braces, horizontals
 const char* const kMemberNames[kMemberKinds] = {"legs", "braces", "horizontals"};
 
-std::string CheckSection(const FrameSection3d& s, BeamTheory theory,
-                         const std::string& field) {
-  const std::string bad = s.Validate(theory);
-  return bad.empty() ? "" : field + "." + bad;
-}
-
-void ThrowIfInvalid(const SpaceFrameSpec& spec) {
-  const std::string invalid = spec.Validate();
-  if (!invalid.empty()) {
-    const auto colon = invalid.find(':');
-    throw InputError("model." + invalid.substr(0, colon), invalid.substr(colon + 2));
-  }
+Invalid CheckSection(const FrameSection3d& s, BeamTheory theory,
+                     const std::string& field) {
+  return s.Validate(theory).Under(field);
 }
 
 const FrameSection3d& SectionOf(const SpaceFrameSpec& spec, SpaceFrameMember m) {
@@ -151,33 +142,38 @@ bool FaceBracingFromString(const std::string& text, FaceBracing* bracing) {
   return false;
 }
 
-std::string SpaceFrameSpec::Validate() const {
+Invalid SpaceFrameSpec::Validate() const {
+  std::string field;
   std::ostringstream msg;
+  auto at = [&](const char* name) -> std::ostream& {
+    field = name;
+    return msg;
+  };
   auto positive = [](double x) { return x > 0 && std::isfinite(x); };
   if (levels < 1)
-    msg << "levels: must be >= 1, got " << levels;
+    at("levels") << "must be >= 1, got " << levels;
   else if (bays_x < 1)
-    msg << "bays_x: must be >= 1, got " << bays_x;
+    at("bays_x") << "must be >= 1, got " << bays_x;
   else if (bays_y < 1)
-    msg << "bays_y: must be >= 1, got " << bays_y;
+    at("bays_y") << "must be >= 1, got " << bays_y;
   else if (!positive(level_height))
-    msg << "level_height: must be positive and finite";
+    at("level_height") << "must be positive and finite";
   else if (!positive(bay_width_x))
-    msg << "bay_width_x: must be positive and finite";
+    at("bay_width_x") << "must be positive and finite";
   else if (!positive(bay_width_y))
-    msg << "bay_width_y: must be positive and finite";
+    at("bay_width_y") << "must be positive and finite";
   else if (elements_per_member < 1)
-    msg << "elements_per_member: must be >= 1, got " << elements_per_member;
+    at("elements_per_member") << "must be >= 1, got " << elements_per_member;
   else if (blocks_per_level < 1 || blocks_per_level > bays_x)
-    msg << "blocks_per_level: must be in 1.." << bays_x << ", got " << blocks_per_level;
+    at("blocks_per_level") << "must be in 1.." << bays_x << ", got " << blocks_per_level;
   else if (bracing != FaceBracing::kNone && bracing != FaceBracing::kDiagonal &&
            bracing != FaceBracing::kX)
-    msg << "bracing: must be none, diagonal or x";
+    at("bracing") << "must be none, diagonal or x";
   else if (!(water_depth >= 0) || !std::isfinite(water_depth))
-    msg << "water_depth: must be >= 0 and finite";
+    at("water_depth") << "must be >= 0 and finite";
   else if (theory != BeamTheory::kEulerBernoulli && theory != BeamTheory::kTimoshenko)
-    msg << "theory: must be euler_bernoulli or timoshenko";
-  if (!msg.str().empty()) return msg.str();
+    at("theory") << "must be euler_bernoulli or timoshenko";
+  if (!field.empty()) return {field, msg.str()};
   // Sizes whose sparse matrices would overflow their int indices (about 18
   // stored entries per DOF).
   const double nx = bays_x + 1.0, ny = bays_y + 1.0, faces = 2.0 * (bays_x + bays_y);
@@ -185,19 +181,18 @@ std::string SpaceFrameSpec::Validate() const {
   const double dofs =
       6.0 * levels * (nx * ny + faces + (elements_per_member - 1) * members);
   if (dofs > 5e7) {
-    msg << "levels: " << levels << " levels of " << bays_x << " x " << bays_y
-        << " bays with " << elements_per_member
-        << " elements per member exceed the limit of 5e7 DOFs";
-    return msg.str();
+    msg << levels << " levels of " << bays_x << " x " << bays_y << " bays with "
+        << elements_per_member << " elements per member exceed the limit of 5e7 DOFs";
+    return {"levels", msg.str()};
   }
-  std::string bad = CheckSection(legs, theory, "legs");
-  if (bad.empty()) bad = CheckSection(braces, theory, "braces");
-  if (bad.empty()) bad = CheckSection(horizontals, theory, "horizontals");
+  Invalid bad = CheckSection(legs, theory, "legs");
+  if (bad.ok()) bad = CheckSection(braces, theory, "braces");
+  if (bad.ok()) bad = CheckSection(horizontals, theory, "horizontals");
   return bad;
 }
 
 SpaceFrameGeometryData SpaceFrameGeometry(const SpaceFrameSpec& spec) {
-  ThrowIfInvalid(spec);
+  ThrowIfInvalid(spec.Validate(), "model");
   const int bx = spec.bays_x, by = spec.bays_y, nx = bx + 1, ny = by + 1;
   const int levels = spec.levels, blocks = spec.blocks_per_level;
   const int per_level = nx * ny;

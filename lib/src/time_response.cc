@@ -10,13 +10,6 @@
 namespace femup {
 namespace {
 
-[[noreturn]] void ThrowField(const std::string& invalid) {
-  const std::size_t colon = invalid.find(':');
-  if (colon == std::string::npos) throw InputError("time_response", invalid);
-  throw InputError("time_response." + invalid.substr(0, colon),
-                   invalid.substr(colon + 2));
-}
-
 // Natural circular frequency of an eigenvalue; tiny negative eigenvalues of a
 // rigid-body mode are rounding and count as 0.
 double Omega(double eigenvalue) { return eigenvalue > 0 ? std::sqrt(eigenvalue) : 0.0; }
@@ -43,66 +36,60 @@ int TimeResponseOptions::NumSamples() const {
   return static_cast<int>(std::lround(duration_s * sample_rate_hz));
 }
 
-std::string TimeResponseOptions::Validate() const {
+Invalid TimeResponseOptions::Validate() const {
   std::ostringstream msg;
   if (!(sample_rate_hz > 0) || !std::isfinite(sample_rate_hz)) {
-    msg << "sample_rate_hz: must be positive and finite, got " << sample_rate_hz;
-    return msg.str();
+    msg << "must be positive and finite, got " << sample_rate_hz;
+    return {"sample_rate_hz", msg.str()};
   }
   if (!(duration_s > 0) || !std::isfinite(duration_s)) {
-    msg << "duration_s: must be positive and finite, got " << duration_s;
-    return msg.str();
+    msg << "must be positive and finite, got " << duration_s;
+    return {"duration_s", msg.str()};
   }
   if (duration_s * sample_rate_hz > 1e8) {
-    msg << "duration_s: " << duration_s << " s at " << sample_rate_hz
-        << " Hz is more than 1e8 samples";
-    return msg.str();
+    msg << duration_s << " s at " << sample_rate_hz << " Hz is more than 1e8 samples";
+    return {"duration_s", msg.str()};
   }
   if (NumSamples() < 1) {
-    msg << "duration_s: " << duration_s << " s at " << sample_rate_hz
-        << " Hz gives no sample";
-    return msg.str();
+    msg << duration_s << " s at " << sample_rate_hz << " Hz gives no sample";
+    return {"duration_s", msg.str()};
   }
   for (std::size_t i = 0; i < sensor_dofs.size(); ++i) {
     if (sensor_dofs[i] < 0) {
-      msg << "sensor_dofs: entry " << i + 1 << " is " << sensor_dofs[i]
+      msg << "entry " << i + 1 << " is " << sensor_dofs[i]
           << "; DOF indices are 0-based and >= 0";
-      return msg.str();
+      return {"sensor_dofs", msg.str()};
     }
   }
   if (damping == DampingModel::kModal) {
     if (!(damping_ratio >= 0) || !std::isfinite(damping_ratio)) {
-      msg << "damping_ratio: must be finite and >= 0, got " << damping_ratio;
-      return msg.str();
+      msg << "must be finite and >= 0, got " << damping_ratio;
+      return {"damping_ratio", msg.str()};
     }
     for (std::size_t j = 0; j < damping_ratios.size(); ++j) {
       if (!(damping_ratios[j] >= 0) || !std::isfinite(damping_ratios[j])) {
-        msg << "damping_ratios: mode " << j + 1 << " has " << damping_ratios[j]
+        msg << "mode " << j + 1 << " has " << damping_ratios[j]
             << "; expected finite and >= 0";
-        return msg.str();
+        return {"damping_ratios", msg.str()};
       }
     }
   } else {
     if (!(rayleigh_alpha >= 0) || !std::isfinite(rayleigh_alpha)) {
-      msg << "rayleigh_alpha: must be finite and >= 0, got " << rayleigh_alpha;
-      return msg.str();
+      msg << "must be finite and >= 0, got " << rayleigh_alpha;
+      return {"rayleigh_alpha", msg.str()};
     }
     if (!(rayleigh_beta >= 0) || !std::isfinite(rayleigh_beta)) {
-      msg << "rayleigh_beta: must be finite and >= 0, got " << rayleigh_beta;
-      return msg.str();
+      msg << "must be finite and >= 0, got " << rayleigh_beta;
+      return {"rayleigh_beta", msg.str()};
     }
   }
-  const std::string eig = eigen.Validate();
-  if (!eig.empty()) {
-    // EigenOptions::Validate names its field first ("num_modes must be ...").
-    return "eigen." + eig.substr(0, eig.find(' ')) + ": " + eig;
-  }
+  if (const Invalid eig = eigen.Validate()) return eig.Under("eigen");
   if (!(noise_level >= 0) || !std::isfinite(noise_level)) {
-    msg << "noise_level: must be finite and >= 0 (a fraction of each channel's RMS), got "
+    msg << "must be finite and >= 0 (a fraction of each channel's RMS), got "
         << noise_level;
-    return msg.str();
+    return {"noise_level", msg.str()};
   }
-  return "";
+  return {};
 }
 
 Eigen::VectorXd TimeResponse::Times() const {
@@ -150,8 +137,7 @@ OscillatorResponse UnitImpulseResponse(double c, double k, double t) {
 
 TimeResponse SimulateImpulseResponse(const Modes& modes, const Eigen::VectorXd& impulse,
                                      const TimeResponseOptions& options) {
-  const std::string invalid = options.Validate();
-  if (!invalid.empty()) ThrowField(invalid);
+  ThrowIfInvalid(options.Validate(), "time_response");
   const int n = static_cast<int>(modes.shapes.rows());
   const int num_modes = modes.size();
   if (num_modes == 0 || modes.shapes.cols() != num_modes) {
@@ -258,8 +244,7 @@ TimeResponse SimulateImpulseResponse(const SparseMatrix& stiffness,
                                      const SparseMatrix& mass,
                                      const Eigen::VectorXd& impulse,
                                      const TimeResponseOptions& options) {
-  const std::string invalid = options.Validate();
-  if (!invalid.empty()) ThrowField(invalid);
+  ThrowIfInvalid(options.Validate(), "time_response");
   if (impulse.size() != stiffness.rows()) {
     std::ostringstream msg;
     msg << "has " << impulse.size() << " entries; expected one per model DOF ("

@@ -146,57 +146,55 @@ bool AssembleBendingMatrices(const CantileverSpec& spec, Eigen::MatrixXd* kb,
   return true;
 }
 
-std::string EffectFitData::Validate() const {
-  if (states.empty()) return "states: no measured state";
+Invalid EffectFitData::Validate() const {
+  if (states.empty()) return {"states", "no measured state"};
   if (!(shape_sigma > 0) || !std::isfinite(shape_sigma))
-    return "shape_sigma: must be positive and finite";
-  if (extra_modes < 0) return "extra_modes: must be >= 0";
+    return {"shape_sigma", "must be positive and finite"};
+  if (extra_modes < 0) return {"extra_modes", "must be >= 0"};
   for (std::size_t s = 0; s < states.size(); ++s) {
     const ObservedState& st = states[s];
     const std::string where = "states[" + std::to_string(s + 1) + "] (" + st.state + ")";
-    if (st.modes.empty()) return where + ": no modes";
+    if (st.modes.empty()) return {where, "no modes"};
     for (const std::string& label : st.sensors) {
-      if (IsAxial(label))
-        return where + ": sensor " + label + " is axial; use ux sensors";
+      if (IsAxial(label)) return {where, "sensor " + label + " is axial; use ux sensors"};
     }
     for (std::size_t j = 0; j < st.modes.size(); ++j) {
       const ObservedMode& m = st.modes[j];
       const std::string mw = where + ".modes[" + std::to_string(j + 1) + "]";
-      if (m.number < 1) return mw + ": mode numbers start at 1";
+      if (m.number < 1) return {mw, "mode numbers start at 1"};
       if (!(m.frequency_hz > 0) || !std::isfinite(m.frequency_hz))
-        return mw + ": frequency must be positive and finite";
+        return {mw, "frequency must be positive and finite"};
       if (!(m.frequency_sigma > 0) || !std::isfinite(m.frequency_sigma))
-        return mw + ": frequency sigma must be positive and finite";
+        return {mw, "frequency sigma must be positive and finite"};
       if (m.shape.size() > 0) {
         if (m.shape.size() != static_cast<Eigen::Index>(st.sensors.size()))
-          return mw + ": shape has " + std::to_string(m.shape.size()) + " entries for " +
-                 std::to_string(st.sensors.size()) + " sensors";
+          return {mw, "shape has " + std::to_string(m.shape.size()) + " entries for " +
+                          std::to_string(st.sensors.size()) + " sensors"};
         if (!m.shape.allFinite() || m.shape.cwiseAbs().maxCoeff() == 0)
-          return mw + ": shape must be finite and not all zero";
+          return {mw, "shape must be finite and not all zero"};
       }
       if (m.shape_sigma.size() > 0) {
         if (m.shape_sigma.size() != m.shape.size())
-          return mw + ": shape sigma has " + std::to_string(m.shape_sigma.size()) +
-                 " entries for a shape of " + std::to_string(m.shape.size());
+          return {mw, "shape sigma has " + std::to_string(m.shape_sigma.size()) +
+                          " entries for a shape of " + std::to_string(m.shape.size())};
         if (!m.shape_sigma.allFinite() || !(m.shape_sigma.minCoeff() > 0))
-          return mw + ": shape sigma must be positive and finite";
+          return {mw, "shape sigma must be positive and finite"};
       }
     }
     for (std::size_t j = 0; j < st.companions.size(); ++j) {
       const ObservedMode& m = st.companions[j];
       const std::string mw = where + ".companions[" + std::to_string(j + 1) + "]";
-      if (m.number < 1) return mw + ": mode numbers start at 1";
+      if (m.number < 1) return {mw, "mode numbers start at 1"};
       if (!(m.frequency_hz >= 0) || !std::isfinite(m.frequency_hz))
-        return mw + ": frequency must be finite and not negative";
+        return {mw, "frequency must be finite and not negative"};
       if (m.shape.size() > 0 &&
           m.shape.size() != static_cast<Eigen::Index>(st.sensors.size()))
-        return mw + ": shape has " + std::to_string(m.shape.size()) + " entries for " +
-               std::to_string(st.sensors.size()) + " sensors";
-      if (m.shape.size() > 0 && !m.shape.allFinite())
-        return mw + ": shape must be finite";
+        return {mw, "shape has " + std::to_string(m.shape.size()) + " entries for " +
+                        std::to_string(st.sensors.size()) + " sensors"};
+      if (m.shape.size() > 0 && !m.shape.allFinite()) return {mw, "shape must be finite"};
     }
   }
-  return "";
+  return {};
 }
 
 namespace {
@@ -527,11 +525,7 @@ std::vector<EffectParameter> EffectSetParameters(
 NonlinearProblem BuildEffectFitProblem(const EffectFitData& data,
                                        const std::vector<const Effect*>& effects,
                                        const Eigen::VectorXd& start) {
-  const std::string invalid = data.Validate();
-  if (!invalid.empty()) {
-    const std::size_t colon = invalid.find(':');
-    throw InputError("diagnosis." + invalid.substr(0, colon), invalid.substr(colon + 2));
-  }
+  ThrowIfInvalid(data.Validate(), "diagnosis");
   const std::vector<EffectParameter> params = EffectSetParameters(data, effects);
   const int n = static_cast<int>(params.size());
   if (start.size() != n) {

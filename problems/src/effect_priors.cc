@@ -150,47 +150,47 @@ double StatedPriors::Weight(const std::string& kind) const {
   return it == weights.end() ? 1.0 : it->second;
 }
 
-std::string StatedPriors::Validate() const {
+Invalid StatedPriors::Validate() const {
   std::set<std::string> kinds;
   for (const FamilyPrior& f : families) {
     const std::string where = "priors." + f.kind;
-    if (f.kind.empty()) return "priors: a family without a name";
-    if (!kinds.insert(f.kind).second) return where + ": stated twice";
+    if (f.kind.empty()) return {"priors", "a family without a name"};
+    if (!kinds.insert(f.kind).second) return {where, "stated twice"};
     std::set<std::string> seen;
     for (const QuantityPrior& q : f.quantities) {
       const std::string at = where + "." + q.quantity;
-      if (q.quantity.empty()) return where + ": a quantity without a name";
-      if (!seen.insert(q.quantity).second) return at + ": stated twice";
+      if (q.quantity.empty()) return {where, "a quantity without a name"};
+      if (!seen.insert(q.quantity).second) return {at, "stated twice"};
       if (q.normal) {
         if (!std::isfinite(q.mean) || !std::isfinite(q.sigma))
-          return at + ": normal: the mean and standard deviation must be finite";
+          return {at, "normal: the mean and standard deviation must be finite"};
         if (!(q.sigma > 0))
-          return at + ": normal: the standard deviation must be positive, found " +
-                 Num(q.sigma);
+          return {at, "normal: the standard deviation must be positive, found " +
+                          Num(q.sigma)};
       } else {
         if (!std::isfinite(q.lower) || !std::isfinite(q.upper))
-          return at + ": the range's ends must be finite";
+          return {at, "the range's ends must be finite"};
         if (q.lower > q.upper)
-          return at + ": lower " + Num(q.lower) + " > upper " + Num(q.upper);
+          return {at, "lower " + Num(q.lower) + " > upper " + Num(q.upper)};
         if (q.lower == q.upper)
-          return at + ": lower = upper = " + Num(q.lower) +
-                 " leaves nothing to fit (state a range, or a normal prior)";
+          return {at, "lower = upper = " + Num(q.lower) +
+                          " leaves nothing to fit (state a range, or a normal prior)"};
       }
     }
     std::set<std::string> names;
     for (std::size_t k = 0; k < f.regions.size(); ++k) {
       const std::string at = where + ".regions[" + std::to_string(k + 1) + "]";
-      if (f.regions[k].empty()) return at + ": an empty name";
+      if (f.regions[k].empty()) return {at, "an empty name"};
       if (!names.insert(f.regions[k]).second)
-        return at + ": '" + f.regions[k] + "' is listed twice";
+        return {at, "'" + f.regions[k] + "' is listed twice"};
     }
   }
   for (const auto& [kind, w] : weights) {
-    if (kind.empty()) return "weights: a family without a name";
+    if (kind.empty()) return {"weights", "a family without a name"};
     if (!(w > 0) || !std::isfinite(w))
-      return "weights." + kind + ": expected a positive finite weight, found " + Num(w);
+      return {"weights." + kind, "expected a positive finite weight, found " + Num(w)};
   }
-  return "";
+  return {};
 }
 
 double QuantityAt(const EffectParameter& p, double theta) {

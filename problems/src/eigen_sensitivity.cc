@@ -396,34 +396,34 @@ bool HasPrior(double sigma) { return sigma > 0 && std::isfinite(sigma); }
 
 }  // namespace
 
-std::string EigenSensitivityOptions::Validate() const {
+Invalid EigenSensitivityOptions::Validate() const {
   if (!(frequency_sigma > 0) || !std::isfinite(frequency_sigma)) {
-    return "frequency_sigma: must be positive and finite";
+    return {"frequency_sigma", "must be positive and finite"};
   }
   if (shape_scaling != "fit" && shape_scaling != "unit" && shape_scaling != "mass")
-    return "shape_scaling: expected fit, unit or mass, got '" + shape_scaling + "'";
+    return {"shape_scaling", "expected fit, unit or mass, got '" + shape_scaling + "'"};
   if (shape_noise != "max" && shape_noise != "entry")
-    return "shape_noise: expected max or entry, got '" + shape_noise + "'";
-  if (!(entry_floor > 0 && entry_floor <= 1)) return "entry_floor: must be in (0, 1]";
+    return {"shape_noise", "expected max or entry, got '" + shape_noise + "'"};
+  if (!(entry_floor > 0 && entry_floor <= 1)) return {"entry_floor", "must be in (0, 1]"};
   if (!(shape_sigma > 0) || !std::isfinite(shape_sigma)) {
-    return "shape_sigma: must be positive and finite";
+    return {"shape_sigma", "must be positive and finite"};
   }
-  if (extra_modes < 0) return "extra_modes: must be >= 0";
-  if (threads < 1) return "threads: must be >= 1";
-  if (!(min_mac >= 0 && min_mac <= 1)) return "min_mac: must be in [0, 1]";
-  if (!prior_mean.allFinite()) return "prior_mean: has a NaN or infinite entry";
-  if (prior_sigma.hasNaN()) return "prior_sigma: has a NaN entry";
+  if (extra_modes < 0) return {"extra_modes", "must be >= 0"};
+  if (threads < 1) return {"threads", "must be >= 1"};
+  if (!(min_mac >= 0 && min_mac <= 1)) return {"min_mac", "must be in [0, 1]"};
+  if (!prior_mean.allFinite()) return {"prior_mean", "has a NaN or infinite entry"};
+  if (prior_sigma.hasNaN()) return {"prior_sigma", "has a NaN entry"};
   if (!(tikhonov_lambda >= 0) || !std::isfinite(tikhonov_lambda)) {
-    return "tikhonov_lambda: must be finite and >= 0";
+    return {"tikhonov_lambda", "must be finite and >= 0"};
   }
   if (!tikhonov_operator.allFinite()) {
-    return "tikhonov_operator: has a NaN or infinite entry";
+    return {"tikhonov_operator", "has a NaN or infinite entry"};
   }
   EigenOptions eigen_checked = eigen;
   eigen_checked.num_modes = 1;  // set per state at evaluation
-  const std::string invalid = eigen_checked.Validate();
-  if (!invalid.empty()) return "eigen: " + invalid;
-  return "";
+  // EigenOptions' messages name their field: kept as "eigen: num_modes must ...".
+  if (const Invalid bad = eigen_checked.Validate()) return {"eigen", bad.message};
+  return {};
 }
 
 NonlinearProblem BuildEigenSensitivityProblem(const ParametrisedModel& model,
@@ -441,8 +441,8 @@ NonlinearProblem BuildOutputErrorProblem(std::shared_ptr<const ParametrisedPenci
                                          const std::vector<ModalData>& states,
                                          const EigenSensitivityOptions& options,
                                          const Eigen::VectorXd& start) {
-  const std::string invalid = options.Validate();
-  if (!invalid.empty()) throw InputError("eigen sensitivity options", invalid);
+  if (const Invalid bad = options.Validate())
+    throw InputError("eigen sensitivity options", bad.ToString());
   if (!pencil) throw InputError("pencil", "no model is given");
   const int n = pencil->num_parameters();
   const int num_dofs = pencil->num_dofs();

@@ -9,75 +9,76 @@
 
 namespace femup {
 
-std::string LinearProblem::Validate() const {
+Invalid LinearProblem::Validate() const {
+  // Checks of the whole problem: the message names what is wrong, the field stays empty.
   std::ostringstream msg;
   if (A.rows() != b.size()) {
     msg << "A has " << A.rows() << " rows but b has " << b.size() << " entries";
-    return msg.str();
+    return {"", msg.str()};
   }
-  if (A.cols() == 0) return "the problem has no unknown";
-  if (A.rows() == 0) return "the problem has no equation";
+  if (A.cols() == 0) return {"", "the problem has no unknown"};
+  if (A.rows() == 0) return {"", "the problem has no equation"};
   if (!names.empty() && static_cast<Eigen::Index>(names.size()) != A.cols()) {
     msg << names.size() << " names for " << A.cols() << " unknowns";
-    return msg.str();
+    return {"", msg.str()};
   }
   if (!groups.empty() && static_cast<Eigen::Index>(groups.size()) != A.cols()) {
     msg << groups.size() << " groups for " << A.cols() << " unknowns";
-    return msg.str();
+    return {"", msg.str()};
   }
   if (!row_labels.empty() && static_cast<Eigen::Index>(row_labels.size()) != A.rows()) {
     msg << row_labels.size() << " row labels for " << A.rows() << " rows";
-    return msg.str();
+    return {"", msg.str()};
   }
-  if (!A.allFinite()) return "A has a NaN or infinite entry";
-  if (!b.allFinite()) return "b has a NaN or infinite entry";
+  if (!A.allFinite()) return {"", "A has a NaN or infinite entry"};
+  if (!b.allFinite()) return {"", "b has a NaN or infinite entry"};
   if (source_rows != 0 && source_rows < A.rows()) {
     msg << "source_rows is " << source_rows << "; expected 0 or at least A's " << A.rows()
         << " rows";
-    return msg.str();
+    return {"", msg.str()};
   }
   if (!(residual_offset >= 0) || !std::isfinite(residual_offset)) {
     msg << "residual_offset is " << residual_offset << "; expected finite and >= 0";
-    return msg.str();
+    return {"", msg.str()};
   }
   for (std::size_t k = 0; k < fixed.size(); ++k) {
     const int i = fixed[k].first;
     if (i < 0 || i >= A.cols()) {
       msg << "fixed unknown index " << i << " is outside 0.." << A.cols() - 1;
-      return msg.str();
+      return {"", msg.str()};
     }
     if (!std::isfinite(fixed[k].second)) {
       msg << "fixed value of unknown " << (names.empty() ? std::to_string(i) : names[i])
           << " is not finite";
-      return msg.str();
+      return {"", msg.str()};
     }
     for (std::size_t j = 0; j < k; ++j) {
       if (fixed[j].first == i) {
         msg << "unknown " << (names.empty() ? std::to_string(i) : names[i])
             << " is fixed twice";
-        return msg.str();
+        return {"", msg.str()};
       }
     }
   }
   if (static_cast<Eigen::Index>(fixed.size()) >= A.cols())
-    return "every unknown is fixed";
+    return {"", "every unknown is fixed"};
 
   const Eigen::Index m = A.rows(), n = A.cols();
   auto label = [&](Eigen::Index i) {
     return names.empty() ? "unknown " + std::to_string(i) : names[i];
   };
   if (row_weights.size() > 0 && data_covariance.size() > 0)
-    return "give row_weights or data_covariance, not both";
+    return {"", "give row_weights or data_covariance, not both"};
   if (row_weights.size() > 0) {
     if (row_weights.size() != m) {
       msg << row_weights.size() << " row weights for " << m << " rows";
-      return msg.str();
+      return {"", msg.str()};
     }
     for (Eigen::Index i = 0; i < m; ++i) {
       if (!(row_weights[i] > 0) || !std::isfinite(row_weights[i])) {
         msg << "row weight " << i << " is " << row_weights[i]
             << "; weights must be positive and finite";
-        return msg.str();
+        return {"", msg.str()};
       }
     }
   }
@@ -85,16 +86,17 @@ std::string LinearProblem::Validate() const {
     if (data_covariance.rows() != m || data_covariance.cols() != m) {
       msg << "data_covariance is " << data_covariance.rows() << " x "
           << data_covariance.cols() << "; expected " << m << " x " << m;
-      return msg.str();
+      return {"", msg.str()};
     }
     if (!data_covariance.allFinite())
-      return "data_covariance has a NaN or infinite entry";
+      return {"", "data_covariance has a NaN or infinite entry"};
     const double asym =
         (data_covariance - data_covariance.transpose()).cwiseAbs().maxCoeff();
     if (asym > 1e-12 * data_covariance.cwiseAbs().maxCoeff())
-      return "data_covariance is not symmetric";
+      return {"", "data_covariance is not symmetric"};
     Eigen::LLT<Eigen::MatrixXd> llt(data_covariance);
-    if (llt.info() != Eigen::Success) return "data_covariance is not positive definite";
+    if (llt.info() != Eigen::Success)
+      return {"", "data_covariance is not positive definite"};
   }
   for (const auto* bound : {&lower, &upper}) {
     const char* which = bound == &lower ? "lower" : "upper";
@@ -102,19 +104,19 @@ std::string LinearProblem::Validate() const {
     if (bound->size() != n) {
       msg << which << " bounds have " << bound->size() << " entries for " << n
           << " unknowns";
-      return msg.str();
+      return {"", msg.str()};
     }
     for (Eigen::Index i = 0; i < n; ++i) {
       if (std::isnan((*bound)[i])) {
         msg << which << " bound of " << label(i) << " is NaN";
-        return msg.str();
+        return {"", msg.str()};
       }
       if (std::isinf((*bound)[i]) && ((*bound)[i] > 0) == (bound == &lower)) {
         msg << which << " bound of " << label(i) << " is "
             << ((*bound)[i] > 0 ? "+" : "-")
             << "inf: no value satisfies it (a missing bound is "
             << (bound == &lower ? "-inf" : "+inf") << ")";
-        return msg.str();
+        return {"", msg.str()};
       }
     }
   }
@@ -123,7 +125,7 @@ std::string LinearProblem::Validate() const {
       if (lower[i] > upper[i]) {
         msg << "lower bound " << lower[i] << " of " << label(i)
             << " exceeds its upper bound " << upper[i];
-        return msg.str();
+        return {"", msg.str()};
       }
     }
   }
@@ -131,22 +133,22 @@ std::string LinearProblem::Validate() const {
     if ((lower.size() > 0 && value < lower[i]) ||
         (upper.size() > 0 && value > upper[i])) {
       msg << "fixed value " << value << " of " << label(i) << " is outside its bounds";
-      return msg.str();
+      return {"", msg.str()};
     }
   }
   if (equality_matrix.size() > 0 || equality_rhs.size() > 0) {
     if (equality_matrix.cols() != n) {
       msg << "equality matrix has " << equality_matrix.cols() << " columns for " << n
           << " unknowns";
-      return msg.str();
+      return {"", msg.str()};
     }
     if (equality_rhs.size() != equality_matrix.rows()) {
       msg << "equality matrix has " << equality_matrix.rows()
           << " rows but its right-hand side " << equality_rhs.size() << " entries";
-      return msg.str();
+      return {"", msg.str()};
     }
     if (!equality_matrix.allFinite() || !equality_rhs.allFinite())
-      return "the equalities have a NaN or infinite entry";
+      return {"", "the equalities have a NaN or infinite entry"};
     // Consistency on the free unknowns, fixed ones moved to the right.
     const std::vector<int> free = FreeUnknowns();
     Eigen::MatrixXd c(equality_matrix.rows(), free.size());
@@ -160,27 +162,27 @@ std::string LinearProblem::Validate() const {
     if (violation > 1e-9 * (1.0 + d.norm())) {
       msg << "the equalities are inconsistent: no x satisfies C x = d (least violation "
           << violation << ")";
-      return msg.str();
+      return {"", msg.str()};
     }
     if (cod.rank() >= static_cast<Eigen::Index>(free.size()))
-      return "the equalities leave no free unknown";
+      return {"", "the equalities leave no free unknown"};
   }
   if (regulariser.size() > 0) {
     if (regulariser.cols() != n) {
       msg << "regulariser has " << regulariser.cols() << " columns for " << n
           << " unknowns";
-      return msg.str();
+      return {"", msg.str()};
     }
-    if (!regulariser.allFinite()) return "regulariser has a NaN or infinite entry";
+    if (!regulariser.allFinite()) return {"", "regulariser has a NaN or infinite entry"};
   }
   if (prior.size() > 0) {
     if (prior.size() != n) {
       msg << "prior has " << prior.size() << " entries for " << n << " unknowns";
-      return msg.str();
+      return {"", msg.str()};
     }
-    if (!prior.allFinite()) return "prior has a NaN or infinite entry";
+    if (!prior.allFinite()) return {"", "prior has a NaN or infinite entry"};
   }
-  return "";
+  return {};
 }
 
 bool LinearProblem::has_bounds() const {

@@ -21,12 +21,14 @@ bool NoiseDistributionFromString(const std::string& text, NoiseDistribution* d) 
   return true;
 }
 
-std::string NoiseModel::Validate() const {
-  if (!(level >= 0) || !std::isfinite(level)) return "level must be finite and >= 0";
-  if (level >= 1) return "level must be below 1 (it is relative: 0.05 is 5 %)";
+Invalid NoiseModel::Validate() const {
+  // The messages name their field: callers show the message alone.
+  if (!(level >= 0) || !std::isfinite(level))
+    return {"level", "level must be finite and >= 0"};
+  if (level >= 1) return {"level", "level must be below 1 (it is relative: 0.05 is 5 %)"};
   if (std::isnan(shape_level) || shape_level >= 1 || !std::isfinite(shape_level))
-    return "shape_level must be below 1 (negative: the same as level)";
-  return "";
+    return {"shape_level", "shape_level must be below 1 (negative: the same as level)"};
+  return {};
 }
 
 namespace {
@@ -35,8 +37,7 @@ namespace {
 template <typename Draw>
 void CorruptWith(const ModalData& data, const NoiseModel& noise, Draw draw,
                  ModalData* result) {
-  const std::string invalid = noise.Validate();
-  if (!invalid.empty()) throw InputError("noise", invalid);
+  if (const Invalid bad = noise.Validate()) throw InputError("noise", bad.message);
   *result = data;
   ModalData& out = *result;
   if (noise.eigenvalues) {

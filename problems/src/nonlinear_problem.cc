@@ -46,51 +46,52 @@ std::vector<int> NonlinearProblem::FreeUnknowns() const {
   return out;
 }
 
-std::string NonlinearProblem::Validate() const {
+Invalid NonlinearProblem::Validate() const {
+  // Checks of the whole problem: the message names what is wrong, the field stays empty.
   const int n = num_parameters();
   std::ostringstream msg;
-  if (n == 0) return "the problem has no parameter (initial is empty)";
+  if (n == 0) return {"", "the problem has no parameter (initial is empty)"};
   if (num_residuals <= 0) {
     msg << "num_residuals must be positive, got " << num_residuals;
-    return msg.str();
+    return {"", msg.str()};
   }
-  if (!evaluate) return "no evaluate function";
+  if (!evaluate) return {"", "no evaluate function"};
   if (!names.empty() && static_cast<int>(names.size()) != n) {
     msg << names.size() << " names for " << n << " parameters";
-    return msg.str();
+    return {"", msg.str()};
   }
   if (!groups.empty() && static_cast<int>(groups.size()) != n) {
     msg << groups.size() << " groups for " << n << " parameters";
-    return msg.str();
+    return {"", msg.str()};
   }
   if (!residual_labels.empty() &&
       static_cast<int>(residual_labels.size()) != num_residuals) {
     msg << residual_labels.size() << " residual labels for " << num_residuals
         << " residuals";
-    return msg.str();
+    return {"", msg.str()};
   }
   for (std::size_t k = 0; k < fixed.size(); ++k) {
     const int i = fixed[k].first;
     if (i < 0 || i >= n) {
       msg << "fixed parameter index " << i << " is outside 0.." << n - 1;
-      return msg.str();
+      return {"", msg.str()};
     }
     if (!std::isfinite(fixed[k].second)) {
       msg << "fixed value of " << ParameterName(*this, i) << " is not finite";
-      return msg.str();
+      return {"", msg.str()};
     }
     for (std::size_t j = 0; j < k; ++j) {
       if (fixed[j].first == i) {
         msg << ParameterName(*this, i) << " is fixed twice";
-        return msg.str();
+        return {"", msg.str()};
       }
     }
   }
-  if (static_cast<int>(fixed.size()) >= n) return "every parameter is fixed";
+  if (static_cast<int>(fixed.size()) >= n) return {"", "every parameter is fixed"};
   for (int i = 0; i < n; ++i) {
     if (!IsFixed(i) && !std::isfinite(initial[i])) {
       msg << "the start of " << ParameterName(*this, i) << " is " << initial[i];
-      return msg.str();
+      return {"", msg.str()};
     }
   }
   if ((lower.size() != 0 && lower.size() != n) ||
@@ -98,7 +99,7 @@ std::string NonlinearProblem::Validate() const {
     msg << "bounds have " << lower.size() << " lower and " << upper.size()
         << " upper entries for " << n << " parameters (each must be " << n
         << " or empty)";
-    return msg.str();
+    return {"", msg.str()};
   }
   // Bounds may be infinite but not NaN; a fixed value and the start of a free
   // parameter must lie within them.
@@ -109,11 +110,11 @@ std::string NonlinearProblem::Validate() const {
     const double hi = upper.size() ? upper[i] : std::numeric_limits<double>::infinity();
     if (std::isnan(lo) || std::isnan(hi)) {
       msg << "a bound of " << ParameterName(*this, i) << " is NaN";
-      return msg.str();
+      return {"", msg.str()};
     }
     if (lo > hi) {
       msg << ParameterName(*this, i) << ": lower bound " << lo << " > upper bound " << hi;
-      return msg.str();
+      return {"", msg.str()};
     }
     const bool is_fixed = IsFixed(i);
     const double v = is_fixed ? fixed_value[i] : initial[i];
@@ -121,7 +122,7 @@ std::string NonlinearProblem::Validate() const {
       msg << (is_fixed ? "the fixed value " : "the start ") << v << " of "
           << ParameterName(*this, i) << " is outside its bounds [" << lo << ", " << hi
           << "]";
-      return msg.str();
+      return {"", msg.str()};
     }
   }
   const auto q = equality_matrix.rows();
@@ -130,13 +131,13 @@ std::string NonlinearProblem::Validate() const {
       msg << "equality_matrix is " << q << " x " << equality_matrix.cols()
           << " and equality_rhs has " << equality_rhs.size() << " entries; expected q x "
           << n << " and q";
-      return msg.str();
+      return {"", msg.str()};
     }
     if (!equality_matrix.allFinite() || !equality_rhs.allFinite()) {
-      return "the equalities have a NaN or infinite entry";
+      return {"", "the equalities have a NaN or infinite entry"};
     }
   }
-  return "";
+  return {};
 }
 
 NonlinearProblem AsNonlinear(const LinearProblem& problem, const Eigen::VectorXd& start) {

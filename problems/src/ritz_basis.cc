@@ -18,8 +18,8 @@ std::shared_ptr<const RitzBasis> BuildRitzBasis(const ParametrisedPencil& pencil
                                                 const std::vector<ModalData>& states,
                                                 const EigenSensitivityOptions& options,
                                                 const Eigen::VectorXd& x0) {
-  const std::string invalid = options.Validate();
-  if (!invalid.empty()) throw InputError("eigen sensitivity options", invalid);
+  if (const Invalid bad = options.Validate())
+    throw InputError("eigen sensitivity options", bad.ToString());
   const int n = pencil.num_dofs();
   const int num_parameters = pencil.num_parameters();
   if (states.empty()) throw InputError("states", "no measured state is given");

@@ -40,6 +40,13 @@ py::list RefList(const std::vector<T>& items, py::handle parent) {
   return out;
 }
 
+// T::Validate() as Python has always seen it: "" when valid, else
+// "field: what is wrong" (femup::Invalid is not bound).
+template <typename T>
+std::string ValidateText(const T& options) {
+  return options.Validate().ToString();
+}
+
 // The Python exception femup.InputError (a ValueError), set up in module.cc.
 extern PyObject* g_input_error;
 

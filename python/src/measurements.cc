@@ -212,7 +212,7 @@ void BindEra(py::module_& m) {
       .def_readwrite("max_damping_ratio", &femup::EraOptions::max_damping_ratio)
       .def_readwrite("min_emac", &femup::EraOptions::min_emac)
       .def_readwrite("min_mpc", &femup::EraOptions::min_mpc)
-      .def("validate", &femup::EraOptions::Validate);
+      .def("validate", &ValidateText<femup::EraOptions>);
   py::class_<femup::StabilisationOptions>(m, "StabilisationOptions")
       .def(py::init<>())
       .def_readwrite("era", &femup::StabilisationOptions::era)
@@ -223,7 +223,7 @@ void BindEra(py::module_& m) {
                      &femup::StabilisationOptions::frequency_tolerance)
       .def_readwrite("damping_tolerance", &femup::StabilisationOptions::damping_tolerance)
       .def_readwrite("mac_tolerance", &femup::StabilisationOptions::mac_tolerance)
-      .def("validate", &femup::StabilisationOptions::Validate);
+      .def("validate", &ValidateText<femup::StabilisationOptions>);
 
   py::class_<femup::IdentifiedMode>(m, "IdentifiedMode")
       .def_property_readonly(
@@ -377,7 +377,7 @@ void BindEra(py::module_& m) {
       .def_readwrite("stabilisation", &femup::IdentifyOptions::stabilisation)
       .def_readwrite("min_consecutive", &femup::IdentifyOptions::min_consecutive)
       .def_readwrite("max_frequency_hz", &femup::IdentifyOptions::max_frequency_hz)
-      .def("validate", &femup::IdentifyOptions::Validate);
+      .def("validate", &ValidateText<femup::IdentifyOptions>);
   py::class_<femup::IdentifyResult>(m, "IdentifyResult")
       .def_readonly("source", &femup::IdentifyResult::source)
       .def_readonly("data_kind", &femup::IdentifyResult::data_kind, "time or frf")

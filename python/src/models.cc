@@ -105,8 +105,8 @@ femup::EigenOptions EigenOptionsFrom(int num_modes, const std::string& method,
   }
   options.shift = shift;
   options.tolerance = tolerance;
-  const std::string invalid = options.Validate();
-  if (!invalid.empty()) throw femup::InputError("", invalid);
+  if (const femup::Invalid bad = options.Validate())
+    throw femup::InputError("", bad.message);
   return options;
 }
 
@@ -477,7 +477,7 @@ void BindBuilders(py::module_& m) {
       .def_readwrite("legs", &femup::SpaceFrameSpec::legs)
       .def_readwrite("braces", &femup::SpaceFrameSpec::braces)
       .def_readwrite("horizontals", &femup::SpaceFrameSpec::horizontals)
-      .def("validate", &femup::SpaceFrameSpec::Validate,
+      .def("validate", &ValidateText<femup::SpaceFrameSpec>,
            "'' when valid, else '<field>: what is wrong'");
   m.def("build_space_frame", &femup::BuildSpaceFrame, py::arg("spec"),
         py::call_guard<py::gil_scoped_release>(),

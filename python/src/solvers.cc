@@ -83,7 +83,7 @@ void BindSummaries(py::module_& m) {
       .def_readwrite("grid_points", &femup::RegularisationOptions::grid_points)
       .def_readwrite("lambda_min", &femup::RegularisationOptions::lambda_min)
       .def_readwrite("lambda_max", &femup::RegularisationOptions::lambda_max)
-      .def("validate", &femup::RegularisationOptions::Validate);
+      .def("validate", &ValidateText<femup::RegularisationOptions>);
   py::class_<femup::RegularisationReport>(m, "RegularisationReport")
       .def_readonly("parameter_choice", &femup::RegularisationReport::parameter_choice)
       .def_readonly("lambda_", &femup::RegularisationReport::lambda)
@@ -135,7 +135,7 @@ void BindLinear(py::module_& m) {
       .def_readwrite("prior", &femup::LinearProblem::prior)
       .def_property_readonly("num_rows", &femup::LinearProblem::num_rows)
       .def_property_readonly("num_unknowns", &femup::LinearProblem::num_unknowns)
-      .def("validate", &femup::LinearProblem::Validate,
+      .def("validate", &ValidateText<femup::LinearProblem>,
            "'' when consistent, else why not")
       .def("fix", &femup::LinearProblem::Fix, py::arg("name"), py::arg("value"),
            "Fixes the unknown called `name` (InputError when none is).")
@@ -175,7 +175,7 @@ void BindLinear(py::module_& m) {
       .def_readwrite("kkt_tolerance", &femup::LinearSolverOptions::kkt_tolerance)
       .def_readwrite("confidence_level", &femup::LinearSolverOptions::confidence_level)
       .def_readwrite("diagnostics", &femup::LinearSolverOptions::diagnostics)
-      .def("validate", &femup::LinearSolverOptions::Validate);
+      .def("validate", &ValidateText<femup::LinearSolverOptions>);
 
   py::class_<femup::LinearSolution>(m, "LinearSolution")
       .def_readonly("x", &femup::LinearSolution::x,
@@ -273,7 +273,7 @@ void BindNonlinear(py::module_& m) {
       .def_readwrite("equality_rhs", &femup::NonlinearProblem::equality_rhs)
       .def_readwrite("residuals_whitened", &femup::NonlinearProblem::residuals_whitened)
       .def_property_readonly("num_parameters", &femup::NonlinearProblem::num_parameters)
-      .def("validate", &femup::NonlinearProblem::Validate)
+      .def("validate", &ValidateText<femup::NonlinearProblem>)
       .def(
           "evaluate",
           [](const femup::NonlinearProblem& p, const Eigen::VectorXd& x) -> py::object {
@@ -310,7 +310,7 @@ void BindNonlinear(py::module_& m) {
       .def_readwrite("prior_sigma", &femup::EigenSensitivityOptions::prior_sigma)
       .def_readwrite("tikhonov_lambda", &femup::EigenSensitivityOptions::tikhonov_lambda)
       .def_readwrite("threads", &femup::EigenSensitivityOptions::threads)
-      .def("validate", &femup::EigenSensitivityOptions::Validate);
+      .def("validate", &ValidateText<femup::EigenSensitivityOptions>);
   m.def("eigen_sensitivity_problem", &femup::BuildEigenSensitivityProblem,
         py::arg("model"), py::arg("states"),
         py::arg("options") = femup::EigenSensitivityOptions(),
@@ -337,7 +337,7 @@ void BindNonlinear(py::module_& m) {
                      &femup::NonlinearSolverOptions::max_outer_iterations)
       .def_readwrite("equality_tolerance",
                      &femup::NonlinearSolverOptions::equality_tolerance)
-      .def("validate", &femup::NonlinearSolverOptions::Validate);
+      .def("validate", &ValidateText<femup::NonlinearSolverOptions>);
   py::class_<femup::NonlinearSolution>(m, "NonlinearSolution")
       .def_readonly("x", &femup::NonlinearSolution::x)
       .def_readonly("residual", &femup::NonlinearSolution::residual)

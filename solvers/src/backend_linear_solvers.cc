@@ -156,8 +156,8 @@ void CheckAgainstExactMinimiser(const LinearProblem& problem,
 LinearSolution SolveOnBackend(const std::string& backend,
                               const LinearSolverOptions& options,
                               const LinearProblem& problem) {
-  const std::string invalid = problem.Validate();
-  if (!invalid.empty()) throw InputError("linear problem", invalid);
+  if (const Invalid bad = problem.Validate())
+    throw InputError("linear problem", bad.ToString());
   if (!(options.confidence_level > 0 && options.confidence_level < 1)) {
     std::ostringstream msg;
     msg << "must be in (0, 1), got " << options.confidence_level;

@@ -158,8 +158,8 @@ ActiveSet SolveActiveSet(const Eigen::MatrixXd& a, const Eigen::VectorXd& b,
 
 LinearSolution BvlsSolver::Solve(const LinearProblem& problem) const {
   const internal::Stopwatch clock;
-  const std::string invalid = problem.Validate();
-  if (!invalid.empty()) throw InputError("linear problem", invalid);
+  if (const Invalid bad = problem.Validate())
+    throw InputError("linear problem", bad.ToString());
   const int n = problem.num_unknowns();
   const WeightedSystem w = Weighted(problem);
   const std::vector<int> free = problem.FreeUnknowns();

@@ -12,19 +12,18 @@ namespace {
 const char kWhere[] = "extended precision least squares";
 }  // namespace
 
-std::string ExtendedPrecisionOptions::Validate() const {
+Invalid ExtendedPrecisionOptions::Validate() const {
   if (!(relative_rank_tolerance >= 0 && relative_rank_tolerance < 1)) {
     std::ostringstream msg;
-    msg << "relative_rank_tolerance: must be in [0, 1), got " << relative_rank_tolerance;
-    return msg.str();
+    msg << "must be in [0, 1), got " << relative_rank_tolerance;
+    return {"relative_rank_tolerance", msg.str()};
   }
-  return "";
+  return {};
 }
 
 ExtendedPrecisionSolution ExtendedPrecisionLeastSquares(
     const MatrixLD& a, const VectorLD& b, const ExtendedPrecisionOptions& options) {
-  const std::string invalid = options.Validate();
-  if (!invalid.empty()) throw InputError(kWhere, invalid);
+  if (const Invalid bad = options.Validate()) throw InputError(kWhere, bad.ToString());
   const Eigen::Index m = a.rows(), n = a.cols();
   if (m == 0 || n == 0) throw InputError(kWhere, "A is empty");
   if (b.size() != m) {

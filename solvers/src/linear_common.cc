@@ -15,8 +15,8 @@ Eigen::MatrixXd ReducedProblem::ToX(const Eigen::VectorXd& z) const {
 }
 
 ReducedProblem Reduce(const LinearProblem& problem, const std::string& solver) {
-  const std::string invalid = problem.Validate();
-  if (!invalid.empty()) throw InputError("linear problem", invalid);
+  if (const Invalid bad = problem.Validate())
+    throw InputError("linear problem", bad.ToString());
   ReducedProblem r;
   if (problem.has_bounds()) {
     r.warnings.push_back("bounds ignored: " + solver +

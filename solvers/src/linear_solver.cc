@@ -28,32 +28,30 @@ const char* ToString(SolverStatus status) {
   return "failed";
 }
 
-std::string LinearSolverOptions::Validate() const {
+Invalid LinearSolverOptions::Validate() const {
   std::ostringstream msg;
   if (!(relative_rank_tolerance > 0) || !(relative_rank_tolerance < 1) ||
       !std::isfinite(relative_rank_tolerance)) {
-    msg << "rank_tolerance: must be in (0, 1), got " << relative_rank_tolerance;
-    return msg.str();
+    msg << "must be in (0, 1), got " << relative_rank_tolerance;
+    return {"rank_tolerance", msg.str()};
   }
   if (truncation < 0) {
-    msg << "truncation: must be >= 0 (0 = chosen by the rule), got " << truncation;
-    return msg.str();
+    msg << "must be >= 0 (0 = chosen by the rule), got " << truncation;
+    return {"truncation", msg.str()};
   }
   if (max_iterations < 1) {
-    msg << "max_iterations: must be positive, got " << max_iterations;
-    return msg.str();
+    msg << "must be positive, got " << max_iterations;
+    return {"max_iterations", msg.str()};
   }
   if (!(kkt_tolerance > 0) || !std::isfinite(kkt_tolerance)) {
-    msg << "kkt_tolerance: must be positive, got " << kkt_tolerance;
-    return msg.str();
+    msg << "must be positive, got " << kkt_tolerance;
+    return {"kkt_tolerance", msg.str()};
   }
   if (!(confidence_level > 0 && confidence_level < 1)) {
-    msg << "confidence_level: must be in (0, 1), got " << confidence_level;
-    return msg.str();
+    msg << "must be in (0, 1), got " << confidence_level;
+    return {"confidence_level", msg.str()};
   }
-  const std::string reg = regularisation.Validate();
-  if (!reg.empty()) return "regularisation." + reg;
-  return "";
+  return regularisation.Validate().Under("regularisation");
 }
 
 std::vector<std::string> AvailableLinearSolvers() {
@@ -62,10 +60,7 @@ std::vector<std::string> AvailableLinearSolvers() {
 
 std::unique_ptr<LinearSolver> CreateLinearSolver(const std::string& name,
                                                  const LinearSolverOptions& options) {
-  const std::string invalid = options.Validate();
-  if (!invalid.empty())
-    throw InputError("solver." + invalid.substr(0, invalid.find(':')),
-                     invalid.substr(invalid.find(':') + 2));
+  ThrowIfInvalid(options.Validate(), "solver");
   if (name == "lstsq") return std::make_unique<LstsqSolver>(options);
   if (name == "tsvd") return std::make_unique<TsvdSolver>(options);
   if (name == "tikhonov") return std::make_unique<TikhonovSolver>(options);

@@ -28,20 +28,19 @@ std::string Join(const std::vector<std::string>& items) {
   return out;
 }
 
-// "<field>: must be ..., got <value>" when `ok` is false, else "".
+// `field`: "must be ..., got <value>" when `ok` is false, else ok.
 template <typename T>
-std::string Require(bool ok, const char* field, const char* requirement, T value) {
-  if (ok) return "";
+Invalid Require(bool ok, const char* field, const char* requirement, T value) {
+  if (ok) return {};
   std::ostringstream msg;
-  msg << field << ": must be " << requirement << ", got " << value;
-  return msg.str();
+  msg << "must be " << requirement << ", got " << value;
+  return {field, msg.str()};
 }
 
-std::string OneOf(const std::string& value, const char* field,
-                  const std::vector<std::string>& allowed) {
-  if (std::find(allowed.begin(), allowed.end(), value) != allowed.end()) return "";
-  return std::string(field) + ": unknown value '" + value +
-         "' (allowed: " + Join(allowed) + ")";
+Invalid OneOf(const std::string& value, const char* field,
+              const std::vector<std::string>& allowed) {
+  if (std::find(allowed.begin(), allowed.end(), value) != allowed.end()) return {};
+  return {field, "unknown value '" + value + "' (allowed: " + Join(allowed) + ")"};
 }
 
 // Orthonormal basis (columns) of the null space of `c`; the identity when `c` has
@@ -69,10 +68,10 @@ Eigen::MatrixXd FreeEqualities(const NonlinearProblem& problem,
 
 }  // namespace
 
-std::string NonlinearSolverOptions::Validate() const {
+Invalid NonlinearSolverOptions::Validate() const {
   const auto nonnegative = [](double v) { return std::isfinite(v) && v >= 0; };
   const auto positive = [](double v) { return std::isfinite(v) && v > 0; };
-  for (const std::string& error : {
+  for (const Invalid& error : {
            Require(max_iterations > 0, "max_iterations", "positive", max_iterations),
            Require(nonnegative(function_tolerance), "function_tolerance",
                    "finite and >= 0", function_tolerance),
@@ -92,9 +91,9 @@ std::string NonlinearSolverOptions::Validate() const {
            Require(positive(equality_tolerance), "equality_tolerance", "finite and > 0",
                    equality_tolerance),
        }) {
-    if (!error.empty()) return error;
+    if (error) return error;
   }
-  return "";
+  return {};
 }
 
 std::vector<std::string> AvailableNonlinearSolvers() { return {"ceres", "ipopt"}; }
@@ -286,10 +285,7 @@ bool EscapeDegeneratePoint(const NonlinearProblem& problem,
 }  // namespace
 
 void ValidateOptions(const NonlinearSolverOptions& options) {
-  const std::string invalid = options.Validate();
-  if (invalid.empty()) return;
-  const auto colon = invalid.find(": ");
-  throw InputError("solver." + invalid.substr(0, colon), invalid.substr(colon + 2));
+  ThrowIfInvalid(options.Validate(), "solver");
 }
 
 Eigen::VectorXd StartingPoint(const NonlinearProblem& problem) {
@@ -365,8 +361,8 @@ Eigen::MatrixXd Covariance(const NonlinearProblem& problem,
 NonlinearSolution Solve(const std::string& name, const NonlinearProblem& problem,
                         const NonlinearSolverOptions& options, const Backend& backend) {
   ValidateOptions(options);
-  const std::string invalid = problem.Validate();
-  if (!invalid.empty()) throw InputError("nonlinear problem", invalid);
+  if (const Invalid bad = problem.Validate())
+    throw InputError("nonlinear problem", bad.ToString());
   const auto start = std::chrono::steady_clock::now();
 
   Eigen::VectorXd r0;

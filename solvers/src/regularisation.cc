@@ -18,44 +18,44 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 }  // namespace
 
-std::string RegularisationOptions::Validate() const {
+Invalid RegularisationOptions::Validate() const {
   const std::vector<std::string> rules = {"gcv", "lcurve", "discrepancy",
                                           "quasi_optimality", "fixed"};
   if (std::find(rules.begin(), rules.end(), parameter_choice) == rules.end())
-    return "parameter_choice: unknown rule '" + parameter_choice +
-           "' (choose gcv, lcurve, discrepancy, quasi_optimality or fixed)";
+    return {"parameter_choice",
+            "unknown rule '" + parameter_choice +
+                "' (choose gcv, lcurve, discrepancy, quasi_optimality or fixed)"};
   const std::vector<std::string> ops = {"identity", "first_difference",
                                         "second_difference", "problem"};
   if (std::find(ops.begin(), ops.end(), op) == ops.end())
-    return "operator: unknown operator '" + op +
-           "' (choose identity, first_difference, second_difference or problem)";
+    return {"operator",
+            "unknown operator '" + op +
+                "' (choose identity, first_difference, second_difference or problem)"};
   std::ostringstream msg;
   if (parameter_choice == "fixed" && !(lambda >= 0 && std::isfinite(lambda))) {
-    msg << "lambda: must be finite and >= 0 for the fixed rule, got " << lambda;
-    return msg.str();
+    msg << "must be finite and >= 0 for the fixed rule, got " << lambda;
+    return {"lambda", msg.str()};
   }
   if (parameter_choice == "discrepancy" &&
       !(noise_norm > 0 && std::isfinite(noise_norm))) {
-    msg << "noise_norm: the discrepancy principle needs the noise norm ||e|| > 0, got "
-        << noise_norm;
-    return msg.str();
+    msg << "the discrepancy principle needs the noise norm ||e|| > 0, got " << noise_norm;
+    return {"noise_norm", msg.str()};
   }
   if (!(discrepancy_factor >= 1 && std::isfinite(discrepancy_factor))) {
-    msg << "discrepancy_factor: must be >= 1, got " << discrepancy_factor;
-    return msg.str();
+    msg << "must be >= 1, got " << discrepancy_factor;
+    return {"discrepancy_factor", msg.str()};
   }
   if (grid_points < 3) {
-    msg << "grid_points: must be at least 3, got " << grid_points;
-    return msg.str();
+    msg << "must be at least 3, got " << grid_points;
+    return {"grid_points", msg.str()};
   }
   if (!(lambda_min >= 0) || !(lambda_max >= 0) || !std::isfinite(lambda_min) ||
       !std::isfinite(lambda_max) || (lambda_max > 0 && lambda_min >= lambda_max)) {
-    msg << "lambda_min/lambda_max: need 0 <= lambda_min < lambda_max (0 = automatic), "
-           "got "
-        << lambda_min << " and " << lambda_max;
-    return msg.str();
+    msg << "need 0 <= lambda_min < lambda_max (0 = automatic), got " << lambda_min
+        << " and " << lambda_max;
+    return {"lambda_min/lambda_max", msg.str()};
   }
-  return "";
+  return {};
 }
 
 TikhonovPath::TikhonovPath(const Eigen::MatrixXd& a, const Eigen::VectorXd& b,
@@ -291,10 +291,10 @@ Optimum MinimiseOnGrid(const std::function<double(double)>& f,
 
 double ChooseLambda(const TikhonovPath& path, const RegularisationOptions& options,
                     RegularisationReport* report) {
-  const std::string invalid = options.Validate();
-  if (!invalid.empty())
-    throw InputError("solver.regularisation." + invalid.substr(0, invalid.find(':')),
-                     invalid);
+  if (const Invalid bad = options.Validate()) {
+    // where() names the field; the message keeps it too, as it always has.
+    throw InputError(bad.Under("solver.regularisation").field, bad.ToString());
+  }
   RegularisationReport local;
   RegularisationReport& rep = report ? *report : local;
   rep.parameter_choice = options.parameter_choice;

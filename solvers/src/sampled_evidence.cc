@@ -9,16 +9,16 @@
 
 namespace femup {
 
-std::string SampledEvidenceOptions::Validate() const {
-  if (samples < 10) return "samples: must be at least 10";
-  if (!(prior_share > 0 && prior_share <= 1)) return "prior_share: must be in (0, 1]";
+Invalid SampledEvidenceOptions::Validate() const {
+  if (samples < 10) return {"samples", "must be at least 10"};
+  if (!(prior_share > 0 && prior_share <= 1)) return {"prior_share", "must be in (0, 1]"};
   if (!(spread > 0) || !std::isfinite(spread))
-    return "spread: must be positive and finite";
-  if (tail_dof < 1) return "tail_dof: must be at least 1";
-  if (stages < 1 || stages > samples) return "stages: must be from 1 to samples";
+    return {"spread", "must be positive and finite"};
+  if (tail_dof < 1) return {"tail_dof", "must be at least 1"};
+  if (stages < 1 || stages > samples) return {"stages", "must be from 1 to samples"};
   if (!(temperature >= 1) || !std::isfinite(temperature))
-    return "temperature: must be finite and >= 1";
-  return "";
+    return {"temperature", "must be finite and >= 1"};
+  return {};
 }
 
 namespace {
@@ -52,8 +52,8 @@ EvidenceSamples SampleEvidence(const MisfitFunction& misfit, int num_parts,
                                const Eigen::VectorXd& lower, const Eigen::VectorXd& upper,
                                const std::vector<EvidenceComponent>& components,
                                const SampledEvidenceOptions& options) {
-  const std::string invalid = options.Validate();
-  if (!invalid.empty()) throw InputError("evidence_sampling", invalid);
+  if (const Invalid bad = options.Validate())
+    throw InputError("evidence_sampling", bad.ToString());
   const Eigen::Index d = lower.size();
   if (upper.size() != d || d == 0)
     throw InputError("evidence_sampling.range",

@@ -25,8 +25,8 @@ Eigen::MatrixXd Operator(const LinearProblem& problem, const std::string& op) {
 
 LinearSolution TikhonovSolver::Solve(const LinearProblem& problem) const {
   const internal::Stopwatch clock;
-  const std::string invalid = options_.regularisation.Validate();
-  if (!invalid.empty()) throw InputError("solver.regularisation", invalid);
+  if (const Invalid bad = options_.regularisation.Validate())
+    throw InputError("solver.regularisation", bad.ToString());
   const internal::ReducedProblem r = internal::Reduce(problem, name());
   const Eigen::MatrixXd l = Operator(problem, options_.regularisation.op);
 

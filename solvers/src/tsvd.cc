@@ -26,8 +26,8 @@ double Menger(double x1, double y1, double x2, double y2, double x3, double y3) 
 
 LinearSolution TsvdSolver::Solve(const LinearProblem& problem) const {
   const internal::Stopwatch clock;
-  const std::string invalid = options_.regularisation.Validate();
-  if (!invalid.empty()) throw InputError("solver.regularisation", invalid);
+  if (const Invalid bad = options_.regularisation.Validate())
+    throw InputError("solver.regularisation", bad.ToString());
   const internal::ReducedProblem r = internal::Reduce(problem, name());
   const int m = problem.data_rows();
 

@@ -347,22 +347,19 @@ double LogSumExp(const std::vector<double>& v) {
 
 }  // namespace
 
-std::string OracleOptions::Validate() const {
-  if (samples < 50) return "samples: expected at least 50";
+Invalid OracleOptions::Validate() const {
+  if (samples < 50) return {"samples", "expected at least 50"};
   const std::vector<std::string>& known = benchmark_generator::Kinds();
   for (const std::string& k : kinds)
     if (std::find(known.begin(), known.end(), k) == known.end())
-      return "kinds: '" + k + "' is not a kind the generator draws";
-  return "";
+      return {"kinds", "'" + k + "' is not a kind the generator draws"};
+  return {};
 }
 
 OracleResult BayesOracle(const Study& study, const BenchmarkOptions& generator,
                          const OracleOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
-  const std::string invalid = options.Validate();
-  if (!invalid.empty())
-    throw InputError("oracle." + invalid.substr(0, invalid.find(':')),
-                     invalid.substr(invalid.find(':') + 2));
+  ThrowIfInvalid(options.Validate(), "oracle");
   if (generator.suite != "single")
     throw InputError("oracle",
                      "the Bayes oracle models the single suite only (the mixed "

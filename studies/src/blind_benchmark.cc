@@ -319,32 +319,31 @@ double LocationError(const BenchmarkEffect& t, const nlohmann::json& fitted) {
 
 }  // namespace
 
-std::string BenchmarkOptions::Validate() const {
-  if (suite != "single" && suite != "mixed") return "suite: expected single or mixed";
-  if (cases < 1) return "cases: expected at least 1";
-  if (threads < 1) return "threads: expected at least 1";
-  if (diagnosis_elements < 10) return "diagnosis_elements: expected at least 10";
-  if (refinement < 1) return "refinement: expected at least 1";
+Invalid BenchmarkOptions::Validate() const {
+  if (suite != "single" && suite != "mixed") return {"suite", "expected single or mixed"};
+  if (cases < 1) return {"cases", "expected at least 1"};
+  if (threads < 1) return {"threads", "expected at least 1"};
+  if (diagnosis_elements < 10) return {"diagnosis_elements", "expected at least 10"};
+  if (refinement < 1) return {"refinement", "expected at least 1"};
   if (sizes != "noise" && sizes != "absolute")
-    return "sizes: expected noise or absolute, not '" + sizes + "'";
+    return {"sizes", "expected noise or absolute, not '" + sizes + "'"};
   if (evidence != "sampled" && evidence != "laplace")
-    return "evidence: expected sampled or laplace, not '" + evidence + "'";
+    return {"evidence", "expected sampled or laplace, not '" + evidence + "'"};
   if (!(form_error < 1))  // NaN too
-    return "form_error: expected a fraction below 1 (or negative for diagnose's default)";
+    return {"form_error",
+            "expected a fraction below 1 (or negative for diagnose's default)"};
   if (oracle != "off" && oracle != "weak" && oracle != "all")
-    return "oracle: expected off, weak or all, not '" + oracle + "'";
+    return {"oracle", "expected off, weak or all, not '" + oracle + "'"};
   if (oracle != "off" && suite != "single")
-    return "oracle: the Bayes oracle models the single suite only, not '" + suite + "'";
-  if (oracle_samples < 50) return "oracle_samples: expected at least 50";
-  return "";
+    return {"oracle",
+            "the Bayes oracle models the single suite only, not '" + suite + "'"};
+  if (oracle_samples < 50) return {"oracle_samples", "expected at least 50"};
+  return {};
 }
 
 std::vector<BenchmarkCase> GenerateBenchmark(const BenchmarkOptions& options,
                                              const std::string& out_dir) {
-  const std::string invalid = options.Validate();
-  if (!invalid.empty())
-    throw InputError("benchmark." + invalid.substr(0, invalid.find(':')),
-                     invalid.substr(invalid.find(':') + 2));
+  ThrowIfInvalid(options.Validate(), "benchmark");
   const fs::path cases_dir = fs::path(out_dir) / "cases";
   const fs::path truth_dir = fs::path(out_dir) / "truth";
   std::error_code ec;

@@ -45,8 +45,8 @@ DiagnosisResult RunDiagnosis(const Study& study) {
     auto fail = [&](const std::string& field, const std::string& what) {
       throw InputError(study.path, "diagnosis." + field + ": " + what);
     };
-    const std::string invalid = spec.priors.Validate();
-    if (!invalid.empty()) throw InputError(study.path, "diagnosis." + invalid);
+    if (const Invalid bad = spec.priors.Validate())
+      throw InputError(study.path, bad.Under("diagnosis").ToString());
     auto tried = [&](const std::string& kind) {
       return std::find(kinds.begin(), kinds.end(), kind) != kinds.end();
     };

@@ -217,8 +217,8 @@ void PrepareData(const Study& study, const DiagnosisSpec& spec,
     throw InputError("diagnosis.held_out",
                      "every measured mode is held out; none left to fit");
   {
-    const std::string invalid = r.fitted_data.Validate();
-    if (!invalid.empty()) throw InputError("measurements", invalid);
+    if (const Invalid bad = r.fitted_data.Validate())
+      throw InputError("measurements", bad.ToString());
   }
   r.degrees_of_freedom = EffectDegreesOfFreedom(r.fitted_data);
 

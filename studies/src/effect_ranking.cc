@@ -169,26 +169,22 @@ Nominal NominalResidual(const std::shared_ptr<const Structure>& structure,
 
 }  // namespace
 
-std::string EffectRankingOptions::Validate() const {
+Invalid EffectRankingOptions::Validate() const {
   if (!(frequency_sigma > 0) || !std::isfinite(frequency_sigma))
-    return "frequency_sigma: must be positive and finite";
+    return {"frequency_sigma", "must be positive and finite"};
   if (!(shape_sigma > 0) || !std::isfinite(shape_sigma))
-    return "shape_sigma: must be positive and finite";
-  if (threads < 0) return "threads: must be >= 0 (0: every core)";
+    return {"shape_sigma", "must be positive and finite"};
+  if (threads < 0) return {"threads", "must be >= 0 (0: every core)"};
   const auto names = AvailableNonlinearSolvers();
   if (std::find(names.begin(), names.end(), solver) == names.end())
-    return "solver: unknown nonlinear solver '" + solver + "'";
+    return {"solver", "unknown nonlinear solver '" + solver + "'"};
   return priors.Validate();
 }
 
 EffectRanking RankModelEffects(const Structure& structure_in,
                                const std::vector<ModalData>& states,
                                const EffectRankingOptions& options) {
-  const std::string invalid = options.Validate();
-  if (!invalid.empty()) {
-    const auto colon = invalid.find(':');
-    throw InputError("diagnosis." + invalid.substr(0, colon), invalid.substr(colon + 2));
-  }
+  ThrowIfInvalid(options.Validate(), "diagnosis");
   auto structure = std::make_shared<const Structure>(structure_in);
   const bool any_wet = std::any_of(states.begin(), states.end(), [](const ModalData& d) {
     return d.immersion == Immersion::kWet;

@@ -106,23 +106,18 @@ void ReadUffRecords(const std::string& file, IdentifyResult* r,
 
 }  // namespace
 
-std::string IdentifyOptions::Validate() const {
-  if (file.empty()) return "file: no input file given";
+Invalid IdentifyOptions::Validate() const {
+  if (file.empty()) return {"file", "no input file given"};
   if (!format.empty() && format != "uff" && format != "csv")
-    return "format: expected uff or csv, got '" + format + "'";
-  if (min_consecutive < 1) return "min_consecutive: must be >= 1";
+    return {"format", "expected uff or csv, got '" + format + "'"};
+  if (min_consecutive < 1) return {"min_consecutive", "must be >= 1"};
   if (!(max_frequency_hz >= 0) || !std::isfinite(max_frequency_hz))
-    return "max_frequency_hz: must be finite and >= 0";
-  const std::string s = stabilisation.Validate();
-  return s.empty() ? "" : "stabilisation." + s;
+    return {"max_frequency_hz", "must be finite and >= 0"};
+  return stabilisation.Validate().Under("stabilisation");
 }
 
 IdentifyResult RunIdentify(const IdentifyOptions& options) {
-  const std::string invalid = options.Validate();
-  if (!invalid.empty()) {
-    const auto colon = invalid.find(':');
-    throw InputError("identify." + invalid.substr(0, colon), invalid.substr(colon + 2));
-  }
+  ThrowIfInvalid(options.Validate(), "identify");
   IdentifyResult r;
   r.source = options.file;
   Eigen::MatrixXd records;

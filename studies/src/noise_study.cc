@@ -53,17 +53,14 @@ RmStatistics Summarise(std::vector<double> v) {
 
 }  // namespace
 
-std::string NoiseRunOptions::Validate() const {
-  if (threads < 1) return "threads: expected at least 1, got " + std::to_string(threads);
-  return "";
+Invalid NoiseRunOptions::Validate() const {
+  if (threads < 1)
+    return {"threads", "expected at least 1, got " + std::to_string(threads)};
+  return {};
 }
 
 NoiseStudyResult RunNoiseStudy(const Study& study, const NoiseRunOptions& options) {
-  const std::string invalid = options.Validate();
-  if (!invalid.empty()) {
-    throw InputError("noise." + invalid.substr(0, invalid.find(':')),
-                     invalid.substr(invalid.find(':') + 2));
-  }
+  ThrowIfInvalid(options.Validate(), "noise");
   if (!study.noise_study) {
     throw InputError(study.path, "noise_study: the study has no noise_study section");
   }

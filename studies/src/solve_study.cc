@@ -141,8 +141,7 @@ SolveResult RunSolve(const SolveFiles& files, const std::string& solver,
   if (!files.truth.empty()) r.truth = read_n(files.truth, "truth", false);
   if (files.data_sigma > 0)
     p.row_weights = Eigen::VectorXd::Constant(p.A.rows(), 1.0 / files.data_sigma);
-  const std::string invalid = p.Validate();
-  if (!invalid.empty()) throw InputError(files.a, invalid);
+  if (const Invalid bad = p.Validate()) throw InputError(files.a, bad.ToString());
   r.solution = s->Solve(p);
   return r;
 }

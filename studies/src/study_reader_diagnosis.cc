@@ -172,8 +172,7 @@ void ReadStatedPriors(const Field& f, const Study& study, DiagnosisSpec* d) {
       d->priors.weights[kind] = w.Positive();
     }
   }
-  const std::string invalid = d->priors.Validate();
-  if (!invalid.empty()) f.Fail(invalid);
+  if (const Invalid bad = d->priors.Validate()) f.Fail(bad.ToString());
 }
 
 }  // namespace

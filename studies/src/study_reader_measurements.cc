@@ -51,11 +51,9 @@ ExpansionOptions ReadExpansion(const Field& f) {
     if (f.Has("method")) o.method = f["method"].Str();
     if (f.Has("modes")) o.num_modes = f["modes"].Int();
   }
-  const std::string invalid = o.Validate();
-  if (!invalid.empty()) {
-    const auto colon = invalid.find(':');
-    const std::string key = invalid.substr(0, colon) == "num_modes" ? "modes" : "method";
-    (f.IsMap() && f.Has(key) ? f[key] : f).Fail(invalid.substr(colon + 2));
+  if (const Invalid bad = o.Validate()) {
+    const std::string key = bad.field == "num_modes" ? "modes" : "method";
+    (f.IsMap() && f.Has(key) ? f[key] : f).Fail(bad.message);
   }
   return o;
 }
@@ -87,8 +85,7 @@ IdentifyOptions ReadIdentify(const Field& f) {
   if (f.Has("min_emac")) o.stabilisation.era.min_emac = f["min_emac"].NonNegative();
   if (f.Has("max_damping_ratio"))
     o.stabilisation.era.max_damping_ratio = f["max_damping_ratio"].Positive();
-  const std::string invalid = o.Validate();
-  if (!invalid.empty()) f.Fail(invalid);
+  if (const Invalid bad = o.Validate()) f.Fail(bad.ToString());
   return o;
 }
 

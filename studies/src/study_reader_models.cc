@@ -258,11 +258,7 @@ Structure ReadPlaneFrame(const Field& m) {
     if (spec.base.rigid()) b.Fail("give at least one of horizontal, vertical, rotation");
   }
   spec.blocks_per_storey = 1;
-  const std::string invalid = spec.Validate();
-  if (!invalid.empty()) {
-    const auto colon = invalid.find(':');
-    m[invalid.substr(0, colon)].Fail(invalid.substr(colon + 2));
-  }
+  if (const Invalid bad = spec.Validate()) m[bad.field].Fail(bad.message);
   return BuildPlaneFrameStructure(spec);
 }
 
@@ -292,17 +288,14 @@ ParametrisedModel ReadSpaceFrame(const Field& m, Structure* structure) {
   if (m.Has("braces")) spec.braces = ReadTube(m["braces"], spec.braces);
   if (m.Has("horizontals"))
     spec.horizontals = ReadTube(m["horizontals"], spec.horizontals);
-  const std::string invalid = spec.Validate();
-  if (!invalid.empty()) {
-    // "bays_x: must be >= 1" -> model.bays_x: must be >= 1;
-    // "legs.Iy: ..." -> model.legs: Iy: ...
-    const std::string field = invalid.substr(0, invalid.find(':'));
-    const std::string key = field.substr(0, field.find('.'));
-    if (!m.Has(key)) m.Fail(invalid);
-    std::string rest = invalid.substr(key.size());
-    while (!rest.empty() && (rest[0] == ':' || rest[0] == '.' || rest[0] == ' '))
-      rest.erase(0, 1);
-    m[key].Fail(rest);
+  if (const Invalid bad = spec.Validate()) {
+    // Located at the study's key: field "bays_x" -> model.bays_x: must be >= 1;
+    // field "legs.Iy" -> model.legs: Iy: ...
+    const std::string key = bad.field.substr(0, bad.field.find('.'));
+    if (!m.Has(key)) m.Fail(bad.ToString());
+    const std::string rest =
+        key.size() < bad.field.size() ? bad.field.substr(key.size() + 1) : "";
+    m[key].Fail(Invalid{rest, bad.message}.ToString());
   }
 #ifdef FUZZING_BUILD_MODE_UNSAFE_FOR_PRODUCTION
   {

@@ -90,11 +90,8 @@ RegularisationOptions ReadRegularisation(const Field& f) {
   if (f.Has("grid_points")) o.grid_points = f["grid_points"].Int();
   if (f.Has("lambda_min")) o.lambda_min = f["lambda_min"].NonNegative();
   if (f.Has("lambda_max")) o.lambda_max = f["lambda_max"].NonNegative();
-  const std::string invalid = o.Validate();
-  if (!invalid.empty()) {
-    const std::string key = invalid.substr(0, invalid.find(':'));
-    (f.Has(key) ? f[key] : f).Fail(invalid.substr(invalid.find(':') + 2));
-  }
+  if (const Invalid bad = o.Validate())
+    (f.Has(bad.field) ? f[bad.field] : f).Fail(bad.message);
   return o;
 }
 
@@ -155,8 +152,7 @@ SolverSpec ReadSolver(const Field& sf, const ParametrisedModel& model) {
       });
       if (spec.prior_mean.size() > 0) so.prior_mean = spec.prior_mean;
     }
-    const std::string invalid = so.Validate();
-    if (!invalid.empty()) tf.Fail(invalid);
+    if (const Invalid bad = so.Validate()) tf.Fail(bad.ToString());
   }
   try {
     if (spec.method == "linear") {

@@ -55,6 +55,8 @@
 #include <string>
 #include <vector>
 
+#include "femup/invalid.h"
+
 namespace femup {
 
 enum class PoleStatus {
@@ -88,7 +90,7 @@ struct EraOptions {
   // is off by default because non-proportionally damped modes are complex.
   double min_emac = 0.5;
   double min_mpc = 0.0;
-  std::string Validate() const;  // empty when valid, else "<field>: what is wrong"
+  Invalid Validate() const;  // ok when valid, else the field and what is wrong
 };
 
 struct IdentifiedMode {
@@ -139,7 +141,7 @@ struct StabilisationOptions {
   double frequency_tolerance = 0.01;
   double damping_tolerance = 0.05;
   double mac_tolerance = 0.98;
-  std::string Validate() const;  // empty when valid, else "<field>: what is wrong"
+  Invalid Validate() const;  // ok when valid, else the field and what is wrong
 };
 
 struct DiagramPole {

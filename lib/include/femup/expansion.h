@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "femup/invalid.h"
 #include "femup/modal.h"
 #include "femup/model.h"
 
@@ -27,7 +28,7 @@ namespace femup {
 struct ExpansionOptions {
   std::string method = "serep";  // serep | lsq | dynamic
   int num_modes = 0;             // serep/lsq: model modes used; 0 = number of sensors
-  std::string Validate() const;  // "" or "<field>: what is wrong"
+  Invalid Validate() const;      // ok, or the field and what is wrong
 };
 
 struct ExpandedShape {

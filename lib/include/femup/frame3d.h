@@ -18,6 +18,8 @@
 #include <Eigen/Core>
 #include <string>
 
+#include "femup/invalid.h"
+
 namespace femup {
 
 using Matrix12 = Eigen::Matrix<double, 12, 12>;
@@ -48,8 +50,8 @@ struct FrameSection3d {
 
   double ShearModulus() const { return G > 0 ? G : E / (2 * (1 + nu)); }
   double PolarInertia() const { return Ip > 0 ? Ip : Iy + Iz; }
-  // Empty when valid for `theory`; otherwise "<field>: what is wrong".
-  std::string Validate(BeamTheory theory = BeamTheory::kEulerBernoulli) const;
+  // Ok when valid for `theory`; otherwise the field and what is wrong.
+  Invalid Validate(BeamTheory theory = BeamTheory::kEulerBernoulli) const;
 };
 
 // A thin- or thick-walled circular tube of outer diameter `diameter` and wall

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "femup/invalid.h"
 #include "femup/model.h"
 
 namespace femup {
@@ -24,8 +25,9 @@ struct EigenOptions {
   double shift = 0.0;        // sparse: modes nearest this eigenvalue (rad^2/s^2)
   double tolerance = 1e-10;  // sparse: Krylov convergence tolerance
   int max_iterations = 1000;
-  // Returns an empty string when valid, otherwise what is wrong.
-  std::string Validate() const;
+  // Ok when valid, otherwise the field and what is wrong. The messages name
+  // the field too ("num_modes must be ..."): callers show the message alone.
+  Invalid Validate() const;
 };
 
 // Lowest modes of (K, M), M-normalised, with the sign fixed so that the entry of

@@ -18,6 +18,7 @@
 #pragma once
 
 #include "femup/fe.h"
+#include "femup/invalid.h"
 #include "femup/model.h"
 #include "femup/structure.h"
 
@@ -45,8 +46,8 @@ struct PlaneFrameSpec {
   BeamSection column{210e9, 0.02, 4e-4, 7850};
   BeamSection beam{210e9, 0.012, 2.5e-4, 7850};
   PlaneFrameBase base;  // BuildPlaneFrameStructure only; BuildPlaneFrame: rigid
-  // Empty when valid; otherwise "<field>: what is wrong".
-  std::string Validate() const;
+  // Ok when valid; otherwise the field and what is wrong.
+  Invalid Validate() const;
 };
 
 // Throws InputError naming the field for an invalid spec.

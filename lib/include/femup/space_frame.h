@@ -49,6 +49,7 @@
 #include <vector>
 
 #include "femup/frame3d.h"
+#include "femup/invalid.h"
 #include "femup/model.h"
 #include "femup/structure.h"
 
@@ -80,9 +81,9 @@ struct SpaceFrameSpec {
   FrameSection3d legs = CircularTube(1.2, 0.03, 210e9, 0.3, 7850);
   FrameSection3d braces = CircularTube(0.6, 0.015, 210e9, 0.3, 7850);
   FrameSection3d horizontals = CircularTube(0.6, 0.015, 210e9, 0.3, 7850);
-  // Empty when valid; otherwise "<field>: what is wrong" (sections:
-  // "legs.Iy: ...").
-  std::string Validate() const;
+  // Ok when valid; otherwise the field and what is wrong (sections: field
+  // "legs.Iy").
+  Invalid Validate() const;
 };
 
 enum class SpaceFrameMember { kLeg, kBrace, kHorizontal };

@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "femup/invalid.h"
 #include "femup/modal.h"
 #include "femup/model.h"
 
@@ -59,10 +60,10 @@ struct TimeResponseOptions {
   std::uint64_t noise_seed = 1;  // seeds a std::mt19937_64
 
   int NumSamples() const;
-  // Empty when valid, else "<field>: what is wrong". Checks what can be checked
+  // Ok when valid, else the field and what is wrong. Checks what can be checked
   // without the model (sensor DOF ranges and the damping ratio count are
   // checked against the model when simulating).
-  std::string Validate() const;
+  Invalid Validate() const;
 };
 
 struct TimeResponse {

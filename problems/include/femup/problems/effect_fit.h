@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "femup/builders.h"
+#include "femup/invalid.h"
 #include "femup/measurement.h"
 #include "femup/problems/effects.h"
 #include "femup/problems/nonlinear_problem.h"
@@ -65,8 +66,8 @@ struct EffectFitData {
   int extra_modes = 4;
   // Added mass acts in wet states only (true when any state is wet).
   bool wet_only_added_mass = false;
-  // Empty when valid, else "<field>: what is wrong".
-  std::string Validate() const;
+  // Ok when valid, else the field and what is wrong.
+  Invalid Validate() const;
 };
 
 // The model's answer for one state: per observed mode, the paired bending mode.

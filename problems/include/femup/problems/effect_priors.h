@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "femup/builders.h"
+#include "femup/invalid.h"
 #include "femup/problems/effects.h"
 #include "femup/problems/model_effects.h"
 #include "femup/problems/nonlinear_problem.h"
@@ -65,12 +66,12 @@ struct StatedPriors {
   const FamilyPrior* Find(const std::string& kind) const;
   // The weight of "none" or a kind (1 unless stated).
   double Weight(const std::string& kind) const;
-  // Empty when valid, else "priors.<kind>[.<quantity>]: what is wrong" or
-  // "weights.<kind>: ...": a kind or quantity given twice, a number that is not
-  // finite, lower >= upper, sigma <= 0, an empty region name, a weight <= 0.
-  // Whether the quantities and regions exist is the model's to say
-  // (ApplyFamilyPrior, KeepStatedRegions).
-  std::string Validate() const;
+  // Ok when valid, else the field "priors.<kind>[.<quantity>]" or
+  // "weights.<kind>" and what is wrong: a kind or quantity given twice, a number that is
+  // not finite, lower >= upper, sigma <= 0, an empty region name, a weight <= 0. Whether
+  // the quantities and regions exist is the model's to say (ApplyFamilyPrior,
+  // KeepStatedRegions).
+  Invalid Validate() const;
 };
 
 // q at theta and theta at q for a parameter (EffectParameter's map).

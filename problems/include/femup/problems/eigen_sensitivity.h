@@ -42,6 +42,7 @@
 #include <string>
 #include <vector>
 
+#include "femup/invalid.h"
 #include "femup/measurement.h"
 #include "femup/modal.h"
 #include "femup/model.h"
@@ -97,9 +98,9 @@ struct EigenSensitivityOptions {
   // Evaluate on this reduced model instead of the full one (null: full).
   std::shared_ptr<const RitzBasis> ritz;
 
-  // Empty when valid, else "<field>: what is wrong". Sizes that depend on the
+  // Ok when valid, else the field and what is wrong. Sizes that depend on the
   // model are checked by BuildEigenSensitivityProblem.
-  std::string Validate() const;
+  Invalid Validate() const;
 };
 
 // The problem over x = the factors d of `model`: every parameter, in the model's

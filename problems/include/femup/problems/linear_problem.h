@@ -9,6 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include "femup/invalid.h"
+
 namespace femup {
 
 struct LinearProblem {
@@ -56,11 +58,11 @@ struct LinearProblem {
   bool noise_known() const {
     return row_weights.size() > 0 || data_covariance.size() > 0;
   }
-  // Empty when consistent; otherwise what is wrong (sizes, NaN, a fixed index
-  // out of range or listed twice, lower > upper, a fixed value outside its
-  // bounds, a covariance that is not positive definite, equalities that no x
-  // satisfies).
-  std::string Validate() const;
+  // Ok when consistent; otherwise what is wrong, with no field (sizes, NaN, a
+  // fixed index out of range or listed twice, lower > upper, a fixed value
+  // outside its bounds, a covariance that is not positive definite, equalities
+  // that no x satisfies).
+  Invalid Validate() const;
   // Fixes the unknown called `name` at `value`; throws InputError when no
   // unknown has that name.
   void Fix(const std::string& name, double value);

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "femup/counter_rng.h"
+#include "femup/invalid.h"
 #include "femup/measurement.h"
 
 namespace femup {
@@ -31,7 +32,7 @@ struct NoiseModel {
   // entry (additive, the same size on every sensor).
   enum class ShapeScale { kEntry, kPeak };
   ShapeScale shape_scale = ShapeScale::kEntry;
-  std::string Validate() const;  // empty when valid
+  Invalid Validate() const;  // ok when valid; the message names the field
 };
 
 // A corrupted copy of `data`. Draws eigenvalues first (mode order), then shape

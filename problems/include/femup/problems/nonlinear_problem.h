@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "femup/invalid.h"
 #include "femup/problems/linear_problem.h"
 
 namespace femup {
@@ -39,10 +40,10 @@ struct NonlinearProblem {
 
   int num_parameters() const { return static_cast<int>(initial.size()); }
   bool has_bounds() const;
-  // Empty when consistent; otherwise what is wrong (sizes, NaN in the start,
-  // lower > upper, a start or fixed value outside bounds, no evaluate function).
-  // Does not call evaluate.
-  std::string Validate() const;
+  // Ok when consistent; otherwise what is wrong, with no field (sizes, NaN in
+  // the start, lower > upper, a start or fixed value outside bounds, no
+  // evaluate function). Does not call evaluate.
+  Invalid Validate() const;
   std::vector<int> FreeUnknowns() const;
   bool IsFixed(int index) const;
 };

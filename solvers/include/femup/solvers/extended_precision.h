@@ -9,6 +9,8 @@
 #include <Eigen/Core>
 #include <string>
 
+#include "femup/invalid.h"
+
 namespace femup {
 
 // The same aliases as femup/problems/nist_strd.h.
@@ -23,7 +25,7 @@ struct ExtendedPrecisionOptions {
   // Scale the columns of A to unit norm before the decomposition (the answer is
   // mapped back), so the rank decision does not depend on the units.
   bool scale_columns = true;
-  std::string Validate() const;  // empty when valid, else "<field>: what is wrong"
+  Invalid Validate() const;  // ok when valid, else the field and what is wrong
 };
 
 struct ExtendedPrecisionSolution {

@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "femup/invalid.h"
 #include "femup/problems/linear_problem.h"
 #include "femup/solvers/identifiability.h"
 #include "femup/solvers/regularisation.h"
@@ -51,7 +52,7 @@ struct LinearSolverOptions {
   // to about cond^2 * machine epsilon); anything else goes the SVD path. Other
   // solvers ignore it.
   bool diagnostics = true;
-  std::string Validate() const;  // empty when valid, else "<field>: what is wrong"
+  Invalid Validate() const;  // ok when valid, else the field and what is wrong
 };
 
 struct LinearSolution {

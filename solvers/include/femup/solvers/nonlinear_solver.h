@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "femup/invalid.h"
 #include "femup/problems/nonlinear_problem.h"
 #include "femup/solvers/solver_summary.h"
 
@@ -41,7 +42,7 @@ struct NonlinearSolverOptions {
   int max_outer_iterations = 50;
   double equality_tolerance = 1e-10;
   bool verbose = false;
-  std::string Validate() const;  // empty when valid, else "<field>: what is wrong"
+  Invalid Validate() const;  // ok when valid, else the field and what is wrong
 };
 
 struct NonlinearSolution {

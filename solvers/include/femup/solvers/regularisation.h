@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "femup/invalid.h"
+
 namespace femup {
 
 struct RegularisationOptions {
@@ -28,7 +30,7 @@ struct RegularisationOptions {
   int grid_points = 200;  // log-spaced grid for plots and bracketing
   double lambda_min = 0;  // search range; 0 = from the singular values
   double lambda_max = 0;
-  std::string Validate() const;  // empty when valid, else "<field>: what is wrong"
+  Invalid Validate() const;  // ok when valid, else the field and what is wrong
 };
 
 // What a regularised solve reports (for JSON, tables and plots).

@@ -25,6 +25,8 @@
 #include <string>
 #include <vector>
 
+#include "femup/invalid.h"
+
 namespace femup {
 
 struct SampledEvidenceOptions {
@@ -40,8 +42,8 @@ struct SampledEvidenceOptions {
   double temperature = 1.0;  // of the posterior the stages adapt to, >= 1
   std::uint64_t seed = 20261124;
   std::uint64_t stream = 0;  // e.g. a class's index: independent draws per class
-  // Empty when valid, else "<field>: what is wrong".
-  std::string Validate() const;
+  // Ok when valid, else the field and what is wrong.
+  Invalid Validate() const;
 };
 
 // A proposal component: a local optimum and a covariance (positive definite).

@@ -33,6 +33,7 @@
 #include <string>
 #include <vector>
 
+#include "femup/invalid.h"
 #include "femup/studies/blind_benchmark.h"
 #include "femup/studies/study.h"
 
@@ -45,7 +46,7 @@ struct OracleOptions {
   // all five. With fewer, the probabilities are those of the classes given,
   // their priors renormalised.
   std::vector<std::string> kinds;
-  std::string Validate() const;  // "" or "<field>: what is wrong"
+  Invalid Validate() const;  // ok, or the field and what is wrong
 };
 
 struct OracleClass {

@@ -28,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "femup/invalid.h"
 #include "femup/output_dir.h"
 #include "femup/progress.h"
 
@@ -58,8 +59,8 @@ struct BenchmarkOptions {
   // than 5 noise units (enough for the ceiling on top-1 below, counting every
   // larger effect as right); "all" on every case.
   std::string oracle = "off";
-  int oracle_samples = 500;      // importance-sampling draws per sub-class
-  std::string Validate() const;  // "" or "<field>: what is wrong"
+  int oracle_samples = 500;  // importance-sampling draws per sub-class
+  Invalid Validate() const;  // ok, or the field and what is wrong
 };
 
 // One generated case, as the truth file records it.

@@ -39,6 +39,7 @@
 #include <string>
 #include <vector>
 
+#include "femup/invalid.h"
 #include "femup/measurement.h"
 #include "femup/problems/effect_priors.h"
 #include "femup/problems/model_effects.h"
@@ -65,8 +66,8 @@ struct EffectRankingOptions {
   // What the study states about the families (empty: their defaults). Each
   // family it names must be among those tried.
   StatedPriors priors;
-  // Empty when valid, else "<field>: what is wrong".
-  std::string Validate() const;
+  // Ok when valid, else the field and what is wrong.
+  Invalid Validate() const;
 };
 
 struct RankedClass {

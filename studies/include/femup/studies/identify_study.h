@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "femup/era.h"
+#include "femup/invalid.h"
 #include "femup/output_dir.h"
 
 namespace femup {
@@ -24,8 +25,8 @@ struct IdentifyOptions {
   StabilisationOptions stabilisation;
   int min_consecutive = 5;      // orders a mode must stay stable to be reported
   double max_frequency_hz = 0;  // report modes below this; 0 = Nyquist
-  // Empty when valid; otherwise "<field>: what is wrong".
-  std::string Validate() const;
+  // Ok when valid; otherwise the field and what is wrong.
+  Invalid Validate() const;
 };
 
 struct IdentifyResult {

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "femup/invalid.h"
 #include "femup/output_dir.h"
 #include "femup/progress.h"
 #include "femup/studies/study.h"
@@ -51,7 +52,7 @@ struct NoiseRunOptions {
   // Called after each chunk of draws as (draws done, levels x draws), from the
   // worker threads; empty: no reports. See femup/progress.h.
   ProgressCallback progress;
-  std::string Validate() const;  // "" or "<field>: what is wrong"
+  Invalid Validate() const;  // ok, or the field and what is wrong
 };
 
 // Runs the study described by study.noise_study (throws InputError if absent,
