@@ -150,13 +150,22 @@ nlohmann::json SolveFemup(const femup::SparseMatrix& K, const femup::SparseMatri
   return out;
 }
 
-// Runs the script on `dir` (one BLAS thread).
+// Runs the script on `dir` (one BLAS thread) with one of its factorisations:
+// "default" (eigsh's own SuperLU) or "symmetric" (a symmetric-ordering splu
+// as OPinv).
 PeerResult RunPeer(const std::string& python, const std::string& script,
-                   const fs::path& dir, int modes, double shift, double tolerance) {
-  return RunPeerScript(python, script, dir,
-                       "--k " + std::to_string(modes) + " --shift " +
-                           Format("%.17g", shift) + " --tol " +
-                           Format("%.17g", tolerance));
+                   const fs::path& dir, int modes, double shift, double tolerance,
+                   const std::string& factorisation) {
+  return RunPeerScript(
+      python, script, dir,
+      "--k " + std::to_string(modes) + " --shift " + Format("%.17g", shift) + " --tol " +
+          Format("%.17g", tolerance) + " --factorisation " + factorisation);
+}
+
+// Column heading of a peer configuration.
+std::string PeerName(const std::string& factorisation) {
+  return factorisation == "symmetric" ? "scipy, symmetric splu as OPinv"
+                                      : "scipy eigsh, defaults";
 }
 
 // Everything measured on one size.
@@ -165,7 +174,8 @@ struct Row {
   long long dofs = 0;
   long long nnz_k = 0;  // full symmetric storage
   double build_time = 0, write_time = 0;
-  PeerResult femup, peer;
+  PeerResult femup;
+  std::vector<PeerResult> peers;  // one per configuration, in the order asked
 };
 
 double MaxOf(const nlohmann::json& values) {
@@ -191,19 +201,21 @@ double PeakMb(const nlohmann::json& j) {
                                           : j["solve_peak_rss_mb"].get<double>();
 }
 
-std::string Tables(const std::vector<Row>& rows, bool have_peer,
-                   const std::string& peer_note) {
+std::string Tables(const std::vector<Row>& rows, const std::vector<std::string>& configs,
+                   const std::vector<std::string>& notes) {
   std::ostringstream md;
   md << "### Time and memory\n\n";
-  if (!have_peer) md << "scipy columns skipped: " << peer_note << "\n\n";
-  md << "| DOF | nnz K | femup (s) |";
-  if (have_peer) md << " scipy eigsh (s) | scipy / femup |";
-  md << " femup peak (MB) |";
-  if (have_peer) md << " scipy peak (MB) |";
-  md << " femup MB per 10^5 DOF |";
-  if (have_peer) md << " scipy MB per 10^5 DOF | max rel. eigenvalue difference |";
-  md << "\n|---|---|---|" << (have_peer ? "---|---|" : "") << "---|"
-     << (have_peer ? "---|" : "") << "---|" << (have_peer ? "---|---|" : "") << "\n";
+  for (std::size_t c = 0; c < configs.size(); ++c) {
+    if (!notes[c].empty()) md << PeerName(configs[c]) << ": " << notes[c] << "\n\n";
+  }
+  md << "| DOF | nnz K | femup (s) | femup peak (MB) | femup MB per 10^5 DOF |";
+  for (const std::string& c : configs) {
+    md << " " << PeerName(c)
+       << " (s) | / femup | peak (MB) | max rel. eigenvalue difference |";
+  }
+  md << "\n|---|---|---|---|---|";
+  for (std::size_t c = 0; c < configs.size(); ++c) md << "---|---|---|---|";
+  md << "\n";
   for (const Row& r : rows) {
     const double per = static_cast<double>(r.dofs) / 1e5;
     md << "| " << r.dofs << " | " << r.nnz_k << " |";
@@ -213,18 +225,18 @@ std::string Tables(const std::vector<Row>& rows, bool have_peer,
     }
     const double ft = r.femup.json["time"].get<double>();
     const double fm = PeakMb(r.femup.json);
-    md << " " << Format("%.3g", ft) << " |";
-    if (have_peer) {
-      const double st = r.peer.json["time"].get<double>();
-      md << " " << Format("%.3g", st) << " | " << Format("%.2f", st / ft) << " |";
-    }
-    md << " " << Format("%.0f", fm) << " |";
-    if (have_peer) md << " " << Format("%.0f", PeakMb(r.peer.json)) << " |";
-    md << " " << Format("%.0f", fm / per) << " |";
-    if (have_peer) {
-      md << " " << Format("%.0f", PeakMb(r.peer.json) / per) << " | "
+    md << " " << Format("%.3g", ft) << " | " << Format("%.0f", fm) << " | "
+       << Format("%.0f", fm / per) << " |";
+    for (const PeerResult& p : r.peers) {
+      if (!p.error.empty()) {
+        md << " failed | | | |";
+        continue;
+      }
+      const double st = p.json["time"].get<double>();
+      md << " " << Format("%.3g", st) << " | " << Format("%.2f", st / ft) << " | "
+         << Format("%.0f", PeakMb(p.json)) << " | "
          << Format("%.1e", MaxRelativeDifference(r.femup.json["eigenvalues"],
-                                                 r.peer.json["eigenvalues"]))
+                                                 p.json["eigenvalues"]))
          << " |";
     }
     md << "\n";
@@ -232,12 +244,19 @@ std::string Tables(const std::vector<Row>& rows, bool have_peer,
 
   md << "\n### Details\n\n"
      << "| DOF | build (s) | write K, M (s) | femup growth (MB) | femup max residual |";
-  if (have_peer) {
-    md << " scipy read (s) | scipy growth (MB) | scipy process peak incl. reading (MB) | "
-          "scipy max residual |";
+  for (const std::string& c : configs) {
+    md << " " << PeerName(c)
+       << ": read (s) | growth (MB) | process peak incl. reading (MB) | max residual |";
   }
-  md << " lowest, highest eigenvalue (femup, rad^2/s^2) |\n|---|---|---|---|---|"
-     << (have_peer ? "---|---|---|---|" : "") << "---|\n";
+  md << " lowest, highest eigenvalue (femup, rad^2/s^2) |\n|---|---|---|---|---|";
+  for (std::size_t c = 0; c < configs.size(); ++c) md << "---|---|---|---|";
+  md << "---|\n";
+  const auto growth = [](const nlohmann::json& j) {
+    return j["solve_peak_rss_mb"].is_null()
+               ? std::string("n/a")
+               : Format("%.0f", j["solve_peak_rss_mb"].get<double>() -
+                                    j["rss_before_solve_mb"].get<double>());
+  };
   for (const Row& r : rows) {
     md << "| " << r.dofs << " | " << Format("%.1f", r.build_time) << " | "
        << Format("%.1f", r.write_time) << " |";
@@ -246,18 +265,15 @@ std::string Tables(const std::vector<Row>& rows, bool have_peer,
       continue;
     }
     const nlohmann::json& f = r.femup.json;
-    const auto growth = [](const nlohmann::json& j) {
-      return j["solve_peak_rss_mb"].is_null()
-                 ? std::string("n/a")
-                 : Format("%.0f", j["solve_peak_rss_mb"].get<double>() -
-                                      j["rss_before_solve_mb"].get<double>());
-    };
     md << " " << growth(f) << " | " << Format("%.1e", MaxOf(f["residuals"])) << " |";
-    if (have_peer) {
-      const nlohmann::json& p = r.peer.json;
-      md << " " << Format("%.1f", p["read_time"].get<double>()) << " | " << growth(p)
-         << " | " << Format("%.0f", p["maxrss_mb"].get<double>()) << " | "
-         << Format("%.1e", MaxOf(p["residuals"])) << " |";
+    for (const PeerResult& p : r.peers) {
+      if (!p.error.empty()) {
+        md << " failed | | | |";
+        continue;
+      }
+      md << " " << Format("%.1f", p.json["read_time"].get<double>()) << " | "
+         << growth(p.json) << " | " << Format("%.0f", p.json["maxrss_mb"].get<double>())
+         << " | " << Format("%.1e", MaxOf(p.json["residuals"])) << " |";
     }
     const auto& ev = f["eigenvalues"];
     md << " " << Format("%.6g", ev.front().get<double>()) << ", "
@@ -281,6 +297,7 @@ int main(int argc, char** argv) {
   std::string python = "/usr/bin/python3";
   std::string script = FEMUP_EIGSH_PEER_SCRIPT;
   std::string markdown, keep;
+  std::string peers_text = "default,symmetric";
   app.add_option("--dofs", sizes_text,
                  "frames, comma-separated: 1e4, 1e5, 1e6 (docs/space_frame.md) or "
                  "BXxBYxLEVELS");
@@ -293,14 +310,28 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   app.add_option("--python", python, "python interpreter that has scipy");
   app.add_option("--script", script, "the peer script (eigsh_peer.py)");
+  app.add_option("--peers", peers_text,
+                 "scipy configurations, comma-separated: default (eigsh factorises "
+                 "with SuperLU's defaults), symmetric (splu with a symmetric ordering "
+                 "and no pivoting, as OPinv)");
   app.add_option("--markdown", markdown, "also write the tables to this file");
   app.add_option("--keep", keep,
                  "write K.mtx and M.mtx under this directory (one subdirectory per "
                  "size) and keep them, instead of a temporary directory");
   CLI11_PARSE(app, argc, argv);
   std::vector<Size> sizes;
+  std::vector<std::string> configs;
   try {
     sizes = ParseSizes(sizes_text);
+    std::stringstream list(peers_text);
+    std::string item;
+    while (std::getline(list, item, ',')) {
+      if (item != "default" && item != "symmetric") {
+        throw CLI::ValidationError("--peers",
+                                   "'" + item + "' is not default or symmetric");
+      }
+      configs.push_back(item);
+    }
   } catch (const CLI::Error& e) {
     return app.exit(e);
   }
@@ -320,8 +351,9 @@ int main(int argc, char** argv) {
   options.tolerance = tolerance;
 
   std::vector<Row> rows;
-  std::string peer_note, versions;
-  bool have_peer = true;
+  std::string versions;
+  // Why a configuration first failed (no python or scipy, no memory), or empty.
+  std::vector<std::string> notes(configs.size());
   for (const Size& size : sizes) {
     Row row;
     row.name = size.name;
@@ -356,16 +388,17 @@ int main(int argc, char** argv) {
     M.data().squeeze();
     ::malloc_trim(0);
 
-    if (have_peer) {
-      std::cerr << size.name << ": scipy\n";
-      row.peer = RunPeer(python, script, dir, modes, shift, tolerance);
-      if (!row.peer.error.empty()) {
-        peer_note = row.peer.error;
-        have_peer = false;
-        std::cerr << "  scipy not run: " << peer_note << "\n";
+    for (std::size_t c = 0; c < configs.size(); ++c) {
+      std::cerr << size.name << ": " << PeerName(configs[c]) << "\n";
+      row.peers.push_back(
+          RunPeer(python, script, dir, modes, shift, tolerance, configs[c]));
+      const PeerResult& p = row.peers.back();
+      if (!p.error.empty()) {
+        std::cerr << "  " << PeerName(configs[c]) << " failed: " << p.error << "\n";
+        if (notes[c].empty()) notes[c] = "failed on " + size.name + ": " + p.error;
       } else {
-        versions = "scipy " + row.peer.json["scipy"].get<std::string>() + ", numpy " +
-                   row.peer.json["numpy"].get<std::string>();
+        versions = "scipy " + p.json["scipy"].get<std::string>() + ", numpy " +
+                   p.json["numpy"].get<std::string>();
       }
     }
     if (keep.empty()) fs::remove_all(dir);
@@ -381,12 +414,16 @@ int main(int argc, char** argv) {
       << " on both sides; one run each. femup: SolveModes(kSparseShiftInvert) in a "
          "forked child (OMP_NUM_THREADS="
       << (omp != nullptr ? omp : "unset") << "). "
-      << (have_peer
-              ? "Peer: " + versions + ", eigsh(K, k, M=M, sigma, which='LM', tol) (" +
-                    python + ", one BLAS thread)."
-              : std::string("Peer: not run."))
+      << (versions.empty()
+              ? std::string("Peer: not run.")
+              : "Peer: " + versions + " (" + python +
+                    ", one BLAS thread): eigsh(K, k, M=M, sigma, which='LM', tol) with "
+                    "its defaults, and with OPinv from splu(K - sigma M, "
+                    "permc_spec='MMD_AT_PLUS_A', diag_pivot_thresh=0, "
+                    "options={'SymmetricMode': True}), the factorisation timed with "
+                    "the solve.")
       << "\n\n"
-      << Tables(rows, have_peer, peer_note);
+      << Tables(rows, configs, notes);
   std::cout << out.str();
   if (!markdown.empty()) {
     std::ofstream file(markdown);

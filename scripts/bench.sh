@@ -7,7 +7,11 @@
 #   peer.md       femup's bounded solvers against scipy's lsq_linear
 #                 (bench/peer_compare.cc), ratios measured in this one run
 #   eigen_peer.md femup's sparse shift-invert eigensolver against scipy's eigsh
-#                 on the space frames (bench/eigen_peer_compare.cc), 10 modes
+#                 on the space frames (bench/eigen_peer_compare.cc), 10 modes:
+#                 eigsh with its defaults and with a symmetric-ordering splu as
+#                 OPinv (FEMUP_EIGEN_PEERS, default "default,symmetric"; at 10^6
+#                 DOF the default one runs out of memory after ~15 min: use
+#                 FEMUP_EIGEN_PEERS=symmetric there)
 #   system_peer.md the linear correction-factor system of a 10^5-DOF frame with
 #                 10^3 factors and 10 measured modes, femup against scipy
 #                 (bench/system_peer_compare.cc), with the memory read bound
@@ -28,6 +32,7 @@ out=out/bench
 min_time=${FEMUP_BENCH_MIN_TIME:-0.2}
 sizes=${FEMUP_PEER_SIZES:-500x50,2000x200,5000x500}
 eigen_dofs=${FEMUP_EIGEN_PEER_DOFS:-1e5}
+eigen_peers=${FEMUP_EIGEN_PEERS:-default,symmetric}
 system_size=${FEMUP_SYSTEM_PEER_SIZE:-1e5}
 noise_draws=${FEMUP_NOISE_PEER_DRAWS:-1000}
 
@@ -48,6 +53,7 @@ mkdir -p "$out"
   echo "cpu: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ //')"
   echo "load average: $(cut -d' ' -f1-3 /proc/loadavg)"
   echo "compiler: $(c++ --version | head -1)"
+  echo "blas: $(readlink -f "$(ldconfig -p | awk '/libblas.so.3 .*x86-64/ {print $NF; exit}')" 2>/dev/null)"
   echo "source: $(git rev-parse --short HEAD 2>/dev/null || echo unknown)$(
     git diff --quiet HEAD 2>/dev/null || echo ' plus uncommitted changes')"
   echo "command: scripts/bench.sh (FEMUP_BENCH_MIN_TIME=$min_time FEMUP_PEER_SIZES=$sizes" \
@@ -71,7 +77,7 @@ echo "== peer comparison (scipy.optimize.lsq_linear)"
 
 echo "== peer comparison (scipy.sparse.linalg.eigsh, shift-invert)"
 # One OpenMP thread for CHOLMOD, as scipy gets one BLAS thread.
-OMP_NUM_THREADS=1 "$build/bench/femup_eigen_peer_compare" --dofs "$eigen_dofs" \
+OMP_NUM_THREADS=1 "$build/bench/femup_eigen_peer_compare" --dofs "$eigen_dofs" --peers "$eigen_peers" \
   --markdown "$out/eigen_peer.md"
 echo "== peer comparison (the linear correction-factor system, scipy)"
 OMP_NUM_THREADS=1 "$build/bench/femup_system_peer_compare" --size "$system_size" \

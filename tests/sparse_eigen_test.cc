@@ -161,6 +161,22 @@ TEST(SparseEigenTest, RandomPencilMatchesDenseSolver) {
   ExpectMatchesDense(K, M, modes, 0, 12);
 }
 
+// CHOLMOD's simplicial and supernodal LL' (a switch of 0 flops per entry of L
+// makes every factorisation supernodal, a huge one simplicial) give the dense
+// solver's modes, here with an M whose pattern is not inside K's (the grid's
+// row ends are coupled in M only): both are factorised on one analysis of K + M.
+TEST(SparseEigenTest, SimplicialAndSupernodalFactorisationsMatchDenseSolver) {
+  SparseMatrix K, M;
+  RandomPencil(20, 25, 20261127u, &K, &M);
+  EigenOptions options;
+  options.num_modes = 8;
+  for (double supernodal_switch : {0.0, 1e300}) {
+    SCOPED_TRACE(supernodal_switch);
+    const Modes modes = SolveModesSparse(K, M, options, supernodal_switch);
+    ExpectMatchesDense(K, M, modes, 0, 8);
+  }
+}
+
 TEST(SparseEigenTest, ShiftInsideSpectrumUsesLdltAndReturnsModesAboveShift) {
   SparseMatrix K, M;
   RandomPencil(20, 25, 20240611u, &K, &M);
@@ -264,6 +280,31 @@ TEST(SparseEigenTest, MassNotPositiveDefiniteThrows) {
         << message;
     EXPECT_NE(message.find("DOF 17"), std::string::npos) << message;
     EXPECT_NE(message.find("n = 50"), std::string::npos) << message;
+  }
+}
+
+// A consistent (non-diagonal) M that is not positive definite: found by its
+// factorisation on the analysis of K + M, with the DOF where it breaks down.
+TEST(SparseEigenTest, NonDiagonalMassNotPositiveDefiniteThrows) {
+  const int n = 50;
+  const SparseMatrix K = ChainStiffness(n, /*grounded=*/true);
+  std::vector<Eigen::Triplet<double>> m;
+  for (int i = 0; i < n; ++i) m.emplace_back(i, i, 2.0 / 3.0);
+  for (int i = 0; i + 1 < n; ++i) {
+    const double c = i == 20 ? 1.0 : 1.0 / 6.0;  // |c| > 2/3: M[20:22, 20:22] indefinite
+    m.emplace_back(i, i + 1, c);
+    m.emplace_back(i + 1, i, c);
+  }
+  const SparseMatrix M = FromTriplets(n, m);
+  EigenOptions options;
+  options.num_modes = 4;
+  for (double supernodal_switch : {0.0, 1e300}) {
+    const std::string message =
+        InputErrorMessage([&] { SolveModesSparse(K, M, options, supernodal_switch); });
+    EXPECT_NE(message.find("modal analysis: mass matrix is not positive definite "
+                           "(its Cholesky factorisation breaks down at DOF "),
+              std::string::npos)
+        << message;
   }
 }
 

@@ -19,6 +19,14 @@
 
 namespace femup {
 namespace internal {
+
+// Flops per entry of L from which CHOLMOD factorises supernodally (its own
+// default is 40). On the space frames of docs/benchmarks.md, 10^5 DOF (193
+// flops per entry with AMD) factorise as fast simplicially and solve 2-4x
+// faster (3-4 ms against 10-13 ms, ATLAS or OpenBLAS); 10^6 DOF (1,093 with
+// METIS) stay supernodal, where the dense kernels pay.
+const double kSupernodalSwitch = 500;
+
 namespace {
 
 constexpr char kWhere[] = "modal analysis";
@@ -59,11 +67,17 @@ Eigen::VectorXd AbsRowSums(const SparseMatrix& lower) {
   return sums;
 }
 
-// CHOLMOD supernodal LLT that stays quiet on failure (the caller reports), says
-// where the factorisation broke down and exposes its pivots.
-class CholmodLlt : public Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> {
+// CHOLMOD LL' that stays quiet on failure (the caller reports), says where the
+// factorisation broke down and exposes its pivots. Simplicial or supernodal is
+// CHOLMOD's choice from the analysed fill (its supernodal_switch).
+class CholmodLlt : public Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower> {
  public:
-  CholmodLlt() { cholmod().print = 0; }
+  explicit CholmodLlt(double supernodal_switch) {
+    setMode(Eigen::CholmodSimplicialLLt);  // LL' (a non-positive pivot fails), not LDL'
+    cholmod().supernodal = CHOLMOD_AUTO;
+    cholmod().supernodal_switch = supernodal_switch;
+    cholmod().print = 0;
+  }
 
   // DOF (original numbering) at which the factorisation broke down, or -1.
   Eigen::Index FailedDof() const {
@@ -110,19 +124,40 @@ class CholmodLlt : public Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower
 };
 
 // Spectra operation y = (K - sigma M)^{-1} x for GEigsMode::ShiftInvert.
-// K and M hold lower triangles. Factorises with CHOLMOD (supernodal LLT) and
-// falls back to SimplicialLDLT when K - sigma M is not positive definite.
-// set_shift() does not throw: it records what went wrong in failure().
+// K and M hold lower triangles. Factorises with CHOLMOD (LL') and falls back to
+// SimplicialLDLT when K - sigma M is not positive definite. One symbolic
+// analysis (ordering and fill) serves every shift and the check of M: K - sigma
+// M has the pattern of K + M whatever sigma. set_shift() does not throw: it
+// records what went wrong in failure().
 class CholmodShiftInvertOp {
  public:
   using Scalar = double;
   using Ldlt = Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower>;
 
-  CholmodShiftInvertOp(const SparseMatrix& k_lower, const SparseMatrix& m_lower)
-      : k_(k_lower), m_(m_lower), n_(k_lower.rows()) {}
+  CholmodShiftInvertOp(const SparseMatrix& k_lower, const SparseMatrix& m_lower,
+                       double supernodal_switch)
+      : k_(k_lower), m_(m_lower), n_(k_lower.rows()), llt_(supernodal_switch) {}
 
   Eigen::Index rows() const { return n_; }
   Eigen::Index cols() const { return n_; }
+
+  // -1 when M is positive definite; otherwise the DOF at which its Cholesky
+  // factorisation breaks down (n when CHOLMOD does not say). A diagonal M is
+  // read directly; any other is factorised on the analysis of K + M.
+  Eigen::Index MassBreakdown() {
+    if (IsDiagonal(m_)) {
+      for (Eigen::Index j = 0; j < n_; ++j) {
+        if (!(m_.coeff(j, j) > 0.0)) return j;
+      }
+      return -1;
+    }
+    const SparseMatrix m_on_pattern = 0.0 * k_ + m_;  // M on the pattern of K + M
+    Analyse(m_on_pattern);
+    llt_.factorize(m_on_pattern);
+    if (llt_.info() == Eigen::Success) return -1;
+    const Eigen::Index dof = llt_.FailedDof();
+    return dof >= 0 ? dof : n_;
+  }
 
   void set_shift(double sigma) {
     if (factorised_ && sigma == sigma_) return;  // already factorised at sigma
@@ -135,7 +170,7 @@ class CholmodShiftInvertOp {
     if (ldlt_ != nullptr) {
       y = ldlt_->solve(x);
     } else {
-      y = llt_->solve(x);
+      y = llt_.solve(x);
     }
   }
 
@@ -147,24 +182,38 @@ class CholmodShiftInvertOp {
   Eigen::Index num_below_shift() const { return num_below_shift_; }
 
  private:
+  static bool IsDiagonal(const SparseMatrix& lower) {
+    for (Eigen::Index j = 0; j < lower.outerSize(); ++j) {
+      for (SparseMatrix::InnerIterator it(lower, j); it; ++it) {
+        if (it.row() != j && it.value() != 0.0) return false;
+      }
+    }
+    return true;
+  }
+
+  // The symbolic analysis, once, on the pattern of K + M (`a` holds exactly
+  // that pattern: Eigen's sparse sums keep the union of their operands').
+  void Analyse(const SparseMatrix& a) {
+    if (analysed_) return;
+    llt_.analyzePattern(a);
+    analysed_ = true;
+  }
+
   void Factorise(double sigma) {
     sigma_ = sigma;
     factorised_ = false;
     failure_.clear();
     num_below_shift_ = 0;
-    llt_.reset();
     ldlt_.reset();
     const SparseMatrix a = k_ - sigma * m_;  // lower triangle of K - sigma M
     const Eigen::VectorXd row_sums = AbsRowSums(a);
 
-    llt_ = std::make_unique<CholmodLlt>();
-    llt_->compute(a);
-    if (llt_->info() == Eigen::Success) {
-      factorised_ = CheckPivots(llt_->Pivots(), row_sums);
-      if (!factorised_) llt_.reset();
+    Analyse(a);
+    llt_.factorize(a);
+    if (llt_.info() == Eigen::Success) {
+      factorised_ = CheckPivots(llt_.Pivots(), row_sums);
       return;
     }
-    llt_.reset();
 
     // Not positive definite: the shift lies inside the spectrum (or above it).
     ldlt_ = std::make_unique<Ldlt>();
@@ -230,10 +279,11 @@ class CholmodShiftInvertOp {
   const SparseMatrix& m_;
   const Eigen::Index n_;
   double sigma_ = 0.0;
+  bool analysed_ = false;
   bool factorised_ = false;
   std::string failure_;
   Eigen::Index num_below_shift_ = 0;
-  std::unique_ptr<CholmodLlt> llt_;
+  CholmodLlt llt_;
   std::unique_ptr<Ldlt> ldlt_;
 };
 
@@ -249,7 +299,7 @@ bool AllFinite(const SparseMatrix& a) {
 }  // namespace
 
 Modes SolveModesSparse(const SparseMatrix& K, const SparseMatrix& M,
-                       const EigenOptions& options) {
+                       const EigenOptions& options, double supernodal_switch) {
   const int k = options.num_modes;
   const double shift = options.shift;
   if (K.rows() != K.cols() || M.rows() != M.cols() || K.rows() != M.rows()) {
@@ -293,21 +343,15 @@ Modes SolveModesSparse(const SparseMatrix& K, const SparseMatrix& M,
   m_lower.makeCompressed();
 
   // The B-inner product of the Lanczos process needs M positive definite.
-  {
-    CholmodLlt mass_llt;
-    mass_llt.compute(m_lower);
-    if (mass_llt.info() != Eigen::Success) {
-      std::ostringstream out;
-      out << "mass matrix is not positive definite (its Cholesky factorisation breaks "
-             "down";
-      const Eigen::Index dof = mass_llt.FailedDof();
-      if (dof >= 0) out << " at DOF " << dof;
-      out << ") " << Context(k, n, shift);
-      throw InputError(kWhere, out.str());
-    }
+  CholmodShiftInvertOp op(k_lower, m_lower, supernodal_switch);
+  if (const Eigen::Index dof = op.MassBreakdown(); dof >= 0) {
+    std::ostringstream out;
+    out << "mass matrix is not positive definite (its Cholesky factorisation breaks "
+           "down";
+    if (dof < n) out << " at DOF " << dof;
+    out << ") " << Context(k, n, shift);
+    throw InputError(kWhere, out.str());
   }
-
-  CholmodShiftInvertOp op(k_lower, m_lower);
   op.set_shift(shift);  // the solver's own set_shift(shift) then reuses this
   if (!op.failure().empty()) {
     throw InputError(kWhere, "cannot factorise K - shift*M: " + op.failure() + " " +

@@ -11,8 +11,11 @@ namespace internal {
 // Lowest `options.num_modes` eigenpairs of K phi = lambda M phi nearest above
 // options.shift, by shift-invert Lanczos (Spectra SymGEigsShiftSolver,
 // GEigsMode::ShiftInvert) on a sparse Cholesky factorisation of K - shift*M
-// (CHOLMOD supernodal LLT; SimplicialLDLT when K - shift*M is not positive
-// definite, i.e. when the shift lies inside the spectrum).
+// (CHOLMOD LL', supernodal when the analysed factorisation needs at least
+// `supernodal_switch` flops per entry of L, simplicial below; SimplicialLDLT
+// when K - shift*M is not positive definite, i.e. when the shift lies inside
+// the spectrum). One symbolic analysis serves K - shift*M and the check that M
+// is positive definite (a diagonal M is checked without factorising).
 //
 // Only the lower triangles of K and M are read. Eigenvalues are ascending; the
 // shapes are M-normalised (phi' M phi = 1) with the sign fixed so that the entry
@@ -27,8 +30,12 @@ namespace internal {
 // factorised stably, fewer than k eigenvalues lie above the shift (counted by
 // Sylvester's law of inertia), or the iteration does not converge within
 // options.max_iterations restarts.
+// The default `supernodal_switch`: see sparse_eigen.cc for its measurement.
+extern const double kSupernodalSwitch;
+
 Modes SolveModesSparse(const SparseMatrix& K, const SparseMatrix& M,
-                       const EigenOptions& options);
+                       const EigenOptions& options,
+                       double supernodal_switch = kSupernodalSwitch);
 
 }  // namespace internal
 }  // namespace femup
