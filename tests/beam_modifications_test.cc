@@ -20,10 +20,13 @@
 #include "femup/errors.h"
 #include "femup/fe.h"
 #include "femup/studies/study.h"
+#include "paper_beam.h"
 #include "scratch_dir.h"
 
 namespace femup {
 namespace {
+
+using fixtures::PaperSection;
 
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
 const double kInf = std::numeric_limits<double>::infinity();
@@ -42,28 +45,11 @@ void ExpectInputError(const std::function<void()>& f,
   }
 }
 
-BeamSection PaperSection() {
-  BeamSection s;
-  s.E = 206e9;
-  s.A = 8.8e-4;
-  s.I = 8.53e-8;
-  s.rho = 7850;
-  return s;
-}
-
 // Non-uniform mesh of 5 elements, 0.9 m.
-const std::vector<double> kHeights = {0.0, 0.15, 0.32, 0.5, 0.71, 0.9};
+const std::vector<double>& kHeights = fixtures::kNonUniformHeights;
 
 CantileverSpec Spec(const std::vector<double>& heights, bool free_base) {
-  CantileverSpec spec;
-  spec.node_heights = heights;
-  spec.section = PaperSection();
-  if (free_base) {
-    spec.support_transverse = 1e6;
-    spec.support_axial = 1e9;
-    spec.support_rotation = 1e4;
-  }
-  return spec;
+  return fixtures::PaperCantilever(heights, free_base);
 }
 
 Structure Cantilever(const std::vector<double>& heights, bool free_base) {

@@ -13,24 +13,18 @@
 
 #include "femup/errors.h"
 #include "femup/modal.h"
+#include "paper_beam.h"
 
 namespace femup {
 namespace {
+
+using fixtures::PaperSection;
 
 const double kPi = std::acos(-1.0);
 
 // beta_n L of a clamped-free Euler-Bernoulli beam (roots of 1 + cos x cosh x).
 const double kClampedFreeBetaL[3] = {1.8751040687119611, 4.6940911329741746,
                                      7.8547574382376126};
-
-BeamSection PaperSection() {
-  BeamSection s;
-  s.E = 206e9;
-  s.A = 8.8e-4;
-  s.I = 8.53e-8;
-  s.rho = 7850;
-  return s;
-}
 
 // f = (beta L)^2 / (2 pi L^2) sqrt(EI / (rho A)).
 double BeamFrequencyHz(double beta_l, double length, const BeamSection& s) {

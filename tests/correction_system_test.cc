@@ -17,6 +17,7 @@
 #include "femup/modal.h"
 #include "femup/problems/paper_chain.h"
 #include "femup/structure.h"
+#include "paper_beam.h"
 
 namespace femup {
 namespace {
@@ -252,10 +253,7 @@ TEST(CorrectionSystem, PaperPresetSatisfiesBothForms) {
 TEST(CorrectionSystem, CantileverExactFactorsSatisfyBothForms) {
   CantileverSpec spec;
   spec.node_heights = UniformHeights(1.9, 10);
-  spec.section.E = 206e9;
-  spec.section.A = 8.8e-4;
-  spec.section.I = 8.53e-8;
-  spec.section.rho = 7850;
+  spec.section = fixtures::PaperSection();
   spec.water_depth = 1.5;
   for (AddedMassBasis basis :
        {AddedMassBasis::kElementMass, AddedMassBasis::kTransverse}) {

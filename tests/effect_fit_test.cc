@@ -25,27 +25,21 @@
 #include "femup/problems/effects.h"
 #include "femup/solvers/nonlinear_solver.h"
 #include "femup/structure.h"
+#include "paper_beam.h"
 
 namespace femup {
 namespace {
+
+using fixtures::PaperSection;
 
 const double kPi = std::acos(-1.0);
 const double kLength = 2.0;
 const int kElements = 20;
 
-BeamSection Section() {
-  BeamSection s;
-  s.E = 206e9;
-  s.A = 8.8e-4;
-  s.I = 8.53e-8;
-  s.rho = 7850;
-  return s;
-}
-
 CantileverSpec Nominal() {
   CantileverSpec spec;
   spec.node_heights = UniformHeights(kLength, kElements);
-  spec.section = Section();
+  spec.section = PaperSection();
   return spec;
 }
 
@@ -190,7 +184,7 @@ std::vector<PredictedMode> UniformCantileverModes(int elements) {
 const double kBetaL[4] = {1.87510407, 4.69409113, 7.85475744, 10.99554073};
 
 double EulerBernoulliHz(int k) {
-  const BeamSection s = Section();
+  const BeamSection s = PaperSection();
   return kBetaL[k] * kBetaL[k] / (2 * kPi * kLength * kLength) *
          std::sqrt(s.E * s.I / (s.rho * s.A));
 }

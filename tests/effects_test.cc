@@ -23,32 +23,26 @@
 #include "femup/errors.h"
 #include "femup/fe.h"
 #include "femup/structure.h"
+#include "paper_beam.h"
 
 namespace femup {
 namespace {
+
+using fixtures::PaperSection;
 
 const double kPi = std::acos(-1.0);
 const double kLength = 2.0;
 const int kElements = 20;
 
-BeamSection Section() {
-  BeamSection s;
-  s.E = 206e9;
-  s.A = 8.8e-4;
-  s.I = 8.53e-8;
-  s.rho = 7850;
-  return s;
-}
-
 CantileverSpec Nominal() {
   CantileverSpec spec;
   spec.node_heights = UniformHeights(kLength, kElements);
-  spec.section = Section();
+  spec.section = PaperSection();
   return spec;
 }
 
-double Ei() { return Section().E * Section().I; }
-double RhoA() { return Section().rho * Section().A; }
+double Ei() { return PaperSection().E * PaperSection().I; }
+double RhoA() { return PaperSection().rho * PaperSection().A; }
 
 bool IsBendingLabel(const std::string& label) {
   const auto ends = [&](const char* s) {
@@ -277,8 +271,8 @@ TEST(Effects, MaterialScalingScalesEveryBendingFrequencyByExpHalfS) {
   const Eigen::VectorXd f0 = BendingFrequencies(Nominal());
   for (double s : {-0.6, -0.2, 0.3, 0.7}) {
     const CantileverSpec spec = Applied(*e, Theta({s}));
-    EXPECT_NEAR(spec.section.E, Section().E * std::exp(s), 1e-6);
-    EXPECT_EQ(spec.section.rho, Section().rho);
+    EXPECT_NEAR(spec.section.E, PaperSection().E * std::exp(s), 1e-6);
+    EXPECT_EQ(spec.section.rho, PaperSection().rho);
     const Eigen::VectorXd f = BendingFrequencies(spec);
     ASSERT_EQ(f.size(), f0.size());
     for (int k = 0; k < 8; ++k) {
@@ -570,10 +564,10 @@ void AssembleByHand(const std::vector<double>& ei_factor, Eigen::MatrixXd* k,
       labels->push_back("n" + std::to_string(node) + name);
   }
   for (int e = 0; e < kElements; ++e) {
-    BeamSection s = Section();
+    BeamSection s = PaperSection();
     s.E *= ei_factor[e];
     const Matrix6 ke = Frame2dStiffness(s, 0, z[e], 0, z[e + 1]);
-    const Matrix6 me = Frame2dConsistentMass(Section(), 0, z[e], 0, z[e + 1]);
+    const Matrix6 me = Frame2dConsistentMass(PaperSection(), 0, z[e], 0, z[e + 1]);
     for (int a = 0; a < 6; ++a) {
       const int ga = 3 * (e + a / 3) + a % 3 - 3;  // node e + a/3, base gone
       if (ga < 0) continue;

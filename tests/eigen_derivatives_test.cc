@@ -15,6 +15,7 @@
 #include "femup/errors.h"
 #include "femup/modal.h"
 #include "femup/structure.h"
+#include "paper_beam.h"
 
 namespace femup {
 namespace {
@@ -215,7 +216,7 @@ TEST(EigenDerivatives, ChainMatchesFiniteDifferences) {
 TEST(EigenDerivatives, CantileverMatchesFiniteDifferences) {
   CantileverSpec spec;
   spec.node_heights = UniformHeights(1.9, 10);
-  spec.section = BeamSection{206e9, 8.8e-4, 8.53e-8, 7850};
+  spec.section = fixtures::PaperSection();
   spec.water_depth = 1.5;
   spec.added_mass_basis = AddedMassBasis::kTransverse;
   const ParametrisedModel model = BuildModel(BuildCantilever(spec), PaperParameterPlan());
@@ -249,7 +250,7 @@ TEST(EigenDerivatives, RepeatedEigenvalueIsReportedNotFactorised) {
 TEST(EigenDerivatives, SymmetricFactorIsUsedWhereItIsAccurate) {
   CantileverSpec spec;
   spec.node_heights = UniformHeights(1.9, 10);
-  spec.section = BeamSection{206e9, 8.8e-4, 8.53e-8, 7850};
+  spec.section = fixtures::PaperSection();
   spec.water_depth = 1.5;
   const ParametrisedModel model = BuildModel(BuildCantilever(spec), PaperParameterPlan());
   const SparseMatrix k = model.stiffness(), m = model.mass();

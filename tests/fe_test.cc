@@ -10,20 +10,14 @@
 #include <vector>
 
 #include "femup/errors.h"
+#include "paper_beam.h"
 
 namespace femup {
 namespace {
 
-using Vector6 = Eigen::Matrix<double, 6, 1>;
+using fixtures::PaperSection;
 
-BeamSection SteelSection() {
-  BeamSection s;
-  s.E = 206e9;
-  s.A = 8.8e-4;
-  s.I = 8.53e-8;
-  s.rho = 7850;
-  return s;
-}
+using Vector6 = Eigen::Matrix<double, 6, 1>;
 
 // Node coordinates of a few elements in general position (length, angle).
 struct Segment {
@@ -48,7 +42,7 @@ Vector6 Rotation(const Segment& g) {
 }
 
 TEST(Frame2dStiffness, AxialElementMatchesTextbookEntries) {
-  const BeamSection s = SteelSection();
+  const BeamSection s = PaperSection();
   const double l = 0.19;
   const Matrix6 k = Frame2dStiffness(s, 0, 0, l, 0);
   const double ea = s.E * s.A / l, ei = s.E * s.I;
@@ -66,14 +60,14 @@ TEST(Frame2dStiffness, AxialElementMatchesTextbookEntries) {
 
 TEST(Frame2dStiffness, Symmetric) {
   for (const Segment& g : TestSegments()) {
-    const Matrix6 k = Frame2dStiffness(SteelSection(), g.x1, g.y1, g.x2, g.y2);
+    const Matrix6 k = Frame2dStiffness(PaperSection(), g.x1, g.y1, g.x2, g.y2);
     EXPECT_LE((k - k.transpose()).cwiseAbs().maxCoeff(), 1e-14 * k.cwiseAbs().maxCoeff());
   }
 }
 
 TEST(Frame2dStiffness, RigidBodyMotionsAreTheNullSpace) {
   for (const Segment& g : TestSegments()) {
-    const Matrix6 k = Frame2dStiffness(SteelSection(), g.x1, g.y1, g.x2, g.y2);
+    const Matrix6 k = Frame2dStiffness(PaperSection(), g.x1, g.y1, g.x2, g.y2);
     const double scale = k.cwiseAbs().maxCoeff();
     EXPECT_LE((k * TranslationX()).norm(), 1e-12 * scale);
     EXPECT_LE((k * TranslationY()).norm(), 1e-12 * scale);
@@ -89,7 +83,7 @@ TEST(Frame2dStiffness, RigidBodyMotionsAreTheNullSpace) {
 
 TEST(Frame2dStiffness, AxialStretchEnergy) {
   // Stretch along the element axis by delta: strain energy EA delta^2 / (2 L).
-  const BeamSection s = SteelSection();
+  const BeamSection s = PaperSection();
   for (const Segment& g : TestSegments()) {
     const double l = Length(g);
     const double c = (g.x2 - g.x1) / l, sn = (g.y2 - g.y1) / l;
@@ -105,7 +99,7 @@ TEST(Frame2dStiffness, AxialStretchEnergy) {
 }
 
 TEST(Frame2dConsistentMass, TotalTranslationalMassInEachDirection) {
-  const BeamSection s = SteelSection();
+  const BeamSection s = PaperSection();
   for (const Segment& g : TestSegments()) {
     const Matrix6 m = Frame2dConsistentMass(s, g.x1, g.y1, g.x2, g.y2);
     const double total = s.rho * s.A * Length(g);
@@ -121,7 +115,7 @@ TEST(Frame2dConsistentMass, TotalTranslationalMassInEachDirection) {
 
 TEST(Frame2dConsistentMass, SymmetricPositiveDefinite) {
   for (const Segment& g : TestSegments()) {
-    const Matrix6 m = Frame2dConsistentMass(SteelSection(), g.x1, g.y1, g.x2, g.y2);
+    const Matrix6 m = Frame2dConsistentMass(PaperSection(), g.x1, g.y1, g.x2, g.y2);
     EXPECT_LE((m - m.transpose()).cwiseAbs().maxCoeff(), 1e-14 * m.cwiseAbs().maxCoeff());
     Eigen::SelfAdjointEigenSolver<Matrix6> es(m);
     EXPECT_GT(es.eigenvalues().minCoeff(), 0.0);
@@ -129,7 +123,7 @@ TEST(Frame2dConsistentMass, SymmetricPositiveDefinite) {
 }
 
 TEST(Frame2dConsistentMass, AxialElementMatchesTextbookEntries) {
-  const BeamSection s = SteelSection();
+  const BeamSection s = PaperSection();
   const double l = 0.25;
   const Matrix6 m = Frame2dConsistentMass(s, 0, 0, l, 0);
   const double ml = s.rho * s.A * l;
@@ -165,7 +159,7 @@ TEST(Frame2dTransverseMass, NoAxialInertiaForInclinedElement) {
 TEST(Frame2dTransverseMass, IsConsistentMassMinusAxialPart) {
   // With mass_per_length = rho A, the consistent mass is the transverse part
   // plus the axial bar mass (rho A L / 6) [2 1; 1 2] along the member axis.
-  const BeamSection s = SteelSection();
+  const BeamSection s = PaperSection();
   const Segment g{0.3, -0.2, 1.1, 0.4};
   const double l = Length(g);
   const double c = (g.x2 - g.x1) / l, sn = (g.y2 - g.y1) / l;
@@ -189,7 +183,7 @@ Vector6 Spectrum(const Matrix6& a) {
 }
 
 TEST(Frame2dElement, RotationInvariance) {
-  const BeamSection s = SteelSection();
+  const BeamSection s = PaperSection();
   const double l = 0.4;
   const Matrix6 kx = Frame2dStiffness(s, 0, 0, l, 0);
   const Matrix6 ky = Frame2dStiffness(s, 0, 0, 0, l);
@@ -218,7 +212,7 @@ TEST(Frame2dElement, ElementAlongYIsElementAlongXRotated) {
   // For the element along +y the local axis is global y and the local
   // transverse direction is global -x: local = R global with
   // R = [0 1 0; -1 0 0; 0 0 1], so K_y = T' K_x T with T = blockdiag(R, R).
-  const BeamSection s = SteelSection();
+  const BeamSection s = PaperSection();
   const double l = 0.3;
   Eigen::Matrix3d r;
   r << 0, 1, 0, -1, 0, 0, 0, 0, 1;
@@ -241,7 +235,7 @@ TEST(Frame2dElement, InvalidSectionsThrow) {
   std::vector<BeamSection> bad;
   for (int field = 0; field < 4; ++field) {
     for (double value : {0.0, -1.0, nan, inf}) {
-      BeamSection s = SteelSection();
+      BeamSection s = PaperSection();
       double* target[4] = {&s.E, &s.A, &s.I, &s.rho};
       *target[field] = value;
       bad.push_back(s);
@@ -256,7 +250,7 @@ TEST(Frame2dElement, InvalidSectionsThrow) {
 }
 
 TEST(Frame2dElement, DegenerateGeometryAndMassPerLengthThrow) {
-  const BeamSection s = SteelSection();
+  const BeamSection s = PaperSection();
   const double nan = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(Frame2dStiffness(s, 1, 2, 1, 2), InputError);
   EXPECT_THROW(Frame2dConsistentMass(s, 1, 2, 1, 2), InputError);

@@ -14,6 +14,7 @@
 
 #include "femup/builders.h"
 #include "femup/errors.h"
+#include "paper_beam.h"
 
 namespace femup {
 namespace {
@@ -440,10 +441,7 @@ TEST(SolveModes, SparseShiftAndAutoOnLongChainMatchAnalytic) {
 TEST(SolveModes, SparseMatchesDenseOn300DofCantilever) {
   CantileverSpec spec;
   spec.node_heights = UniformHeights(1.9, 100);
-  spec.section.E = 206e9;
-  spec.section.A = 8.8e-4;
-  spec.section.I = 8.53e-8;
-  spec.section.rho = 7850;
+  spec.section = fixtures::PaperSection();
   const Structure s = BuildCantilever(spec);
   ASSERT_EQ(s.stiffness.rows(), 300);
   EigenOptions dense_options;

@@ -14,6 +14,7 @@
 #include "femup/builders.h"
 #include "femup/errors.h"
 #include "femup/modal.h"
+#include "paper_beam.h"
 
 namespace femup {
 namespace {
@@ -84,7 +85,7 @@ TEST(ModelEffects, SupportFlexibilityOfAChainSoftensTheGroundSpring) {
 TEST(ModelEffects, MaterialScalingScalesEveryEigenvalue) {
   CantileverSpec spec;
   spec.node_heights = UniformHeights(2.0, 12);
-  spec.section = {206e9, 8.8e-4, 8.53e-8, 7850};
+  spec.section = fixtures::PaperSection();
   const Structure s = BuildCantilever(spec);
   auto e = One("material_scaling", s);
   ASSERT_TRUE(e);
@@ -113,7 +114,7 @@ TEST(ModelEffects, AttachedMassAtTheTipMatchesTheContinuousBeam) {
   CantileverSpec spec;
   const double length = 1.9;
   spec.node_heights = UniformHeights(length, 40);
-  spec.section = {206e9, 8.8e-4, 8.53e-8, 7850};
+  spec.section = fixtures::PaperSection();
   const Structure s = BuildCantilever(spec);
   auto tip = One("attached_mass", s, "node n40");
   ASSERT_TRUE(tip);
@@ -138,7 +139,7 @@ TEST(ModelEffects, AttachedMassAtTheTipMatchesTheContinuousBeam) {
 TEST(ModelEffects, AddedMassOverTheWholeBeamScalesBendingModes) {
   CantileverSpec spec;
   spec.node_heights = UniformHeights(2.0, 10);
-  spec.section = {206e9, 8.8e-4, 8.53e-8, 7850};
+  spec.section = fixtures::PaperSection();
   spec.added_mass_basis = AddedMassBasis::kTransverse;
   const Structure s = BuildCantilever(spec);
   auto water = One("added_mass", s);
@@ -157,7 +158,7 @@ TEST(ModelEffects, AddedMassOverTheWholeBeamScalesBendingModes) {
 TEST(ModelEffects, AddedMassBelowALevelAtANodeIsTheExactIntervalIntegral) {
   CantileverSpec spec;
   spec.node_heights = UniformHeights(2.0, 10);
-  spec.section = {206e9, 8.8e-4, 8.53e-8, 7850};
+  spec.section = fixtures::PaperSection();
   spec.added_mass_basis = AddedMassBasis::kTransverse;
   const Structure s = BuildCantilever(spec);
   auto water = One("added_mass", s);
@@ -189,7 +190,7 @@ TEST(ModelEffects, AddedMassActsInWetStatesOnlyWhenAsked) {
 TEST(ModelEffects, ElasticBaseMatchesTheBuilderWithTheSoftenedSpring) {
   CantileverSpec spec;
   spec.node_heights = UniformHeights(2.0, 8);
-  spec.section = {206e9, 8.8e-4, 8.53e-8, 7850};
+  spec.section = fixtures::PaperSection();
   spec.support_rotation = 4e5;
   spec.support_transverse = 5e7;
   const Structure s = BuildCantilever(spec);
@@ -212,7 +213,7 @@ TEST(ModelEffects, ElasticBaseMatchesTheBuilderWithTheSoftenedSpring) {
 TEST(ModelEffects, DerivativesMatchCentralDifferences) {
   CantileverSpec spec;
   spec.node_heights = UniformHeights(2.0, 10);
-  spec.section = {206e9, 8.8e-4, 8.53e-8, 7850};
+  spec.section = fixtures::PaperSection();
   spec.support_rotation = 4e5;
   spec.added_mass_basis = AddedMassBasis::kTransverse;
   const Structure s = BuildCantilever(spec);
@@ -251,7 +252,7 @@ TEST(ModelEffects, DerivativesMatchCentralDifferences) {
 TEST(ModelEffects, SaysWhichFamiliesApplyAndWhyNot) {
   CantileverSpec spec;
   spec.node_heights = UniformHeights(2.0, 4);
-  spec.section = {206e9, 8.8e-4, 8.53e-8, 7850};
+  spec.section = fixtures::PaperSection();
   const Structure clamped = BuildCantilever(spec);
   for (const FamilyApplicability& a : ApplicableModelEffects(clamped)) {
     if (a.kind == "support_flexibility") {
@@ -284,7 +285,7 @@ TEST(ModelEffects, ReferenceMassIsTheRigidTranslationsMass) {
   EXPECT_DOUBLE_EQ(ReferenceMass(TwoMassChain()), 3.0);
   CantileverSpec spec;
   spec.node_heights = UniformHeights(2.0, 4);
-  spec.section = {206e9, 8.8e-4, 8.53e-8, 7850};
+  spec.section = fixtures::PaperSection();
   spec.support_transverse = 1e9;  // the base node moves too: the whole beam's mass
   const Structure s = BuildCantilever(spec);
   EXPECT_NEAR(ReferenceMass(s), 7850 * 8.8e-4 * 2.0, 1e-9);

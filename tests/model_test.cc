@@ -13,6 +13,7 @@
 #include "femup/builders.h"
 #include "femup/errors.h"
 #include "femup/structure.h"
+#include "paper_beam.h"
 
 namespace femup {
 namespace {
@@ -339,10 +340,7 @@ TEST(BuildModel, NoneScopeAndEmptySelection) {
 CantileverSpec PaperCantilever() {
   CantileverSpec spec;
   spec.node_heights = UniformHeights(1.9, 10);
-  spec.section.E = 206e9;
-  spec.section.A = 8.8e-4;
-  spec.section.I = 8.53e-8;
-  spec.section.rho = 7850;
+  spec.section = fixtures::PaperSection();
   spec.water_depth = 1.5;  // elements 1..8 wet
   return spec;
 }

@@ -17,9 +17,12 @@
 #include "femup/builders.h"
 #include "femup/errors.h"
 #include "femup/fe.h"
+#include "paper_beam.h"
 
 namespace femup {
 namespace {
+
+using fixtures::PaperSection;
 
 const double kPi = std::acos(-1.0);
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -142,28 +145,11 @@ TEST(StripAddedMass, BadInputsNameTheField) {
 // ---------------------------------------------------------------------------
 // Wet added-mass matrix of a cantilever.
 
-BeamSection PaperSection() {
-  BeamSection s;
-  s.E = 206e9;
-  s.A = 8.8e-4;
-  s.I = 8.53e-8;
-  s.rho = 7850;
-  return s;
-}
-
 // Non-uniform mesh of 5 elements, 0.9 m.
-const std::vector<double> kHeights = {0.0, 0.15, 0.32, 0.5, 0.71, 0.9};
+const std::vector<double>& kHeights = fixtures::kNonUniformHeights;
 
 Structure Cantilever(const std::vector<double>& heights, bool free_base) {
-  CantileverSpec spec;
-  spec.node_heights = heights;
-  spec.section = PaperSection();
-  if (free_base) {
-    spec.support_transverse = 1e6;
-    spec.support_axial = 1e9;
-    spec.support_rotation = 1e4;
-  }
-  return BuildCantilever(spec);
+  return BuildCantilever(fixtures::PaperCantilever(heights, free_base));
 }
 
 int Dof(const Structure& s, const std::string& label) {
