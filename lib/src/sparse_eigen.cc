@@ -22,9 +22,9 @@ namespace internal {
 
 // Flops per entry of L from which CHOLMOD factorises supernodally (its own
 // default is 40). On the space frames of docs/benchmarks.md, 10^5 DOF (193
-// flops per entry with AMD) factorise as fast simplicially and solve 2-4x
-// faster (3-4 ms against 10-13 ms, ATLAS or OpenBLAS); 10^6 DOF (1,093 with
-// METIS) stay supernodal, where the dense kernels pay.
+// flops per entry with AMD) factorise about as fast simplicially and solve
+// 1.5-4.4x faster (2.9-8.9 ms against 9.4-15.7 ms, ATLAS or OpenBLAS); 10^6 DOF
+// (1,093 with METIS) stay supernodal, where the dense kernels pay.
 const double kSupernodalSwitch = 500;
 
 namespace {
