@@ -428,6 +428,28 @@ TEST(StructureDiagnosis, PortalFramePriorsExample) {
   EXPECT_LT(plain.ranking.classes[0].probability, 0.5);
 }
 
+// Sensors between nodes: the portal frame of portal_frame.yaml seen at points
+// on its members (none a node of the model), the data made by numpy's own
+// frame elements (12 per member). The machine (2.0 t at the first-floor beam's
+// middle) is found where it is and about as heavy.
+TEST(StructureDiagnosis, PortalFrameSensorsBetweenNodesExample) {
+  const Study study =
+      LoadStudy(std::string(FEMUP_EXAMPLES_DIR) + "/diagnosis/portal_frame_points.yaml");
+  ASSERT_EQ(study.measurements.size(), 1u);
+  const ModalData& data = study.measurements[0].data;
+  ASSERT_TRUE(data.HasInterpolatedSensors());
+  EXPECT_EQ(data.sensor_weights.rows(), 8);
+  EXPECT_EQ(data.sensor_names[4], "at(1.5, 3.5, 0):uy");
+  const StructureDiagnosisResult r = RunStructureDiagnosis(study);
+  ASSERT_FALSE(r.ranking.classes.empty());
+  EXPECT_EQ(r.ranking.classes[0].kind, "attached_mass");
+  EXPECT_EQ(r.ranking.classes[0].region, "node n7");
+  EXPECT_GT(r.ranking.classes[0].probability, 0.99);
+  ASSERT_FALSE(r.ranking.classes[0].magnitudes.empty());
+  EXPECT_EQ(r.ranking.classes[0].magnitudes[0].unit, "kg");
+  EXPECT_NEAR(r.ranking.classes[0].magnitudes[0].value, 2000.0, 200.0);
+}
+
 // The pipeline on the bundled example (data made by numpy, not femup).
 TEST(StructureDiagnosis, ShearBuildingExampleEndToEnd) {
   const Study study =

@@ -126,6 +126,62 @@ TEST(Study, SensorsMustMatchShapes) {
               {"sensors[2]", "'x9'", "x1, x2, x3"});
 }
 
+// Sensors as points (sensor.h): read into interpolation weights; every bad
+// placement is refused naming the sensor's field and what is wrong.
+TEST(Study, SensorsBetweenNodes) {
+  const std::string frame = R"(
+model: {type: plane_frame, storeys: 1, bays: 1, storey_height: 3, bay_width: 6,
+        elements_per_member: 2, column: {E: 210e9, A: 7.8e-3, I: 8.4e-5, rho: 7850},
+        beam: {E: 210e9, A: 5.4e-3, I: 1.9e-4, rho: 7850}}
+measurements:
+  - state: test
+    frequencies_hz: [2.0]
+    sensors: [n1:ux, {at: [0, 2.25], direction: x}, {node: n3, direction: [1, 0]},
+              {at: [1.5, 3], direction: -y}]
+    shapes: [[1, 0.8, 0.9, 0.1]]
+)";
+  const Study s = LoadStudy(Write("points.yaml", frame));
+  const ModalData& d = s.measurements[0].data;
+  ASSERT_TRUE(d.HasInterpolatedSensors());
+  EXPECT_TRUE(d.sensor_dofs.empty());
+  EXPECT_EQ(d.sensor_weights.rows(), 4);
+  EXPECT_EQ(d.sensor_weights.cols(), s.model.num_dofs());
+  EXPECT_EQ(d.sensor_names, (std::vector<std::string>{"n1:ux", "at(0, 2.25, 0):ux",
+                                                      "n3:ux", "at(1.5, 3, 0):-uy"}));
+  // The middle of the beam's first element (L = 3 m), read along -y: Hermite
+  // weights -1/2 on both ends' uy, -/+ L/8 on their rz; nothing else.
+  const Eigen::RowVectorXd w = Eigen::MatrixXd(d.sensor_weights).row(3);
+  const auto at = [&](const std::string& label) { return w[s.model.FindDof(label)]; };
+  EXPECT_EQ((w.array() != 0).count(), 4);
+  EXPECT_DOUBLE_EQ(at("n1:uy"),
+                   -0.5);  // joint n1 at (0, 3), the beam's node n5 at (3, 3)
+  EXPECT_DOUBLE_EQ(at("n5:uy"), -0.5);
+  EXPECT_DOUBLE_EQ(at("n1:rz"), -3.0 / 8);
+  EXPECT_DOUBLE_EQ(at("n5:rz"), 3.0 / 8);
+  ExpectError("off.yaml", Replace(frame, "[1.5, 3]", "[1.5, 2]"),
+              {"sensors[4].at", "not on the structure", "m away"});
+  ExpectError("plane.yaml", Replace(frame, "direction: -y", "direction: z"),
+              {"sensors[4].direction", "no DOFs along z"});
+  ExpectError("word.yaml", Replace(frame, "direction: -y", "direction: up"),
+              {"sensors[4].direction", "expected x, y, z"});
+  ExpectError("node.yaml", Replace(frame, "node: n3", "node: n33"),
+              {"sensors[3].node", "'n33'"});
+  ExpectError("both.yaml",
+              Replace(frame, "{node: n3, direction: [1, 0]}",
+                      "{node: n3, at: [0, 1], direction: x}"),
+              {"sensors[3]", "exactly one of"});
+  ExpectError("along.yaml", Replace(frame, "{node: n3, direction: [1, 0]}", "{x: 1.0}"),
+              {"sensors[3].x", "cantilever"});
+  ExpectError("twice.yaml",
+              Replace(frame, "{node: n3, direction: [1, 0]}", "{node: n1, direction: x}"),
+              {"sensors[3]", "reads the same as sensor 1"});
+  ExpectError("key.yaml",
+              Replace(frame, "{node: n3, direction: [1, 0]}", "{node: n3, dir: x}"),
+              {"sensors[3]", "dir"});
+  ExpectError("rows.yaml", Replace(frame, "[[1, 0.8, 0.9, 0.1]]", "[[1, 0.8, 0.9]]"),
+              {"expected 4 (one per sensor)"});
+}
+
 TEST(Study, NaNAndBadNumbers) {
   ExpectError("nan.yaml",
               Replace(kChain, "masses: [50, 50, 50]", "masses: [50, .nan, 50]"),

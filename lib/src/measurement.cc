@@ -16,8 +16,14 @@ Eigen::VectorXd ModalData::Eigenvalues() const {
   return (2 * M_PI * frequencies_hz.array()).square().matrix();
 }
 
+Eigen::MatrixXd ModalData::AtSensors(const Eigen::MatrixXd& full) const {
+  if (HasInterpolatedSensors()) return sensor_weights * full;
+  if (sensor_dofs.empty()) return full;
+  return full(sensor_dofs, Eigen::all);
+}
+
 bool ModalData::IsComplete(int num_dofs) const {
-  if (!HasShapes()) return false;
+  if (!HasShapes() || HasInterpolatedSensors()) return false;
   if (sensor_dofs.empty()) return shapes.rows() == num_dofs;
   std::vector<bool> seen(num_dofs, false);
   for (int d : sensor_dofs) {
@@ -46,8 +52,29 @@ void ModalData::Validate(int num_dofs, const std::string& where) const {
         << " frequencies; expected one shape per frequency";
     throw InputError(where + ".shapes", msg.str());
   }
-  const int expected_rows =
-      sensor_dofs.empty() ? num_dofs : static_cast<int>(sensor_dofs.size());
+  if (HasInterpolatedSensors()) {
+    if (!sensor_dofs.empty()) {
+      throw InputError(where + ".sensors",
+                       "sensors are given both as DOFs and as interpolation weights");
+    }
+    if (sensor_weights.cols() != num_dofs || sensor_weights.rows() != shapes.rows()) {
+      std::ostringstream msg;
+      msg << "each shape has " << shapes.rows() << " entries for "
+          << sensor_weights.rows() << " sensors on " << sensor_weights.cols()
+          << " DOFs; expected one entry per sensor on the model's " << num_dofs
+          << " DOFs";
+      throw InputError(where + ".shapes", msg.str());
+    }
+    for (int k = 0; k < sensor_weights.outerSize(); ++k) {
+      for (SparseMatrix::InnerIterator it(sensor_weights, k); it; ++it) {
+        if (!std::isfinite(it.value()))
+          throw InputError(where + ".sensors", "has a NaN or infinite weight");
+      }
+    }
+  }
+  const int expected_rows = HasInterpolatedSensors() ? static_cast<int>(shapes.rows())
+                            : sensor_dofs.empty()    ? num_dofs
+                                                  : static_cast<int>(sensor_dofs.size());
   if (shapes.rows() != expected_rows) {
     std::ostringstream msg;
     msg << "each shape has " << shapes.rows() << " entries; expected " << expected_rows
@@ -85,6 +112,14 @@ Eigen::MatrixXd ModalData::FullShapes(int num_dofs, const std::string& where) co
   if (!HasShapes()) {
     throw InputError(where + ".shapes",
                      "the linear correction-factor method needs mode shapes; none given");
+  }
+  if (HasInterpolatedSensors()) {
+    std::ostringstream msg;
+    msg << "shapes are read by " << shapes.rows()
+        << " sensors between nodes; the linear method needs every DOF: expand them "
+           "(expansion: {method: serep | lsq} on the measurement) or use method: "
+           "sensitivity";
+    throw InputError(where + ".shapes", msg.str());
   }
   if (!IsComplete(num_dofs)) {
     std::ostringstream msg;

@@ -248,6 +248,7 @@ Structure BuildPlaneFrameStructure(const PlaneFrameSpec& spec) {
   const std::array<const char*, 3> base_name = {"base horizontal", "base vertical",
                                                 "base rotation"};
   std::vector<std::array<int, 3>> base_dofs(spec.bays + 1, {-1, -1, -1});
+  std::vector<int> base_node(spec.bays + 1, -1);  // index into s.nodes; -1: rigid
   Triplets kt, mt;
   if (!spec.base.rigid()) {
     for (int c = 0; c <= spec.bays; ++c) {
@@ -262,6 +263,7 @@ Structure BuildPlaneFrameStructure(const PlaneFrameSpec& spec) {
                               base_name[d] + std::string(" at ") + name,
                               d == 2 ? "N m/rad" : "N/m"});
       }
+      base_node[c] = static_cast<int>(s.nodes.size());
       s.nodes.push_back({name, Eigen::Vector3d(c * spec.bay_width, 0.0, 0.0)});
     }
   }
@@ -280,6 +282,9 @@ Structure BuildPlaneFrameStructure(const PlaneFrameSpec& spec) {
                                     3 * p.b,
                                     3 * p.b + 1,
                                     3 * p.b + 2};
+      s.segments.push_back({p.a < 0 ? base_node[line] : p.a, p.b,
+                            Eigen::Vector3d(p.xa, p.ya, 0.0),
+                            Eigen::Vector3d(p.xb, p.yb, 0.0)});
       Scatter(Frame2dStiffness(sec, p.xa, p.ya, p.xb, p.yb), d, &ke);
       Scatter(Frame2dConsistentMass(sec, p.xa, p.ya, p.xb, p.yb), d, &me);
       if (mb.column && mb.storey <= spec.wet_storeys) {

@@ -507,6 +507,9 @@ Structure BuildSpaceFrameStructure(const SpaceFrameSpec& spec) {
     }
     s.nodes.push_back({node, g.nodes[k]});
   }
+  s.segments.reserve(g.elements.size());
+  for (const SpaceFrameElement& el : g.elements)
+    s.segments.push_back({el.node1, el.node2, el.end1, el.end2});
   // Shape plots: the sway (ux) of the corner leg at X = Y = 0, bottom to top.
   std::vector<std::pair<double, int>> leg;
   for (std::size_t k = 0; k < g.nodes.size(); ++k) {

@@ -105,7 +105,8 @@ void PreparedCorrectionSystem::Fill(const std::vector<ModalData>& states, Worksp
       where = kPrefix + st.state;
     }
     st.Validate(n, where);
-    const bool direct = st.sensor_dofs.empty() && st.shapes.rows() == n;
+    const bool direct =
+        st.sensor_dofs.empty() && !st.HasInterpolatedSensors() && st.shapes.rows() == n;
     if (!direct) work->shapes = st.FullShapes(n, where);
     const Eigen::MatrixXd& shapes = direct ? st.shapes : work->shapes;
     const int modes = st.num_modes();

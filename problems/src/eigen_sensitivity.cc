@@ -20,7 +20,8 @@ namespace {
 struct StateTerms {
   std::string name;
   bool wet = false;
-  std::vector<int> sensors;  // model DOF of each shape row
+  std::vector<int> sensors;  // model DOF of each shape row (when observe is empty)
+  SparseMatrix observe;      // sensors between nodes: row i reads observe.row(i) phi
   Eigen::VectorXd lambdas;   // measured eigenvalues
   Eigen::MatrixXd shapes;    // measured shapes at the sensors (or empty)
   // The measured shapes as the residuals compare them, when shape residuals
@@ -32,10 +33,22 @@ struct StateTerms {
   bool pair_by_mac = false;
   int num_model_modes = 0;  // model modes solved for pairing
   int first_row = 0;
-  int rows_per_mode() const {
-    return 1 + (shape_residuals ? static_cast<int>(sensors.size()) : 0);
+  int rows_per_mode() const { return 1 + (shape_residuals ? num_sensors() : 0); }
+  int num_sensors() const {
+    return observe.size() > 0 ? static_cast<int>(observe.rows())
+                              : static_cast<int>(sensors.size());
   }
 };
+
+// What the state's sensors read of full-DOF vectors (one per column).
+Eigen::MatrixXd AtSensors(const StateTerms& st, const Eigen::MatrixXd& x) {
+  if (st.observe.size() > 0) return st.observe * x;
+  return x(st.sensors, Eigen::all);
+}
+Eigen::VectorXd AtSensors(const StateTerms& st, const Eigen::VectorXd& x) {
+  if (st.observe.size() > 0) return st.observe * x;
+  return x(st.sensors);
+}
 
 // Everything evaluate needs, shared by copies of the problem.
 struct Context {
@@ -95,7 +108,7 @@ void RotateRepeatedModes(const StateTerms& st, const Modes& modes,
     }
     if (last > first && last + 1 < num && !measured.empty()) {
       const Eigen::MatrixXd basis = modes.shapes.middleCols(first, last - first + 1);
-      const Eigen::MatrixXd at_sensors = basis(st.sensors, Eigen::all);
+      const Eigen::MatrixXd at_sensors = AtSensors(st, basis);
       const Eigen::MatrixXd targets = st.targets(Eigen::all, measured);
       // Each measured shape's least-squares combination of the eigenspace at
       // the sensors, normalised; then the nearest orthonormal set (the polar
@@ -178,7 +191,7 @@ bool EvaluateState(const Context& c, const StateTerms& st, const Eigen::VectorXd
   std::vector<int> pairing(st.lambdas.size());
   std::iota(pairing.begin(), pairing.end(), 0);
   if (st.pair_by_mac) {
-    const Eigen::MatrixXd model_at_sensors = modes.shapes(st.sensors, Eigen::all);
+    const Eigen::MatrixXd model_at_sensors = AtSensors(st, modes.shapes);
     const std::vector<ModePair> pairs =
         PairModesByMac(st.shapes, model_at_sensors, c.min_mac);
     for (std::size_t j = 0; j < pairs.size(); ++j) {
@@ -215,9 +228,9 @@ bool EvaluateState(const Context& c, const StateTerms& st, const Eigen::VectorXd
     // The model shape at the sensors enters as c s: c = sign / ||s|| ("unit"),
     // sign ("mass") or the fitted N / D ("fit"). c's derivative is linear in
     // the shape's: dc = dc_ds' ds.
-    const Eigen::Index num_sensors = static_cast<Eigen::Index>(st.sensors.size());
+    const Eigen::Index num_sensors = static_cast<Eigen::Index>(st.num_sensors());
     if (st.shape_residuals) {
-      t.s = t.phi(st.sensors);
+      t.s = AtSensors(st, t.phi);
       const Eigen::VectorXd& s = t.s;
       const Eigen::VectorXd target = st.targets.col(j);
       if (!(s.norm() > 0)) {
@@ -259,7 +272,7 @@ bool EvaluateState(const Context& c, const StateTerms& st, const Eigen::VectorXd
     // - (q' dM q / 2) q, lifted by V (the same fixed-rotation rule as above for
     // repeated eigenvalues).
     const Eigen::MatrixXd& v = *reduced->basis;
-    const Eigen::MatrixXd v_at_sensors = v(st.sensors, Eigen::all);
+    const Eigen::MatrixXd v_at_sensors = AtSensors(st, v);
     std::vector<Eigen::VectorXd> q(terms.size());
     for (std::size_t j = 0; j < terms.size(); ++j) {
       q[j] = reduced->mass_basis->transpose() * terms[j].phi;
@@ -292,7 +305,7 @@ bool EvaluateState(const Context& c, const StateTerms& st, const Eigen::VectorXd
         }
         const Eigen::VectorXd dq = reduced_vectors * coefficient - 0.5 * mass_form * q[j];
         const Eigen::VectorXd ds = v_at_sensors * dq;
-        const Eigen::Index num_sensors = static_cast<Eigen::Index>(st.sensors.size());
+        const Eigen::Index num_sensors = static_cast<Eigen::Index>(st.num_sensors());
         jac->block(t.row + 1, p, num_sensors, 1) =
             st.shape_weights.col(static_cast<Eigen::Index>(j))
                 .cwiseProduct(t.dc_ds.dot(ds) * t.s + t.c_scale * ds);
@@ -304,7 +317,7 @@ bool EvaluateState(const Context& c, const StateTerms& st, const Eigen::VectorXd
   ParallelFor(static_cast<int>(st.lambdas.size()), c.threads, [&](int j) {
     const ModeTerms& t = terms[j];
     const int row = t.row;
-    const Eigen::Index num_sensors = static_cast<Eigen::Index>(st.sensors.size());
+    const Eigen::Index num_sensors = static_cast<Eigen::Index>(st.num_sensors());
     std::unique_ptr<NelsonSolver> nelson;
     if (st.shape_residuals) {
       nelson = t.cluster.cols() > 1
@@ -328,7 +341,7 @@ bool EvaluateState(const Context& c, const StateTerms& st, const Eigen::VectorXd
       }
       const EigenpairDerivative d = nelson->Derivative(dk, dm);
       (*jac)(row, p) = t.lambda_weight * d.eigenvalue;
-      const Eigen::VectorXd ds = d.eigenvector(st.sensors);
+      const Eigen::VectorXd ds = AtSensors(st, d.eigenvector);
       // d(c s) = dc s + c ds.
       jac->block(row + 1, p, num_sensors, 1) =
           st.shape_weights.col(j).cwiseProduct(t.dc_ds.dot(ds) * t.s + t.c_scale * ds);
@@ -509,7 +522,9 @@ NonlinearProblem BuildOutputErrorProblem(std::shared_ptr<const ParametrisedPenci
     StateTerms st;
     st.name = data.state.empty() ? "state " + std::to_string(i + 1) : data.state;
     st.wet = data.immersion == Immersion::kWet;
-    if (data.sensor_dofs.empty()) {
+    if (data.HasInterpolatedSensors()) {
+      st.observe = data.sensor_weights;
+    } else if (data.sensor_dofs.empty()) {
       st.sensors.resize(num_dofs);
       std::iota(st.sensors.begin(), st.sensors.end(), 0);
     } else {
@@ -548,8 +563,14 @@ NonlinearProblem BuildOutputErrorProblem(std::shared_ptr<const ParametrisedPenci
       const std::string mode = st.name + " mode " + std::to_string(j + 1);
       problem.residual_labels.push_back(mode + " lambda");
       if (!st.shape_residuals) continue;
-      for (int dof : st.sensors) {
-        problem.residual_labels.push_back(mode + " shape " + pencil->dof_labels()[dof]);
+      for (int q = 0; q < st.num_sensors(); ++q) {
+        const std::string sensor =
+            st.observe.size() == 0
+                ? pencil->dof_labels()[st.sensors[static_cast<std::size_t>(q)]]
+            : q < static_cast<int>(data.sensor_names.size())
+                ? data.sensor_names[static_cast<std::size_t>(q)]
+                : "sensor " + std::to_string(q + 1);
+        problem.residual_labels.push_back(mode + " shape " + sensor);
       }
     }
     row += data.num_modes() * st.rows_per_mode();

@@ -305,6 +305,10 @@ CaseModel ReadCase(const Study& study, const BenchmarkOptions& gen) {
   cm.sigma_f = study.diagnosis->frequency_noise;
   cm.sigma_s = study.diagnosis->shape_noise;
   cm.sizes = gen.sizes;
+  if (md.HasInterpolatedSensors())
+    throw InputError(study.path + ": sensors",
+                     "the oracle expects the generator's ux sensors on nodes, not "
+                     "sensors between nodes");
   if (md.HasShapes()) {
     cm.measured_shapes = md.shapes;
     for (Eigen::Index i = 0; i < md.shapes.rows(); ++i) {

@@ -55,6 +55,12 @@ void PrepareData(const Study& study, const DiagnosisSpec& spec,
   int highest = 1;
   for (std::size_t s = 0; s < prepared.size(); ++s) {
     const ModalData& md = prepared[s].at_sensors;
+    if (md.HasInterpolatedSensors()) {
+      throw InputError(study.measurements[s].field + ".sensors",
+                       "sensors between nodes are not yet taken by the cantilever's "
+                       "diagnosis: give them as DOF labels of nodes (the other model "
+                       "types, and femup run with expansion, take points)");
+    }
     ObservedState st;
     st.state = md.state;
     st.immersion = md.immersion;

@@ -139,7 +139,8 @@ void Expand(const Study& study, const MeasurementSpec& m, PreparedState* out) {
   const SparseMatrix mass = m.immersion == Immersion::kWet ? model.UpdatedWetMass(d0)
                                                            : model.UpdatedDryMass(d0);
   const ModalData& s = out->at_sensors;
-  const int sensors = static_cast<int>(s.sensor_dofs.size());
+  const int sensors = s.HasInterpolatedSensors() ? static_cast<int>(s.shapes.rows())
+                                                 : static_cast<int>(s.sensor_dofs.size());
   const int wanted = o.num_modes > 0 ? o.num_modes : sensors;
   EigenOptions eo;
   if (model.num_dofs() > eo.dense_limit)
@@ -152,6 +153,8 @@ void Expand(const Study& study, const MeasurementSpec& m, PreparedState* out) {
   }
   ModalData& d = out->data;
   d.sensor_dofs.clear();
+  d.sensor_weights = SparseMatrix();
+  d.sensor_names.clear();
   d.shapes.resize(model.num_dofs(), s.num_modes());
   out->expansion_method = o.method;
   out->expansion_modes = o.method == "dynamic" ? 0 : wanted;
@@ -161,7 +164,10 @@ void Expand(const Study& study, const MeasurementSpec& m, PreparedState* out) {
   for (int j = 0; j < s.num_modes(); ++j) {
     ExpandedShape e;
     try {
-      e = ExpandShape(k, mass, modes, s.sensor_dofs, s.shapes.col(j), lambda[j], o);
+      e = s.HasInterpolatedSensors()
+              ? ExpandShape(k, mass, modes, s.sensor_weights, s.shapes.col(j), lambda[j],
+                            o)
+              : ExpandShape(k, mass, modes, s.sensor_dofs, s.shapes.col(j), lambda[j], o);
     } catch (const InputError& err) {
       throw InputError(m.field + ".expansion",
                        "mode " + std::to_string(j + 1) + ": " + err.what());

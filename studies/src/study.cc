@@ -188,7 +188,7 @@ Study ReadStudy(const YAML::Node& root, const std::string& path, bool model_only
 
   for (const Field& f : top["measurements"].Items()) {
     study.measurements.push_back(
-        ReadMeasurement(f, study.model, study.truth.has_value(), study.structure.nodes));
+        ReadMeasurement(f, study.model, study.truth.has_value(), study.structure));
   }
   if (study.measurements.empty()) top["measurements"].Fail("expected at least one state");
   {

@@ -26,7 +26,7 @@ DiagnosisSpec ReadDiagnosis(const Field& f, const Study& study);
 // study_reader_measurements.cc: the records to simulate and the measured states.
 RecordsSpec ReadRecords(const Field& f, const ParametrisedModel& model);
 MeasurementSpec ReadMeasurement(const Field& f, const ParametrisedModel& model,
-                                bool have_truth, const std::vector<ModelNode>& nodes);
+                                bool have_truth, const Structure& structure);
 
 // study_reader_solver.cc: parameter families and bounds, the solver section.
 ParameterFamily ReadFamily(const Field& f);

@@ -9,6 +9,7 @@
 #include <set>
 
 #include "femup/errors.h"
+#include "femup/sensor.h"
 #include "study_reader.h"
 
 namespace femup::study_reader {
@@ -32,6 +33,73 @@ std::vector<int> ReadSensors(const Field& f, const ParametrisedModel& model) {
     dofs.push_back(dof);
   }
   return dofs;
+}
+
+// A measurement's sensors: DOF labels, or points on the structure (sensor.h):
+// {node: n12, direction: y}, {at: [x, y, z], direction: [dx, dy, dz]},
+// {x: 1.23} along a cantilever. Plain labels give sensor_dofs as before; any
+// point makes every sensor a row of interpolation weights.
+void ReadMeasuredSensors(const Field& f, const ParametrisedModel& model,
+                         const Structure& structure, ModalData* data) {
+  const std::vector<Field> items = f.Items();
+  const bool any_point = std::any_of(items.begin(), items.end(),
+                                     [](const Field& item) { return item.IsMap(); });
+  if (!any_point) {
+    data->sensor_dofs = ReadSensors(f, model);
+    return;
+  }
+  std::vector<SensorRow> rows;
+  for (const Field& item : items) {
+    SensorSpec spec;
+    if (!item.IsMap()) {
+      spec.dof = item.Str();
+    } else {
+      item.ExpectKeys({"node", "at", "x", "direction", "dof"});
+      if (item.Has("dof")) spec.dof = item["dof"].Str();
+      if (item.Has("node")) spec.node = item["node"].Str();
+      if (item.Has("at")) {
+        const std::vector<double> at = item["at"].Numbers();
+        if (at.size() != 3 && at.size() != 2)
+          item["at"].Fail("expected [x, y, z] (or [x, y] on a plane model), m");
+        spec.has_at = true;
+        spec.at = Eigen::Vector3d(at[0], at[1], at.size() == 3 ? at[2] : 0.0);
+        if (!spec.at.allFinite()) item["at"].Fail("has a NaN or infinite coordinate");
+      }
+      if (item.Has("x")) {
+        spec.has_x = true;
+        spec.x = item["x"].Num();
+      }
+      if (item.Has("direction")) {
+        const Field d = item["direction"];
+        if (d.IsSequence()) {
+          const std::vector<double> v = d.Numbers();
+          if (v.size() != 3 && v.size() != 2)
+            d.Fail("expected x, y, z (or -x, ...) or [dx, dy, dz]");
+          spec.direction = Eigen::Vector3d(v[0], v[1], v.size() == 3 ? v[2] : 0.0);
+          if (!spec.direction.allFinite() || !(spec.direction.norm() > 0))
+            d.Fail("expected a finite direction, not all zero");
+          spec.direction.normalize();
+        } else if (const Invalid bad = ParseSensorDirection(d.Str(), &spec.direction)) {
+          d.Fail(bad.message);
+        }
+      }
+    }
+    SensorRow row;
+    if (const Invalid bad = LocateSensor(structure, spec, &row)) {
+      if (item.IsMap() && !bad.field.empty() && item.Has(bad.field))
+        item[bad.field].Fail(bad.message);
+      item.Fail(bad.message);
+    }
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      if (rows[k].weights == row.weights) {
+        item.Fail("reads the same as sensor " + std::to_string(k + 1) + " (" +
+                  rows[k].name + ")");
+      }
+    }
+    rows.push_back(row);
+  }
+  data->sensor_weights = SensorMatrix(rows, model.num_dofs());
+  for (const SensorRow& r : rows) data->sensor_names.push_back(r.name);
 }
 
 // A path in the study file, taken relative to the study file's folder.
@@ -375,7 +443,8 @@ UffDofMap ReadUffMap(const Field& f, const ParametrisedModel& model,
 }  // namespace
 
 MeasurementSpec ReadMeasurement(const Field& f, const ParametrisedModel& model,
-                                bool have_truth, const std::vector<ModelNode>& nodes) {
+                                bool have_truth, const Structure& structure) {
+  const std::vector<ModelNode>& nodes = structure.nodes;
   f.ExpectKeys({"state", "immersion", "simulate_modes", "frequencies_hz", "shapes",
                 "sensors", "identify", "modes_file", "modes", "expansion", "uff_dofs",
                 "geometry_file", "geometry_tolerance", "uff_directions"});
@@ -478,12 +547,13 @@ MeasurementSpec ReadMeasurement(const Field& f, const ParametrisedModel& model,
   m.data.immersion = m.immersion;
   const std::vector<double> freq = f["frequencies_hz"].Numbers();
   m.data.frequencies_hz = Eigen::Map<const Eigen::VectorXd>(freq.data(), freq.size());
-  if (f.Has("sensors")) m.data.sensor_dofs = ReadSensors(f["sensors"], model);
+  if (f.Has("sensors")) ReadMeasuredSensors(f["sensors"], model, structure, &m.data);
   if (f.Has("shapes")) {
     const auto modes = f["shapes"].Items();
-    const int rows = m.data.sensor_dofs.empty()
-                         ? model.num_dofs()
-                         : static_cast<int>(m.data.sensor_dofs.size());
+    const int rows =
+        m.data.HasInterpolatedSensors() ? static_cast<int>(m.data.sensor_weights.rows())
+        : m.data.sensor_dofs.empty()    ? model.num_dofs()
+                                        : static_cast<int>(m.data.sensor_dofs.size());
     if (modes.size() != freq.size()) {
       f["shapes"].Fail("has " + std::to_string(modes.size()) + " shapes for " +
                        std::to_string(freq.size()) + " frequencies (one shape per mode)");
@@ -494,7 +564,7 @@ MeasurementSpec ReadMeasurement(const Field& f, const ParametrisedModel& model,
       if (static_cast<int>(v.size()) != rows) {
         modes[j].Fail("has " + std::to_string(v.size()) + " entries; expected " +
                       std::to_string(rows) +
-                      (m.data.sensor_dofs.empty()
+                      (m.data.sensor_dofs.empty() && !m.data.HasInterpolatedSensors()
                            ? " (one per model DOF, or list the sensors)"
                            : " (one per sensor)"));
       }
@@ -508,7 +578,8 @@ MeasurementSpec ReadMeasurement(const Field& f, const ParametrisedModel& model,
   } catch (const InputError& e) {
     f.Fail(e.what());
   }
-  if (m.expansion && (!m.data.HasShapes() || m.data.sensor_dofs.empty())) {
+  if (m.expansion && (!m.data.HasShapes() ||
+                      (m.data.sensor_dofs.empty() && !m.data.HasInterpolatedSensors()))) {
     f["expansion"].Fail(
         "expansion needs shapes measured at listed sensors (these shapes are " +
         std::string(m.data.HasShapes() ? "complete already)" : "missing)"));

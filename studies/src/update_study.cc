@@ -24,14 +24,13 @@ void Compare(const ModalData& measured, const ModalData& predicted, int num_dofs
   const int nm = measured.num_modes();
   hz->setConstant(nm, kNaN);
   mac->setConstant(nm, kNaN);
+  // The model DOF of each sensor row (none for sensors between nodes).
   std::vector<int> dofs = measured.sensor_dofs;
-  if (dofs.empty()) {
+  if (dofs.empty() && !measured.HasInterpolatedSensors()) {
     for (int i = 0; i < num_dofs; ++i) dofs.push_back(i);
   }
-  Eigen::MatrixXd at_sensors(dofs.size(), predicted.num_modes());
-  for (std::size_t i = 0; i < dofs.size(); ++i)
-    at_sensors.row(i) = predicted.shapes.row(dofs[i]);
-  shapes_out->setConstant(static_cast<Eigen::Index>(dofs.size()), nm, kNaN);
+  const Eigen::MatrixXd at_sensors = measured.AtSensors(predicted.shapes);
+  shapes_out->setConstant(at_sensors.rows(), nm, kNaN);
   *dofs_out = dofs;
   if (measured.HasShapes()) {
     const auto pairs = PairModesByMac(measured.shapes, at_sensors, 0.0);

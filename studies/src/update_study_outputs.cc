@@ -169,12 +169,12 @@ void WriteUpdateOutputs(const UpdateResult& r, bool plots, OutputDir* out,
   j["measurements"] = nlohmann::json::array();
   for (std::size_t s = 0; s < r.sources.size(); ++s) {
     const PreparedState& p = r.sources[s];
-    nlohmann::json mj = {
-        {"state", p.data.state},
-        {"modes", p.data.num_modes()},
-        {"sensors", p.at_sensors.sensor_dofs.empty()
-                        ? r.num_dofs
-                        : static_cast<int>(p.at_sensors.sensor_dofs.size())}};
+    nlohmann::json mj = {{"state", p.data.state},
+                         {"modes", p.data.num_modes()},
+                         {"sensors", p.at_sensors.sensor_dofs.empty() &&
+                                             !p.at_sensors.HasInterpolatedSensors()
+                                         ? r.num_dofs
+                                         : static_cast<int>(p.at_sensors.shapes.rows())}};
     if (!p.source.empty()) {
       mj["source"] = p.source;
       mj["identified_modes_used"] = p.identified_modes;
@@ -309,7 +309,8 @@ void WriteUpdateOutputs(const UpdateResult& r, bool plots, OutputDir* out,
 
   // Mode shapes per state with shapes: measured points, updated lines.
   for (const StateComparison& c : r.states) {
-    if (c.measured_shapes.cols() == 0) continue;
+    // Sensors between nodes have no model DOF to place them on the plot.
+    if (c.measured_shapes.cols() == 0 || c.shape_dofs.empty()) continue;
     Figure shapes;
     shapes.columns =
         static_cast<int>(std::min<Eigen::Index>(c.measured_shapes.cols(), 4));
@@ -468,7 +469,7 @@ std::string UpdateReport(const UpdateResult& r) {
         o << "  modes read from " << p.source << "\n";
       }
       if (!p.expansion_method.empty()) {
-        o << "  expanded from " << p.at_sensors.sensor_dofs.size() << " sensors to "
+        o << "  expanded from " << p.at_sensors.shapes.rows() << " sensors to "
           << r.num_dofs << " DOFs by " << p.expansion_method;
         if (p.expansion_modes > 0) o << " (" << p.expansion_modes << " model modes)";
         o << "; sensor MAC";

@@ -253,6 +253,17 @@ grep -q "support_flexibility at supports .*(the same change as: stiffness_loss a
   = "('attached_mass', 'node n7')" ] || fail "portal verdict: $(json portal/diagnosis.json "j['verdict']")"
 [ "$(json portal/diagnosis.json "abs(j['classes'][0]['magnitudes'][0]['value'] - 2000) < 300")" \
   = True ] || fail "portal mass: $(json portal/diagnosis.json "j['classes'][0]['magnitudes']")"
+# The same frame seen by sensors between its nodes (points on the members):
+# the same machine, found from them; a point off the frame is refused naming
+# the sensor, before any fit, with nothing written.
+"$FEMUP" diagnose "$ROOT/examples/diagnosis/portal_frame_points.yaml" -o points --no-plots \
+  > points.txt || fail "diagnose portal_frame_points exit $?: $(cat points.txt)"
+[ "$(json points/diagnosis.json "(j['verdict']['kind'], j['verdict']['region'])")" \
+  = "('attached_mass', 'node n7')" ] || fail "points verdict: $(json points/diagnosis.json "j['verdict']")"
+sed -e 's/{at: \[1.5, 3.5\], direction: y}/{at: [1.5, 3.0], direction: y}/' \
+  "$ROOT/examples/diagnosis/portal_frame_points.yaml" > off_frame.yaml
+grep -q "at: \[1.5, 3.0\]" off_frame.yaml || fail "off_frame.yaml not made"
+refused "a sensor off the frame" off_frame.yaml "sensors.5..at: (1.5, 3, 0) is not on the structure"
 sed -e 's/^    frequencies_hz: \[\([^,]*\), \([^,]*\),/    frequencies_hz: [\2, \1,/' \
   "$ROOT/examples/diagnosis/frequencies_only.yaml" > swapped.yaml
 grep -q "frequencies_hz: \[17" swapped.yaml || fail "swapped.yaml: $(grep frequencies_hz swapped.yaml)"

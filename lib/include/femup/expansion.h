@@ -46,4 +46,13 @@ ExpandedShape ExpandShape(const SparseMatrix& stiffness, const SparseMatrix& mas
                           const Eigen::VectorXd& measured, double eigenvalue,
                           const ExpansionOptions& options);
 
+// The same for sensors between nodes (sensor.h): `sensors` is the sensors x
+// DOFs matrix whose rows read a full shape. serep fits Phi_a = sensors * Phi;
+// lsq is serep here (no DOF is measured to keep); dynamic needs sensors on
+// DOFs and is refused, naming serep and lsq.
+ExpandedShape ExpandShape(const SparseMatrix& stiffness, const SparseMatrix& mass,
+                          const Modes& model_modes, const SparseMatrix& sensors,
+                          const Eigen::VectorXd& measured, double eigenvalue,
+                          const ExpansionOptions& options);
+
 }  // namespace femup

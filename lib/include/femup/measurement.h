@@ -20,6 +20,15 @@ struct ModalData {
   // Model DOF (0-based) of each row of `shapes`; empty means every model DOF in
   // order (rows == num_dofs).
   std::vector<int> sensor_dofs;
+  // Sensors between nodes (sensor.h): row i of `shapes` is the reading
+  // sensor_weights.row(i) * phi of a model shape phi. When given (rows: one per
+  // shape row; columns: the model's DOFs), sensor_dofs is empty.
+  SparseMatrix sensor_weights;
+  std::vector<std::string> sensor_names;  // one per sensor row where given
+
+  bool HasInterpolatedSensors() const { return sensor_weights.size() > 0; }
+  // The rows of full-DOF shapes (one column each) that the sensors read.
+  Eigen::MatrixXd AtSensors(const Eigen::MatrixXd& full) const;
 
   int num_modes() const { return static_cast<int>(frequencies_hz.size()); }
   Eigen::VectorXd Eigenvalues() const;  // (2 pi f)^2, rad^2/s^2

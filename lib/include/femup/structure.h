@@ -28,6 +28,15 @@ struct ModelNode {
   Eigen::Vector3d xyz = Eigen::Vector3d::Zero();  // m, the model's axes
 };
 
+// A straight line element of the mesh (a beam or bar), along which a point's
+// displacement is interpolated by the beam's shape functions (sensor.h): its
+// end nodes (indices into Structure::nodes; -1 for a rigid support, which has
+// no node and no DOFs) and their coordinates.
+struct LineSegment {
+  int node_a = -1, node_b = -1;
+  Eigen::Vector3d a = Eigen::Vector3d::Zero(), b = Eigen::Vector3d::Zero();  // m
+};
+
 // A support modelled as a spring to the ground on one free DOF (a chain's
 // ground spring, a cantilever's elastic base): what support flexibility softens.
 struct SupportSpring {
@@ -56,6 +65,10 @@ struct Structure {
   // supported ones too; a space frame's free nodes); empty for a chain or a
   // Matrix Market model. Used to place test sensors by their coordinates.
   std::vector<ModelNode> nodes;
+  // The mesh's line elements, where the model has them (a cantilever, a plane
+  // or space frame); empty for a chain or a Matrix Market model. Sensors and
+  // attached masses between nodes are placed on them.
+  std::vector<LineSegment> segments;
   // Supports that are springs in the model (rigid supports have no DOF here).
   std::vector<SupportSpring> supports;
   // The nodes (ModelNode::name) where the diagnosis looks for an attached
