@@ -156,7 +156,16 @@ Invalid EffectFitData::Validate() const {
     const std::string where = "states[" + std::to_string(s + 1) + "] (" + st.state + ")";
     if (st.modes.empty()) return {where, "no modes"};
     for (const std::string& label : st.sensors) {
-      if (IsAxial(label)) return {where, "sensor " + label + " is axial; use ux sensors"};
+      if (st.sensor_terms.empty() && IsAxial(label))
+        return {where, "sensor " + label + " is axial; use ux sensors"};
+    }
+    if (!st.sensor_terms.empty() && st.sensor_terms.size() != st.sensors.size())
+      return {where, "sensor_terms must have one entry per sensor"};
+    for (std::size_t i = 0; i < st.sensor_terms.size(); ++i) {
+      for (const auto& [label, w] : st.sensor_terms[i])
+        if (IsAxial(label) || !std::isfinite(w))
+          return {where,
+                  "sensor " + st.sensors[i] + " reads " + label + "; use ux sensors"};
     }
     for (std::size_t j = 0; j < st.modes.size(); ++j) {
       const ObservedMode& m = st.modes[j];
@@ -204,7 +213,7 @@ namespace {
 // bending rows of the sensors.
 struct PredictionDetail {
   std::vector<int> pair;
-  std::vector<int> rows;
+  Eigen::MatrixXd reader;  // sensors x bending rows: the sensors' readings
 };
 
 // The nominal model changed by the effects with parameters theta, for a state
@@ -274,20 +283,26 @@ bool Predict(const EffectFitData& data, const std::vector<const Effect*>& effect
       return false;
     }
     const int candidates = std::min(available, highest + data.extra_modes);
-    std::vector<int> rows;
-    for (const std::string& label : st.sensors) {
-      const auto r = bm.row.find(label);
-      if (r == bm.row.end()) {
-        if (why) *why = "the model has no DOF '" + label + "'";
-        return false;
+    Eigen::MatrixXd reader =
+        Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(st.sensors.size()),
+                              static_cast<Eigen::Index>(bm.row.size()));
+    for (std::size_t i = 0; i < st.sensors.size(); ++i) {
+      const auto terms =
+          st.sensor_terms.empty()
+              ? std::vector<std::pair<std::string, double>>{{st.sensors[i], 1}}
+              : st.sensor_terms[i];
+      for (const auto& [label, w] : terms) {
+        const auto r = bm.row.find(label);
+        if (r == bm.row.end()) {
+          if (why) *why = "the model has no DOF '" + label + "'";
+          return false;
+        }
+        reader(static_cast<Eigen::Index>(i), r->second) += w;
       }
-      rows.push_back(r->second);
     }
-    Eigen::MatrixXd at_sensors(static_cast<Eigen::Index>(rows.size()), candidates);
-    for (std::size_t i = 0; i < rows.size(); ++i) {
-      at_sensors.row(static_cast<Eigen::Index>(i)) =
-          bm.shapes.row(rows[i]).head(candidates);
-    }
+    const Eigen::MatrixXd at_sensors =
+        st.sensors.empty() ? Eigen::MatrixXd(0, candidates)
+                           : Eigen::MatrixXd(reader * bm.shapes.leftCols(candidates));
     std::vector<int> pair(st.modes.size());
     if (by_mac) {
       // A cantilever's bending modes keep their order whatever the effects
@@ -312,7 +327,7 @@ bool Predict(const EffectFitData& data, const std::vector<const Effect*>& effect
       for (std::size_t j = 0; j < st.modes.size(); ++j) pair[j] = st.modes[j].number - 1;
     }
     (*details)[s].pair = pair;
-    (*details)[s].rows = rows;
+    (*details)[s].reader = reader;
     PredictedState& ps = (*out)[s];
     for (std::size_t j = 0; j < st.modes.size(); ++j) {
       PredictedMode pm;
@@ -403,12 +418,8 @@ bool SemiAnalyticColumn(const EffectFitData& data,
       }
       coefficient[p] = -0.5 * phi.dot(dm_phi);
       const Eigen::VectorXd dphi = bm.shapes * coefficient;
-      const Eigen::Index m = static_cast<Eigen::Index>(detail.rows.size());
-      Eigen::VectorXd sv(m), ds(m);
-      for (Eigen::Index r = 0; r < m; ++r) {
-        sv[r] = phi[detail.rows[static_cast<std::size_t>(r)]];
-        ds[r] = dphi[detail.rows[static_cast<std::size_t>(r)]];
-      }
+      const Eigen::Index m = detail.reader.rows();
+      const Eigen::VectorXd sv = detail.reader * phi, ds = detail.reader * dphi;
       // The predicted shape is c s with c = s't / s's (PredictEffectModes).
       const Eigen::VectorXd t = UnitPeak(om.shape);
       const double ss = sv.squaredNorm();
@@ -435,10 +446,10 @@ bool PredictEffectModes(const EffectFitData& data,
   return Predict(data, effects, theta, false, &models, &details, out, why);
 }
 
-bool BendingModesAtSensors(const CantileverSpec& spec,
-                           const std::vector<std::string>& sensors, int count,
-                           Eigen::VectorXd* frequencies_hz, Eigen::MatrixXd* shapes,
-                           std::string* why) {
+bool BendingModesAtSensors(
+    const CantileverSpec& spec, const std::vector<std::string>& sensors, int count,
+    Eigen::VectorXd* frequencies_hz, Eigen::MatrixXd* shapes, std::string* why,
+    const std::vector<std::vector<std::pair<std::string, double>>>& terms) {
   // Frequency-only observations numbered 1..count pair mode k with the k-th
   // bending mode; their values do not enter the prediction.
   EffectFitData d;
@@ -446,6 +457,7 @@ bool BendingModesAtSensors(const CantileverSpec& spec,
   ObservedState st;
   st.state = "modes";
   st.sensors = sensors;
+  st.sensor_terms = terms;
   for (int k = 1; k <= count; ++k) {
     ObservedMode m;
     m.number = k;

@@ -9,6 +9,7 @@
 
 #include "diagnose_study_steps.h"
 #include "femup/errors.h"
+#include "femup/sensor.h"
 
 namespace femup::diagnose_steps {
 namespace {
@@ -51,16 +52,11 @@ void PrepareData(const Study& study, const DiagnosisSpec& spec,
   const std::vector<PreparedState> prepared = PrepareMeasurements(study);
   const std::vector<std::string>& labels = study.model.dof_labels();
   std::vector<ObservedState> observed;
+  std::vector<std::vector<int>> sensor_rows;  // per state, the shape rows used
   bool any_wet = false;
   int highest = 1;
   for (std::size_t s = 0; s < prepared.size(); ++s) {
     const ModalData& md = prepared[s].at_sensors;
-    if (md.HasInterpolatedSensors()) {
-      throw InputError(study.measurements[s].field + ".sensors",
-                       "sensors between nodes are not yet taken by the cantilever's "
-                       "diagnosis: give them as DOF labels of nodes (the other model "
-                       "types, and femup run with expansion, take points)");
-    }
     ObservedState st;
     st.state = md.state;
     st.immersion = md.immersion;
@@ -68,7 +64,22 @@ void PrepareData(const Study& study, const DiagnosisSpec& spec,
     std::vector<int> rows;  // rows of md.shapes used
     if (md.HasShapes()) {
       const int num_rows = static_cast<int>(md.shapes.rows());
-      for (int i = 0; i < num_rows; ++i) {
+      // Sensors between nodes read ux and rz of both ends of their element.
+      const Eigen::SparseMatrix<double, Eigen::RowMajor> weights = md.sensor_weights;
+      for (int i = 0; i < num_rows && md.HasInterpolatedSensors(); ++i) {
+        std::vector<std::pair<std::string, double>> terms;
+        bool axial = false;
+        for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(weights, i);
+             it; ++it) {
+          terms.emplace_back(labels.at(static_cast<std::size_t>(it.col())), it.value());
+          axial = axial || EndsWith(terms.back().first, ":uy");
+        }
+        if (axial) continue;  // not a bending sensor
+        rows.push_back(i);
+        st.sensors.push_back(md.sensor_names.at(static_cast<std::size_t>(i)));
+        st.sensor_terms.push_back(terms);
+      }
+      for (int i = 0; i < num_rows && !md.HasInterpolatedSensors(); ++i) {
         const int dof = md.sensor_dofs.empty() ? i : md.sensor_dofs[i];
         const std::string& label = labels.at(dof);
         if (EndsWith(label, ":uy")) continue;  // axial: not a bending sensor
@@ -81,6 +92,7 @@ void PrepareData(const Study& study, const DiagnosisSpec& spec,
             "state " + md.state +
             ": fewer than 2 transverse sensors; its shapes are not used");
         st.sensors.clear();
+        st.sensor_terms.clear();
         rows.clear();
       }
     }
@@ -110,6 +122,7 @@ void PrepareData(const Study& study, const DiagnosisSpec& spec,
       st.modes.push_back(m);
     }
     observed.push_back(st);
+    sensor_rows.push_back(rows);
   }
 
   // Discretisation error of the nominal mesh, added to the noise.
@@ -153,13 +166,30 @@ void PrepareData(const Study& study, const DiagnosisSpec& spec,
     Eigen::MatrixXd coarse, fine;
     if (shape_mesh || spec.form_error > 0) {
       std::string why;
-      if (!BendingModesAtSensors(nominal, st.sensors, highest, &nominal_hz, &coarse,
-                                 &why))
+      if (!BendingModesAtSensors(nominal, st.sensors, highest, &nominal_hz, &coarse, &why,
+                                 st.sensor_terms))
         throw InputError("model", "the nominal model cannot be solved: " + why);
     }
     if (shape_mesh) {
       std::vector<std::string> fine_sensors;
-      for (const std::string& label : st.sensors) {
+      std::vector<std::vector<std::pair<std::string, double>>> fine_terms;
+      const ModalData& md = prepared[s].at_sensors;
+      if (md.HasInterpolatedSensors()) {  // the same points on the halved elements
+        const Structure fine_beam = BuildCantilever(Refined(nominal));
+        fine_sensors = st.sensors;
+        for (const int row : sensor_rows[s]) {
+          SensorRow placed;
+          ThrowIfInvalid(
+              LocateSensor(fine_beam, md.sensor_specs.at(static_cast<std::size_t>(row)),
+                           &placed),
+              study.measurements[s].field + ".sensors");
+          fine_terms.emplace_back();
+          for (const auto& [dof, w] : placed.weights)
+            fine_terms.back().emplace_back(fine_beam.dof_labels[dof], w);
+        }
+      }
+      for (std::size_t i = 0; i < st.sensors.size() && fine_terms.empty(); ++i) {
+        const std::string& label = st.sensors[i];
         const std::size_t colon = label.find(':');
         fine_sensors.push_back("n" +
                                std::to_string(2 * std::stoi(label.substr(1, colon - 1))) +
@@ -168,7 +198,7 @@ void PrepareData(const Study& study, const DiagnosisSpec& spec,
       Eigen::VectorXd unused;
       std::string why;
       if (!BendingModesAtSensors(Refined(nominal), fine_sensors, highest, &unused, &fine,
-                                 &why))
+                                 &why, fine_terms))
         throw InputError("model", "the refined nominal model cannot be solved: " + why);
     }
     for (std::size_t j = 0; j < st.modes.size(); ++j) {

@@ -155,6 +155,7 @@ void Expand(const Study& study, const MeasurementSpec& m, PreparedState* out) {
   d.sensor_dofs.clear();
   d.sensor_weights = SparseMatrix();
   d.sensor_names.clear();
+  d.sensor_specs.clear();
   d.shapes.resize(model.num_dofs(), s.num_modes());
   out->expansion_method = o.method;
   out->expansion_modes = o.method == "dynamic" ? 0 : wanted;

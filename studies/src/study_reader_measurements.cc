@@ -97,6 +97,7 @@ void ReadMeasuredSensors(const Field& f, const ParametrisedModel& model,
       }
     }
     rows.push_back(row);
+    data->sensor_specs.push_back(spec);
   }
   data->sensor_weights = SensorMatrix(rows, model.num_dofs());
   for (const SensorRow& r : rows) data->sensor_names.push_back(r.name);

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "femup/model.h"
+#include "femup/sensor.h"
 
 namespace femup {
 
@@ -25,6 +26,9 @@ struct ModalData {
   // shape row; columns: the model's DOFs), sensor_dofs is empty.
   SparseMatrix sensor_weights;
   std::vector<std::string> sensor_names;  // one per sensor row where given
+  // Where the sensors were stated (one per row, with sensor_weights), so that
+  // another mesh of the structure can place them again.
+  std::vector<SensorSpec> sensor_specs;
 
   bool HasInterpolatedSensors() const { return sensor_weights.size() > 0; }
   // The rows of full-DOF shapes (one column each) that the sensors read.

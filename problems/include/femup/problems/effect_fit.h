@@ -47,7 +47,11 @@ struct ObservedMode {
 struct ObservedState {
   std::string state;
   Immersion immersion = Immersion::kDry;
-  std::vector<std::string> sensors;  // DOF labels of the shape rows
+  std::vector<std::string> sensors;  // DOF labels (or names) of the shape rows
+  // Sensors between nodes (femup/sensor.h): sensor i reads the sum of weight *
+  // phi[label] over sensor_terms[i] (a point on an element reads both ends' ux
+  // and rz). Empty: sensor i is the DOF labelled sensors[i].
+  std::vector<std::vector<std::pair<std::string, double>>> sensor_terms;
   std::vector<ObservedMode> modes;
   // The state's other measured modes (those held out of this data set, or
   // fitted when this set is the held-out one). With shapes they take part in the
@@ -91,13 +95,14 @@ bool PredictEffectModes(const EffectFitData& data,
                         std::string* why);
 
 // The lowest `count` bending modes of `spec` as it is (no effects): their
-// frequencies and, at the `sensors` (DOF labels; may be empty), their shapes
-// scaled to a largest entry of 1. Returns false with *why when the model cannot
-// be solved or has fewer bending modes.
-bool BendingModesAtSensors(const CantileverSpec& spec,
-                           const std::vector<std::string>& sensors, int count,
-                           Eigen::VectorXd* frequencies_hz, Eigen::MatrixXd* shapes,
-                           std::string* why);
+// frequencies and, at the `sensors` (DOF labels; may be empty; or names with
+// `terms` as ObservedState::sensor_terms), their shapes scaled to a largest
+// entry of 1. Returns false with *why when the model cannot be solved or has
+// fewer bending modes.
+bool BendingModesAtSensors(
+    const CantileverSpec& spec, const std::vector<std::string>& sensors, int count,
+    Eigen::VectorXd* frequencies_hz, Eigen::MatrixXd* shapes, std::string* why,
+    const std::vector<std::vector<std::pair<std::string, double>>>& terms = {});
 
 // The bending (ux, rz) stiffness and mass of `spec` as dense matrices, rows in
 // the model's DOF order with the axial DOFs left out, and their DOF labels
