@@ -229,6 +229,15 @@ TEST(EffectPriors, RegionsKeepTheNamedElementsAndNodes) {
                            Prior("attached_mass", {}, {"n7"}));
   ASSERT_EQ(kept.size(), 1u);
   EXPECT_EQ(kept[0]->region().name, "node n7");
+  // A member named for an attached mass keeps the masses between its nodes
+  // (its two elements, both ending at its middle node n7).
+  kept = KeepStatedRegions(CreateModelEffects("attached_mass", f), f,
+                           Prior("attached_mass", {}, {"s1:beam1"}));
+  ASSERT_EQ(kept.size(), 2u);
+  for (const auto& k : kept) {
+    EXPECT_NE(k->region().name.find("n7"), std::string::npos) << k->region().name;
+    EXPECT_EQ(k->Parameters().size(), 2u);
+  }
 }
 
 TEST(EffectPriors, RegionsThatNameNoPlaceOfTheFamilyAreRefused) {

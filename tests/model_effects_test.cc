@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/LU>
 #include <cmath>
 
 #include "femup/beam_modifications.h"
@@ -134,6 +135,86 @@ TEST(ModelEffects, AttachedMassAtTheTipMatchesTheContinuousBeam) {
     const double exact = std::pow(b / length, 4) * ei / rho_a;
     EXPECT_NEAR(lambda[i] / exact, 1.0, 2e-4) << "mode " << i + 1;
   }
+}
+
+// The continuous Euler-Bernoulli cantilever with a point mass mu rho A L at
+// x = a L (0 < a < 1): two spans, w = c1 cos + c2 sin + c3 cosh + c4 sinh of
+// b x / L each, clamped at 0, free at L, w, w', w'' continuous at a and the
+// shear jumping by the mass's inertia: w2''' - w1''' = mu b w(a) (in units of
+// b^3 / L^3). The roots of the 8 x 8 determinant in b = beta L.
+double PointMassDeterminant(double mu, double a, double b) {
+  auto f = [](int k, double t) {
+    const double c = std::cos(t), s = std::sin(t), ch = std::cosh(t), sh = std::sinh(t);
+    switch (k) {
+      case 0:
+        return Eigen::RowVector4d(c, s, ch, sh);
+      case 1:
+        return Eigen::RowVector4d(-s, c, sh, ch);
+      case 2:
+        return Eigen::RowVector4d(-c, -s, ch, sh);
+      default:
+        return Eigen::RowVector4d(s, -c, sh, ch);
+    }
+  };
+  Eigen::Matrix<double, 8, 8> d = Eigen::Matrix<double, 8, 8>::Zero();
+  d.block<1, 4>(0, 0) = f(0, 0);            // w(0) = 0
+  d.block<1, 4>(1, 0) = f(1, 0);            // w'(0) = 0
+  d.block<1, 4>(2, 4) = f(2, b * (1 - a));  // w''(L) = 0
+  d.block<1, 4>(3, 4) = f(3, b * (1 - a));  // w'''(L) = 0
+  for (int k = 0; k < 3; ++k) {             // continuity at a
+    d.block<1, 4>(4 + k, 0) = f(k, b * a);
+    d.block<1, 4>(4 + k, 4) = -f(k, 0);
+  }
+  d.block<1, 4>(7, 0) = -f(3, b * a) - mu * b * f(0, b * a);  // the shear jump
+  d.block<1, 4>(7, 4) = f(3, 0);
+  return d.determinant();
+}
+
+double PointMassRoot(double mu, double a, double lo, double hi) {
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (PointMassDeterminant(mu, a, lo) * PointMassDeterminant(mu, a, mid) <= 0 ? hi : lo) =
+        mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+// A point mass between two nodes (the segment instance, its position fitted):
+// 0.3 rho A L at 0.37 L, between nodes 14 and 15 of 40 (xi = 0.8), against the
+// continuous beam's two lowest frequencies; and dM/dxi against differences.
+TEST(ModelEffects, AttachedMassBetweenNodesMatchesTheContinuousBeam) {
+  CantileverSpec spec;
+  const double length = 1.9;
+  spec.node_heights = UniformHeights(length, 40);
+  spec.section = fixtures::PaperSection();
+  const Structure s = BuildCantilever(spec);
+  auto mass = One("attached_mass", s, "n14-n15");
+  ASSERT_TRUE(mass);
+  ASSERT_EQ(mass->Parameters().size(), 2u);
+  const double rho_a = spec.section.rho * spec.section.A;
+  const double mu = 0.3, a = 0.37;
+  const Eigen::VectorXd theta =
+      Theta({std::log(mu * rho_a * length / ReferenceMass(s)), 0.8});
+  EXPECT_NEAR(mass->Location(theta).x, a * length, 1e-12);
+  EXPECT_NEAR(mass->Magnitudes(theta)[0].value, mu * rho_a * length, 1e-12);
+  SparseMatrix k, m;
+  ApplyModelEffects(s, {mass.get()}, {theta}, Immersion::kDry, &k, &m);
+  const Eigen::VectorXd lambda = Eigenvalues(k, m);
+  const double ei = spec.section.E * spec.section.I;
+  // Without the mass, the cantilever's own root (1.8751); the mass lowers them.
+  EXPECT_NEAR(PointMassRoot(0.0, a, 1.0, 2.5), 1.8751040687, 1e-8);
+  const double b1 = PointMassRoot(mu, a, 1.0, 1.87), b2 = PointMassRoot(mu, a, 3.0, 4.69);
+  for (auto [i, b] : {std::pair<int, double>{0, b1}, {1, b2}}) {
+    const double exact = std::pow(b / length, 4) * ei / rho_a;
+    EXPECT_NEAR(lambda[i] / exact, 1.0, 2e-4) << "mode " << i + 1;
+  }
+  const double h = 1e-6;
+  const SparseMatrix dm = mass->Derivative(theta, 1, Immersion::kDry).mass;
+  const SparseMatrix plus = mass->Change(Theta({theta[0], theta[1] + h}), {}).mass;
+  const SparseMatrix minus = mass->Change(Theta({theta[0], theta[1] - h}), {}).mass;
+  const Eigen::MatrixXd fd = Eigen::MatrixXd(plus - minus) / (2 * h);
+  EXPECT_LT((Eigen::MatrixXd(dm) - fd).cwiseAbs().maxCoeff(),
+            1e-6 * fd.cwiseAbs().maxCoeff());
 }
 
 TEST(ModelEffects, AddedMassOverTheWholeBeamScalesBendingModes) {

@@ -234,8 +234,8 @@ Structure BuildCantilever(const CantileverSpec& spec) {
                                   dof[e + 1][0], dof[e + 1][1], dof[e + 1][2]};
     const Matrix6 ke = Frame2dStiffness(spec.section, 0, z[e], 0, z[e + 1]);
     const Matrix6 me = Frame2dConsistentMass(spec.section, 0, z[e], 0, z[e + 1]);
-    s.segments.push_back(
-        {e, e + 1, Eigen::Vector3d(0.0, z[e], 0.0), Eigen::Vector3d(0.0, z[e + 1], 0.0)});
+    s.segments.push_back({e, e + 1, Eigen::Vector3d(0.0, z[e], 0.0),
+                          Eigen::Vector3d(0.0, z[e + 1], 0.0), e});
     ElementMatrices el;
     el.id = e + 1;
     el.label = "e" + std::to_string(e + 1);

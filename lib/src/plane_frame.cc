@@ -284,7 +284,7 @@ Structure BuildPlaneFrameStructure(const PlaneFrameSpec& spec) {
                                     3 * p.b + 2};
       s.segments.push_back({p.a < 0 ? base_node[line] : p.a, p.b,
                             Eigen::Vector3d(p.xa, p.ya, 0.0),
-                            Eigen::Vector3d(p.xb, p.yb, 0.0)});
+                            Eigen::Vector3d(p.xb, p.yb, 0.0), static_cast<int>(m)});
       Scatter(Frame2dStiffness(sec, p.xa, p.ya, p.xb, p.yb), d, &ke);
       Scatter(Frame2dConsistentMass(sec, p.xa, p.ya, p.xb, p.yb), d, &me);
       if (mb.column && mb.storey <= spec.wet_storeys) {

@@ -6,6 +6,7 @@
 #include <limits>
 #include <map>
 #include <sstream>
+#include <stdexcept>
 
 #include "femup/errors.h"
 
@@ -58,10 +59,12 @@ std::vector<std::pair<int, double>> Sorted(const std::map<int, double>& m) {
   return v;
 }
 
+// The weights at xi, or with `slope` their derivatives with respect to xi.
 std::vector<std::pair<int, double>> Weights(const Structure& s,
                                             const std::map<std::string, int>& dofs,
                                             const LineSegment& seg, double xi,
-                                            const Eigen::Vector3d& d, bool rotation) {
+                                            const Eigen::Vector3d& d, bool rotation,
+                                            bool slope = false) {
   const Eigen::Vector3d axis = seg.b - seg.a;
   const double length = axis.norm();
   const Eigen::Vector3d e = axis / length;
@@ -79,7 +82,13 @@ std::vector<std::pair<int, double>> Weights(const Structure& s,
     if (nu > 0) AddNode(dofs, node, wu / nu, nu, false, &w);
     if (nr > 0) AddNode(dofs, node, wr / nr, nr, true, &w);
   };
-  if (!rotation) {
+  if (!rotation && slope) {  // d/dxi of the functions below
+    const Eigen::Vector3d pd = across * d, ed = along * d, exd = e.cross(d);
+    const double n1 = -6 * xi + 6 * x2, n2 = 1 - 4 * xi + 3 * x2;
+    const double n3 = 6 * xi - 6 * x2, n4 = -2 * xi + 3 * x2;
+    add(a, -ed + n1 * pd, length * n2 * exd);
+    add(b, ed + n3 * pd, length * n4 * exd);
+  } else if (!rotation) {
     const Eigen::Vector3d pd = across * d, ed = along * d, exd = e.cross(d);
     const double n1 = 1 - 3 * x2 + 2 * x3, n2 = xi - 2 * x2 + x3;
     const double n3 = 3 * x2 - 2 * x3, n4 = -x2 + x3;
@@ -141,8 +150,9 @@ Invalid ParseSensorDirection(const std::string& text, Eigen::Vector3d* direction
 std::vector<std::pair<int, double>> SegmentWeights(const Structure& structure,
                                                    const LineSegment& segment, double xi,
                                                    const Eigen::Vector3d& direction,
-                                                   bool rotation) {
-  return Weights(structure, DofIndex(structure), segment, xi, direction, rotation);
+                                                   bool rotation, bool slope) {
+  if (rotation && slope) throw std::invalid_argument("SegmentWeights: no rotation slope");
+  return Weights(structure, DofIndex(structure), segment, xi, direction, rotation, slope);
 }
 
 Invalid LocateSensor(const Structure& s, const SensorSpec& spec, SensorRow* row) {

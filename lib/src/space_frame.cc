@@ -526,8 +526,10 @@ Structure BuildSpaceFrameStructure(const SpaceFrameSpec& spec) {
     s.attached_mass_nodes.push_back("n" + std::to_string(k + 1));
 
   const double h = spec.level_height;
+  std::vector<int> element_of_group(static_cast<std::size_t>(groups), -1);
   for (int q = 0; q < groups; ++q) {
     if (by_group.offset[q + 1] == by_group.offset[q]) continue;
+    element_of_group[static_cast<std::size_t>(q)] = static_cast<int>(s.elements.size());
     const int kind = q % kMemberKinds, block = (q / kMemberKinds) % blocks;
     const int level = q / (kMemberKinds * blocks) + 1;
     ElementMatrices e;
@@ -544,6 +546,10 @@ Structure BuildSpaceFrameStructure(const SpaceFrameSpec& spec) {
     m_groups[q] = BasisMatrix();
     w_groups[q] = BasisMatrix();
     s.elements.push_back(std::move(e));
+  }
+  for (std::size_t k = 0; k < s.segments.size(); ++k) {
+    s.segments[k].element =
+        element_of_group[static_cast<std::size_t>(GroupOf(g.elements[k], blocks))];
   }
   return s;
 }

@@ -5,6 +5,7 @@
 #include <map>
 
 #include "femup/errors.h"
+#include "femup/sensor.h"
 
 namespace femup {
 
@@ -167,6 +168,75 @@ class AttachedMass : public Base {
   double m_ref_;
   double position_;
   SparseMatrix unit_;
+};
+
+// A point mass between the end nodes of a line element, at a fraction xi of
+// its length (fitted): dM = m sum_d w_d(xi) w_d(xi)', w_d the weights that
+// read the element's translation along each axis the model has DOFs for
+// (femup/sensor.h: cubic Hermite across, linear along), so the mass moves with
+// the element's displacement field where it sits; dM/dxi from the weights'
+// slopes. xi stays 0.05 from the ends, where the node instances act.
+class SegmentMass : public Base {
+ public:
+  SegmentMass(const Structure& s, EffectRegion region, double reference_mass,
+              LineSegment segment, std::vector<Eigen::Vector3d> axes, double position_a,
+              double position_b)
+      : Base(s, std::move(region)),
+        m_ref_(reference_mass),
+        segment_(std::move(segment)),
+        axes_(std::move(axes)),
+        position_a_(position_a),
+        position_b_(position_b) {}
+  std::string kind() const override { return "attached_mass"; }
+  std::vector<EffectParameter> Parameters() const override {
+    return {LogQuantity({"ln_mass_ratio", "ln(mass / the structure's mass)",
+                         std::log(1e-4), std::log(2.0), false},
+                        "mass_kg", m_ref_),
+            {"xi", "position along the element from its first node (fraction)", 0.05,
+             0.95, false}};
+  }
+  std::vector<Eigen::VectorXd> Starts() const override {
+    return {Vec({std::log(0.003), 0.3}), Vec({std::log(0.1), 0.7})};
+  }
+  ModelChange Change(const Eigen::VectorXd& t, Immersion) const override {
+    return {{}, Outer(t[1], false) * (m_ref_ * std::exp(t[0]))};
+  }
+  ModelChange Derivative(const Eigen::VectorXd& t, int i, Immersion) const override {
+    return {{}, Outer(t[1], i == 1) * (m_ref_ * std::exp(t[0]))};
+  }
+  EffectLocation Location(const Eigen::VectorXd& t) const override {
+    EffectLocation l;
+    l.x = (1 - t[1]) * position_a_ + t[1] * position_b_;
+    return l;
+  }
+  std::vector<EffectMagnitude> Magnitudes(const Eigen::VectorXd& t) const override {
+    return {{"mass", "kg", m_ref_ * std::exp(t[0])},
+            {"mass_ratio", "1 (of the structure's mass)", std::exp(t[0])},
+            {"distance_from_first_node", "m", t[1] * (segment_.b - segment_.a).norm()}};
+  }
+
+ private:
+  // sum_d w_d w_d', or with `slope` its derivative sum_d (w_d' w_d + w_d w_d').
+  SparseMatrix Outer(double xi, bool slope) const {
+    std::vector<Eigen::Triplet<double>> t;
+    for (const Eigen::Vector3d& d : axes_) {
+      const auto w = SegmentWeights(s_, segment_, xi, d, false);
+      const auto dw = slope ? SegmentWeights(s_, segment_, xi, d, false, true) : w;
+      for (const auto& [i, wi] : dw) {
+        for (const auto& [j, wj] : w) {
+          t.emplace_back(i, j, wi * wj);
+          if (slope) t.emplace_back(j, i, wi * wj);
+        }
+      }
+    }
+    SparseMatrix m = Zero(n());
+    m.setFromTriplets(t.begin(), t.end());
+    return m;
+  }
+  double m_ref_;
+  LineSegment segment_;
+  std::vector<Eigen::Vector3d> axes_;
+  double position_a_, position_b_;
 };
 
 // The added-mass bases times ratio = exp(theta_0): on the flagged wet elements
@@ -398,6 +468,35 @@ std::vector<std::unique_ptr<ModelEffect>> CreateModelEffects(
         continue;
       out.push_back(std::make_unique<AttachedMass>(
           s, EffectRegion{"node " + node, {}, dofs[node]}, m_ref, position[node]));
+    }
+    // Between the nodes, where the model has line elements and does not name
+    // its few candidate nodes: one instance per element segment, its position
+    // fitted. The region is the member it belongs to, so a stated region that
+    // names a member keeps its segments and one that names a node its node.
+    std::vector<Eigen::Vector3d> axes;
+    for (int k = 0; k < 3; ++k) {
+      const std::string tail = std::string(":u") + "xyz"[k];
+      for (const std::string& l : s.dof_labels) {
+        if (l.size() > tail.size() &&
+            l.compare(l.size() - tail.size(), tail.size(), tail) == 0) {
+          axes.push_back(Eigen::Vector3d::Unit(k));
+          break;
+        }
+      }
+    }
+    for (const LineSegment& g :
+         s.attached_mass_nodes.empty() ? s.segments : std::vector<LineSegment>()) {
+      if (g.node_a < 0 && g.node_b < 0) continue;
+      const std::string a = g.node_a >= 0 ? s.nodes[g.node_a].name : "the support";
+      const std::string b = g.node_b >= 0 ? s.nodes[g.node_b].name : "the support";
+      EffectRegion r{a + "-" + b, {}, {}};
+      if (g.element >= 0) r.elements.push_back(g.element);
+      const auto at = [&](const std::string& node) {
+        return position.count(node) ? position[node] : 0.0;
+      };
+      out.push_back(std::make_unique<SegmentMass>(s, std::move(r), m_ref, g, axes,
+                                                  g.node_a >= 0 ? at(a) : 0.0,
+                                                  g.node_b >= 0 ? at(b) : 0.0));
     }
   } else if (kind == "added_mass") {
     const bool level = HasHeights(s);

@@ -67,13 +67,15 @@ Invalid ParseSensorDirection(const std::string& text, Eigen::Vector3d* direction
 // no DOFs for.
 Invalid LocateSensor(const Structure& structure, const SensorSpec& spec, SensorRow* row);
 
-// Interpolation weights at a point of a line element: the translation along
-// `direction` (rotation = false) or the rotation about it (rotation = true).
-// Throws InputError when a needed DOF kind is missing from the whole model.
+// Interpolation weights at a point xi in [0, 1] of a line element: the
+// translation along `direction` (rotation = false) or the rotation about it
+// (rotation = true); with `slope`, the translation weights' derivatives with
+// respect to xi (a point mass whose position is fitted). DOFs the model lacks
+// are left out (held at zero).
 std::vector<std::pair<int, double>> SegmentWeights(const Structure& structure,
                                                    const LineSegment& segment, double xi,
                                                    const Eigen::Vector3d& direction,
-                                                   bool rotation);
+                                                   bool rotation, bool slope = false);
 
 // The sensors' readings of full-DOF shapes: rows = sensors, one column per
 // shape column.

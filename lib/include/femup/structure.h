@@ -35,6 +35,7 @@ struct ModelNode {
 struct LineSegment {
   int node_a = -1, node_b = -1;
   Eigen::Vector3d a = Eigen::Vector3d::Zero(), b = Eigen::Vector3d::Zero();  // m
+  int element = -1;  // the Structure::elements entry it belongs to (a member, a group)
 };
 
 // A support modelled as a spring to the ground on one free DOF (a chain's

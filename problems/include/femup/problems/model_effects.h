@@ -21,7 +21,11 @@
 //   attached_mass       ln(m / m_ref): a point mass on one node's translational
 //                       DOFs (sensors, cables, equipment); m_ref is the
 //                       structure's total mass (m_ref below). One instance per
-//                       node with translational DOFs.
+//                       node with translational DOFs; and, where the model has
+//                       line elements and names no candidate nodes, one per
+//                       element segment with its position xi in [0.05, 0.95]
+//                       fitted: a point mass between the nodes, read through
+//                       the element's shape functions (femup/sensor.h).
 //   added_mass          ln(ratio) [, level]: the elements' added-mass bases
 //                       (water acting on the wet part) times ratio. Where the
 //                       elements have heights (x0 < x1 along the structure:
