@@ -260,6 +260,13 @@ grep -q "support_flexibility at supports .*(the same change as: stiffness_loss a
   > points.txt || fail "diagnose portal_frame_points exit $?: $(cat points.txt)"
 [ "$(json points/diagnosis.json "(j['verdict']['kind'], j['verdict']['region'])")" \
   = "('attached_mass', 'node n7')" ] || fail "points verdict: $(json points/diagnosis.json "j['verdict']")"
+# A model brought as Matrix Market files (element stiffness and lumped mass of a
+# Warren truss, made by numpy; the truth has consistent masses and a cracked
+# bottom chord b4): the damaged member named.
+"$FEMUP" diagnose "$ROOT/examples/diagnosis/matrix_market/truss.yaml" -o truss --no-plots \
+  > truss.txt || fail "diagnose truss exit $?: $(cat truss.txt)"
+[ "$(json truss/diagnosis.json "(j['verdict']['kind'], j['verdict']['region'])")" \
+  = "('stiffness_loss', 'element b4')" ] || fail "truss verdict: $(json truss/diagnosis.json "j['verdict']")"
 sed -e 's/{at: \[1.5, 3.5\], direction: y}/{at: [1.5, 3.0], direction: y}/' \
   "$ROOT/examples/diagnosis/portal_frame_points.yaml" > off_frame.yaml
 grep -q "at: \[1.5, 3.0\]" off_frame.yaml || fail "off_frame.yaml not made"
