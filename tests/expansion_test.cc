@@ -9,6 +9,7 @@
 
 #include "femup/builders.h"
 #include "femup/errors.h"
+#include "femup/sensor.h"
 #include "femup/structure.h"
 
 namespace femup {
@@ -64,6 +65,50 @@ TEST(Expansion, ModesInTheBasisExpandExactly) {
     const ExpandedShape e = ExpandShape(b.k, b.m, b.modes, sensors, truth(sensors),
                                         b.modes.eigenvalues[j], d);
     EXPECT_LT(Distance(e.shape, truth), 1e-7) << "dynamic mode " << j + 1;
+  }
+}
+
+// Sensors between nodes (a matrix of interpolation weights, femup/sensor.h):
+// serep and lsq fit the modal coordinates to the interpolated rows, exact for
+// a mode in the basis; dynamic needs DOFs and is refused naming the others.
+TEST(Expansion, SensorsBetweenNodesExpandExactly) {
+  CantileverSpec spec;
+  spec.node_heights = UniformHeights(1.9, 10);
+  spec.section = BeamSection{206e9, 8.8e-4, 8.53e-8, 7850};
+  const Structure s = BuildCantilever(spec);
+  const Beam b = MakeBeam();
+  std::vector<SensorRow> rows;
+  for (double x : {0.33, 0.71, 1.05, 1.42, 1.77}) {
+    SensorSpec at;
+    at.has_x = true;
+    at.x = x;
+    SensorRow row;
+    ASSERT_FALSE(LocateSensor(s, at, &row));
+    rows.push_back(row);
+  }
+  const SparseMatrix c = SensorMatrix(rows, static_cast<int>(s.dof_labels.size()));
+  for (int j = 0; j < 3; ++j) {
+    const Eigen::VectorXd truth = b.modes.shapes.col(j);
+    const Eigen::VectorXd at_sensors = -1.7 * (c * truth);
+    for (const char* method : {"serep", "lsq"}) {
+      ExpansionOptions o;
+      o.method = method;
+      o.num_modes = 4;
+      const ExpandedShape e =
+          ExpandShape(b.k, b.m, b.modes, c, at_sensors, b.modes.eigenvalues[j], o);
+      EXPECT_LT(Distance(e.shape, -1.7 * truth), 1e-9) << method << " mode " << j + 1;
+      EXPECT_NEAR(e.sensor_mac, 1.0, 1e-12);
+    }
+  }
+  ExpansionOptions d;
+  d.method = "dynamic";
+  try {
+    ExpandShape(b.k, b.m, b.modes, c, c * b.modes.shapes.col(0), b.modes.eigenvalues[0],
+                d);
+    ADD_FAILURE() << "dynamic expansion from points accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("use serep or lsq"), std::string::npos)
+        << e.what();
   }
 }
 
