@@ -68,12 +68,12 @@
 #include <vector>
 
 #include "bounded_problem.h"
+#include "femup/evaluation/ill_posed.h"
 #include "femup/measurement.h"
 #include "femup/modal.h"
 #include "femup/plane_frame.h"
 #include "femup/problems/correction_system.h"
 #include "femup/problems/eigen_sensitivity.h"
-#include "femup/problems/ill_posed.h"
 #include "femup/problems/noise.h"
 #include "femup/problems/normal_correction_system.h"
 #include "femup/problems/paper_chain.h"

@@ -39,7 +39,7 @@ stage "fuzzing (short)"
 FEMUP_FUZZ_JOBS="$JOBS" bash scripts/fuzz.sh 12
 
 stage "clang-format check"
-files=$(git ls-files '*.cc' '*.h' 2>/dev/null || find lib problems solvers studies app tests bench fuzz -name '*.cc' -o -name '*.h')
+files=$(git ls-files '*.cc' '*.h' 2>/dev/null || find lib problems solvers studies evaluation app tests bench fuzz -name '*.cc' -o -name '*.h')
 clang-format --dry-run -Werror $files
 stage_end
 echo "all checks passed"

@@ -4,7 +4,7 @@
 // generator's size prior (an E error scales every frequency by the same factor
 // and leaves the shapes alone, so the truth's frequencies for a drawn shift t
 // are the nominal ones times 1 +- t, exactly); options and inputs it refuses.
-#include "femup/studies/benchmark_oracle.h"
+#include "femup/evaluation/benchmark_oracle.h"
 
 #include <gtest/gtest.h>
 

@@ -1,10 +1,10 @@
-// Discrete ill-posed test problems (problems/include/femup/problems/ill_posed.h),
+// Discrete ill-posed test problems (evaluation/include/femup/evaluation/ill_posed.h),
 // checked against facts of the continuous problems rather than stored output:
 // integrals known in closed form, consistency A x_exact ~ b to the order of the
 // discretisation, kernel symmetries, the known spectrum of the Green's function
 // in deriv2, the singular value decay that makes them ill-posed, and the noise
 // convention. Fixed seeds throughout.
-#include "femup/problems/ill_posed.h"
+#include "femup/evaluation/ill_posed.h"
 
 #include <gtest/gtest.h>
 

@@ -12,10 +12,10 @@
 #include <vector>
 
 #include "femup/errors.h"
+#include "femup/evaluation/nist_strd.h"
 #include "femup/measurement.h"
 #include "femup/modal.h"
 #include "femup/problems/correction_system.h"
-#include "femup/problems/nist_strd.h"
 #include "femup/problems/paper_chain.h"
 #include "femup/solvers/linear_solver.h"
 

@@ -17,8 +17,8 @@
 #include <vector>
 
 #include "femup/errors.h"
+#include "femup/evaluation/nist_strd.h"
 #include "femup/problems/linear_problem.h"
-#include "femup/problems/nist_strd.h"
 #include "femup/solvers/identifiability.h"
 #include "femup/solvers/linear_solver.h"
 

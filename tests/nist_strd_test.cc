@@ -2,7 +2,7 @@
 // (never against earlier output of this code): the counts stated in each file,
 // the residual statistics at the certified parameters, the certified standard
 // deviations, and the analytic Jacobians against finite differences.
-#include "femup/problems/nist_strd.h"
+#include "femup/evaluation/nist_strd.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>

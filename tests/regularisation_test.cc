@@ -11,7 +11,7 @@
 #include <random>
 
 #include "femup/errors.h"
-#include "femup/problems/ill_posed.h"
+#include "femup/evaluation/ill_posed.h"
 #include "femup/solvers/linear_solver.h"
 
 namespace femup {

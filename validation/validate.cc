@@ -20,8 +20,8 @@
 #include <vector>
 
 #include "femup/errors.h"
+#include "femup/evaluation/nist_strd.h"
 #include "femup/output_dir.h"
-#include "femup/problems/nist_strd.h"
 
 namespace femup_validate {
 

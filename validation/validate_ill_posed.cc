@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "femup/problems/ill_posed.h"
+#include "femup/evaluation/ill_posed.h"
 #include "femup/solvers/linear_solver.h"
 #include "femup/solvers/regularisation.h"
 #include "validate.h"

@@ -16,7 +16,7 @@
 #include <boost/multiprecision/cpp_int.hpp>
 #pragma GCC diagnostic pop
 
-#include "femup/problems/nist_strd.h"
+#include "femup/evaluation/nist_strd.h"
 #include "femup/solvers/extended_precision.h"
 #include "femup/solvers/linear_solver.h"
 #include "validate.h"

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "femup/problems/nist_strd.h"
+#include "femup/evaluation/nist_strd.h"
 #include "femup/solvers/nonlinear_solver.h"
 #include "validate.h"
 

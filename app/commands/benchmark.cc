@@ -5,7 +5,7 @@
 
 #include "commands.h"
 #include "femup/errors.h"
-#include "femup/studies/blind_benchmark.h"
+#include "femup/evaluation/blind_benchmark.h"
 
 namespace femup::cli {
 

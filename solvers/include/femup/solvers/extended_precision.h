@@ -13,7 +13,7 @@
 
 namespace femup {
 
-// The same aliases as femup/problems/nist_strd.h.
+// The same aliases as femup/evaluation/nist_strd.h.
 using VectorLD = Eigen::Matrix<long double, Eigen::Dynamic, 1>;
 using MatrixLD = Eigen::Matrix<long double, Eigen::Dynamic, Eigen::Dynamic>;
 

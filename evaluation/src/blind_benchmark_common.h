@@ -6,7 +6,7 @@
 #include <limits>
 #include <string>
 
-#include "femup/studies/blind_benchmark.h"
+#include "femup/evaluation/blind_benchmark.h"
 
 namespace femup::blind_benchmark {
 

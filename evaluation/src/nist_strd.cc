@@ -2,7 +2,7 @@
 // ReadNistNonlinear: header, certified values, data) and the log relative
 // error used to score results against them. The nonlinear models themselves
 // are in nist_strd_models.cc.
-#include "femup/problems/nist_strd.h"
+#include "femup/evaluation/nist_strd.h"
 
 #include <algorithm>
 #include <cerrno>

@@ -33,8 +33,8 @@
 #include <string>
 #include <vector>
 
+#include "femup/evaluation/blind_benchmark.h"
 #include "femup/invalid.h"
-#include "femup/studies/blind_benchmark.h"
 #include "femup/studies/study.h"
 
 namespace femup {

@@ -1,4 +1,4 @@
-#include "femup/studies/benchmark_oracle.h"
+#include "femup/evaluation/benchmark_oracle.h"
 
 #include <algorithm>
 #include <chrono>

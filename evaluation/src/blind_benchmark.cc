@@ -2,7 +2,7 @@
 // case (a random cantilever, effects and noisy modes as a study file, and the
 // truth apart) and the diagnosis of every case; blind_benchmark_scores.cc
 // scores them and writes the outputs and the report.
-#include "femup/studies/blind_benchmark.h"
+#include "femup/evaluation/blind_benchmark.h"
 
 #include <algorithm>
 #include <chrono>
@@ -18,9 +18,9 @@
 #include "benchmark_generator.h"
 #include "blind_benchmark_common.h"
 #include "femup/errors.h"
+#include "femup/evaluation/benchmark_oracle.h"
 #include "femup/parallel.h"
 #include "femup/problems/effect_fit.h"
-#include "femup/studies/benchmark_oracle.h"
 #include "femup/studies/diagnose_study.h"
 #include "femup/studies/study.h"
 #include "json_util.h"

@@ -1,4 +1,4 @@
-#include "femup/problems/ill_posed.h"
+#include "femup/evaluation/ill_posed.h"
 
 #include <cmath>
 #include <cstdlib>

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "femup/errors.h"
-#include "femup/problems/nist_strd.h"
+#include "femup/evaluation/nist_strd.h"
 
 namespace femup {
 namespace {

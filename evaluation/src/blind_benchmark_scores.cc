@@ -10,8 +10,8 @@
 
 #include "benchmark_generator.h"
 #include "blind_benchmark_common.h"
+#include "femup/evaluation/blind_benchmark.h"
 #include "femup/plot.h"
-#include "femup/studies/blind_benchmark.h"
 #include "json_util.h"
 #include "render_staged.h"
 
