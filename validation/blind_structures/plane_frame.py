@@ -221,8 +221,11 @@ class Effect:
         if self.kind == "added_floor_mass":
             s, m = self.member
             b = int(m[4:]) - 1
-            return ["node " + joints[(b, s)], "node " + joints[(b + 1, s)],
-                    "node " + middles[(s, m)]]
+            ends, mid = (joints[(b, s)], joints[(b + 1, s)]), middles[(s, m)]
+            # The beam's nodes, and the masses between them on its two elements
+            # (femup's segment instances, named "<node>-<node>").
+            return (["node " + ends[0], "node " + ends[1], "node " + mid] +
+                    ["%s-%s" % pair for e in ends for pair in ((e, mid), (mid, e))])
         if self.kind == "material_scaling":
             return ["all elements"]
         if self.kind == "soft_foundation":
