@@ -102,6 +102,30 @@ TEST(DiagnosisMap, PlacesEachExplanationWhereItLiesByItsProbability) {
   EXPECT_EQ(p.series[2].style, PlotSeries::Style::kPoints);
 }
 
+// A mass between nodes ("n1-n5", its position xi fitted) is drawn at its
+// fitted point on the line between the two nodes.
+TEST(DiagnosisMap, DrawsAMassBetweenNodesAtItsFittedPoint) {
+  const DiagnosisMap map = MapGeometry(BuildPlaneFrameStructure(Portal()));
+  EffectRanking r;
+  RankedClass c = Class("attached_mass", "n1-n5", 0.7);
+  c.theta = Eigen::Vector2d(std::log(0.01), 0.25);
+  r.classes = {c, Class("none", "", 0.3)};
+  r.kind_probabilities = {{"attached_mass", 0.7}, {"none", 0.3}};
+  const Figure f = DiagnosisMapFigure(map, r, "portal");
+  const Plot& p = f.panels[0];
+  ASSERT_EQ(p.series.size(), 2u);
+  EXPECT_EQ(p.series[1].title, "attached mass, P >= 0.5");
+  ASSERT_EQ(p.series[1].x.size(), 1u);
+  const auto node = [&](const std::string& name) {
+    for (const auto& n : map.nodes)
+      if (n.region == "node " + name) return n;
+    ADD_FAILURE() << name;
+    return DiagnosisMap::Node();
+  };
+  EXPECT_DOUBLE_EQ(p.series[1].x[0], 0.75 * node("n1").x + 0.25 * node("n5").x);
+  EXPECT_DOUBLE_EQ(p.series[1].y[0], 0.75 * node("n1").y + 0.25 * node("n5").y);
+}
+
 TEST(DiagnosisMap, RendersWithGnuplot) {
   if (!GnuplotAvailable()) GTEST_SKIP() << "gnuplot is not installed";
   testing::ScratchDir dir;

@@ -164,6 +164,8 @@ Figure DiagnosisMapFigure(const DiagnosisMap& map, const EffectRanking& ranking,
     p.series.push_back(s);
   }
   const auto mass = RegionProbability(ranking, {"attached_mass"});
+  std::map<std::string, std::pair<double, double>> at;  // node region -> (x, y)
+  for (const auto& n : map.nodes) at[n.region] = {n.x, n.y};
   static const char* kMassColors[] = {"#1f4e9c", "#4a90d9", "#9cc3ee"};
   for (int k = 0; k < 3; ++k) {
     PlotSeries s;
@@ -176,6 +178,19 @@ Figure DiagnosisMapFigure(const DiagnosisMap& map, const EffectRanking& ranking,
         continue;
       s.x.push_back(n.x);
       s.y.push_back(n.y);
+    }
+    // Masses between nodes ("n1-n7", position xi fitted): at their fitted point.
+    for (const RankedClass& c : ranking.classes) {
+      const std::size_t dash = c.region.find('-');
+      if (c.kind != "attached_mass" || dash == std::string::npos || c.theta.size() != 2 ||
+          c.probability < kBands[k].low || c.probability >= kBands[k].high)
+        continue;
+      const auto a = at.find("node " + c.region.substr(0, dash));
+      const auto b = at.find("node " + c.region.substr(dash + 1));
+      if (a == at.end() || b == at.end()) continue;  // an end on a rigid support
+      const double xi = c.theta[1];
+      s.x.push_back((1 - xi) * a->second.first + xi * b->second.first);
+      s.y.push_back((1 - xi) * a->second.second + xi * b->second.second);
     }
     if (s.x.empty()) continue;
     s.title = std::string("attached mass, ") + kBands[k].label;
