@@ -87,11 +87,21 @@ free = [i for (x, y), k in nodes.items() if y > 0 for i in (3 * k, 3 * k + 1, 3 
 w, V = sl.eigh(K[np.ix_(free, free)], M[np.ix_(free, free)])
 Vfull = np.zeros((n, len(w)))
 Vfull[free, :] = V
+def measured(seed, rows, count=4):
+    """The truth's lowest `count` modes with noise drawn from `seed`: frequencies
+    (0.2 %) and shapes at the truth DOFs `rows`, scaled to a largest entry of 1
+    (2 % of it)."""
+    rng = np.random.default_rng(seed)
+    f = np.sqrt(w[:count]) / (2 * np.pi) * (1 + 0.002 * rng.standard_normal(count))
+    shapes = []
+    for j in range(count):
+        v = Vfull[rows, j]
+        shapes.append(v / np.abs(v).max() + 0.02 * rng.standard_normal(len(rows)))
+    return f, shapes
+
+
 def write_nodes_example():
     """portal_frame.yaml: sensors on the model's nodes."""
-    rng = np.random.default_rng(7)
-    count = 4
-    f = np.sqrt(w[:count]) / (2 * np.pi) * (1 + 0.002 * rng.standard_normal(count))
     # Sensors: (truth DOF, model label). femup numbers the joints n1 (x 0, y H),
     # n2 (0, 2H), n3 (W, H), n4 (W, 2H), then each member's inner nodes member by
     # member (storey 1: col1, col2, beam1; storey 2: col1, col2, beam1), one inner
@@ -99,12 +109,7 @@ def write_nodes_example():
     # storey 2 -> n10.
     sensors = [((0, H), 0, "n1:ux"), ((0, 2 * H), 0, "n2:ux"), ((W, H), 0, "n3:ux"),
                ((W, 2 * H), 0, "n4:ux"), ((W / 2, H), 1, "n7:uy"), ((W / 2, 2 * H), 1, "n10:uy")]
-    rows = [3 * node(*xy) + comp for (xy, comp, _) in sensors]
-    shapes = []
-    for j in range(count):
-        v = Vfull[rows, j]
-        v = v / np.abs(v).max() + 0.02 * rng.standard_normal(len(rows))
-        shapes.append(v)
+    f, shapes = measured(7, [3 * node(*xy) + comp for (xy, comp, _) in sensors])
     labels = ", ".join('"%s"' % s[2] for s in sensors)
     text = f"""# A two-storey, one-bay steel frame with an unmodelled machine (examples/diagnosis/portal_frame.yaml).
 #
@@ -133,9 +138,6 @@ description: "Two-storey portal frame with an unmodelled 2 t machine"
 def write_points_example():
     """portal_frame_points.yaml: sensors between the model's nodes (points on
     the members, read through the elements' shape functions), none on a node."""
-    rng = np.random.default_rng(8)
-    count = 4
-    f = np.sqrt(w[:count]) / (2 * np.pi) * (1 + 0.002 * rng.standard_normal(count))
     # (point, truth component, direction): ux at three quarters of each column
     # of both storeys, uy at the quarter points of both beams. The model's nodes
     # are at the members' ends and middles; the truth has a node every 1/12.
@@ -143,12 +145,7 @@ def write_points_example():
                ((0, 1.75 * H), 0, "x"), ((W, 1.75 * H), 0, "x"),
                ((W / 4, H), 1, "y"), ((3 * W / 4, H), 1, "y"),
                ((W / 4, 2 * H), 1, "y"), ((3 * W / 4, 2 * H), 1, "y")]
-    rows = [3 * node(*xy) + comp for (xy, comp, _) in sensors]
-    shapes = []
-    for j in range(count):
-        v = Vfull[rows, j]
-        v = v / np.abs(v).max() + 0.02 * rng.standard_normal(len(rows))
-        shapes.append(v)
+    f, shapes = measured(8, [3 * node(*xy) + comp for (xy, comp, _) in sensors])
     points = ", ".join("{at: [%g, %g], direction: %s}" % (xy[0], xy[1], d)
                        for (xy, _, d) in sensors)
     text = f"""# The portal frame of portal_frame.yaml with its sensors between the model's
