@@ -261,5 +261,50 @@ TEST(Frame2dElement, DegenerateGeometryAndMassPerLengthThrow) {
   EXPECT_THROW(Frame2dTransverseMass(nan, 0, 0, 1, 0), InputError);
 }
 
+// The sheared element through frame3d.h, checked against the 2D element (no
+// shear) and against the Timoshenko cantilever's tip deflection under a tip
+// load normal to it, P L^3 / (3 E I) + P L / (kappa A G), which this element
+// reproduces exactly (its shape functions solve the static beam equations).
+TEST(Frame2dShear, WithoutShearAreaEqualsTheEulerBernoulliElement) {
+  for (const Segment& g : TestSegments()) {
+    const Matrix6 k = Frame2dStiffness(PaperSection(), g.x1, g.y1, g.x2, g.y2);
+    const Matrix6 m = Frame2dConsistentMass(PaperSection(), g.x1, g.y1, g.x2, g.y2);
+    const Matrix6 k3 = Frame2dStiffness(PaperSection(), BeamShear{}, g.x1, g.y1, g.x2, g.y2);
+    const Matrix6 m3 =
+        Frame2dConsistentMass(PaperSection(), BeamShear{}, g.x1, g.y1, g.x2, g.y2);
+    EXPECT_LE((k - k3).cwiseAbs().maxCoeff(), 1e-12 * k.cwiseAbs().maxCoeff());
+    EXPECT_LE((m - m3).cwiseAbs().maxCoeff(), 1e-12 * m.cwiseAbs().maxCoeff());
+  }
+}
+
+TEST(Frame2dShear, CantileverTipDeflectionHasTheShearTerm) {
+  const BeamSection s{210e9, 0.01, 2e-5, 7850};
+  const BeamShear shear{0.45 * s.A, 0.3};
+  const double g_mod = s.E / (2 * 1.3), p = 1e4;
+  for (const Segment& g : TestSegments()) {
+    const double l = Length(g);
+    const Matrix6 k = Frame2dStiffness(s, shear, g.x1, g.y1, g.x2, g.y2);
+    // End 1 clamped; a load P normal to the member at end 2.
+    const Eigen::Vector2d e((g.x2 - g.x1) / l, (g.y2 - g.y1) / l);
+    const Eigen::Vector3d f(-e.y() * p, e.x() * p, 0.0);
+    const Eigen::Vector3d u = k.bottomRightCorner<3, 3>().ldlt().solve(f);
+    const double deflection = u.head<2>().dot(Eigen::Vector2d(-e.y(), e.x()));
+    const double expected = p * l * l * l / (3 * s.E * s.I) + p * l / (shear.area * g_mod);
+    EXPECT_NEAR(deflection, expected, 1e-9 * expected) << l;
+    EXPECT_NEAR(u.head<2>().dot(e), 0.0, 1e-9 * expected);  // no axial motion
+    // Stiffer without shear: the Euler-Bernoulli element gives the bending term.
+    const Matrix6 k0 = Frame2dStiffness(s, g.x1, g.y1, g.x2, g.y2);
+    const Eigen::Vector3d u0 = k0.bottomRightCorner<3, 3>().ldlt().solve(f);
+    EXPECT_NEAR(u0.head<2>().norm(), p * l * l * l / (3 * s.E * s.I), 1e-9 * expected);
+  }
+}
+
+TEST(Frame2dShear, RefusesANegativeShearArea) {
+  EXPECT_THROW(Frame2dStiffness(PaperSection(), BeamShear{-1.0, 0.3}, 0, 0, 1, 0),
+               InputError);
+  EXPECT_THROW(Frame2dConsistentMass(PaperSection(), BeamShear{0.01, 0.7}, 0, 0, 1, 0),
+               InputError);
+}
+
 }  // namespace
 }  // namespace femup

@@ -190,6 +190,80 @@ TEST(PlaneFrameStructure, BaseSpringsFromAStudyFileAndTheirErrors) {
   }
 }
 
+// With shear deformation, a fixed-guided column's sway stiffness is
+// 12 E I / (h^3 (1 + phi)), phi = 12 E I / (kappa A G h^2): the portal's sway
+// frequency with a column shear area small enough that phi is about 2.8.
+TEST(PlaneFrameStructure, TimoshenkoPortalSwayHasTheShearTerm) {
+  PlaneFrameSpec spec = Portal();
+  spec.theory = BeamTheory::kTimoshenko;
+  spec.column_shear_area = 1e-4;
+  const Structure s = BuildPlaneFrameStructure(spec);
+  EXPECT_TRUE(s.form_variants.empty());  // nothing richer to allow for
+  EXPECT_NE(s.description.find("Timoshenko"), std::string::npos);
+  const Modes modes = SolveModes(s.stiffness, s.mass);
+  const double beam_mass = spec.beam.rho * spec.beam.A * spec.bay_width;
+  const double ei = spec.column.E * spec.column.I, h = spec.storey_height;
+  const double g = spec.column.E / 2.6;
+  const double phi = 12 * ei / (spec.column_shear_area * g * h * h);
+  ASSERT_GT(phi, 2.0);
+  const double exact = 24 * ei / (std::pow(h, 3) * (1 + phi)) / beam_mass;
+  EXPECT_NEAR(modes.eigenvalues[0] / exact, 1.0, 2e-3);
+}
+
+// An Euler-Bernoulli frame carries its shear-deformable self as a form
+// variant: the matrices of the same frame built with Timoshenko members of
+// half the area as shear area, base springs included.
+TEST(PlaneFrameStructure, FormVariantIsTheFrameWithShearDeformation) {
+  PlaneFrameSpec spec;
+  spec.storeys = 2;
+  spec.bays = 2;
+  spec.elements_per_member = 2;
+  spec.base.rotation = 5e7;
+  const Structure s = BuildPlaneFrameStructure(spec);
+  ASSERT_EQ(s.form_variants.size(), 1u);
+  spec.theory = BeamTheory::kTimoshenko;
+  spec.column_shear_area = 0.5 * spec.column.A;
+  spec.beam_shear_area = 0.5 * spec.beam.A;
+  const Structure t = BuildPlaneFrameStructure(spec);
+  const FormVariant& v = s.form_variants[0];
+  const double k_scale = Eigen::MatrixXd(t.stiffness).cwiseAbs().maxCoeff();
+  const double m_scale = Eigen::MatrixXd(t.mass).cwiseAbs().maxCoeff();
+  EXPECT_LT((Eigen::MatrixXd(v.stiffness - t.stiffness)).cwiseAbs().maxCoeff(),
+            1e-12 * k_scale);
+  EXPECT_LT((Eigen::MatrixXd(v.mass - t.mass)).cwiseAbs().maxCoeff(), 1e-12 * m_scale);
+  // Softer: every one of the lowest modes is lower.
+  const Modes eb = SolveModes(s.stiffness, s.mass);
+  const Modes sheared = SolveModes(v.stiffness, v.mass);
+  for (int k = 0; k < 4; ++k) EXPECT_LT(sheared.eigenvalues[k], eb.eigenvalues[k]) << k;
+}
+
+TEST(PlaneFrameStructure, TheoryAndShearAreasFromAStudyFileAndTheirErrors) {
+  const std::string head =
+      "name: portal\nmodel:\n  type: plane_frame\n  storeys: 1\n  bays: 1\n"
+      "  storey_height: 3\n  bay_width: 5\n"
+      "  beam: {E: 210e9, A: 0.01, I: 2e-4, rho: 7850}\n";
+  const Study study = ParseStudyModel(
+      head + "  theory: timoshenko\n  column: {E: 210e9, A: 0.01, I: 8e-5, rho: 7850, "
+             "shear_area: 0.004}\n",
+      "portal.yaml");
+  EXPECT_TRUE(study.structure.form_variants.empty());
+  for (const auto& [bad, field] :
+       {std::pair<std::string, std::string>{
+            "  theory: bernoulli\n  column: {E: 210e9, A: 0.01, I: 8e-5, rho: 7850}\n",
+            "model.theory"},
+        {"  column: {E: 210e9, A: 0.01, I: 8e-5, rho: 7850, shear_area: 0.02}\n",
+         "model.column.shear_area"},
+        {"  column: {E: 210e9, A: 0.01, I: 8e-5, rho: 7850, shear_area: -1}\n",
+         "model.column.shear_area"}}) {
+    try {
+      ParseStudyModel(head + bad, "portal.yaml");
+      ADD_FAILURE() << "accepted " << bad;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(PlaneFrameStructure, RefusesAnInvalidSpecNamingTheField) {
   PlaneFrameSpec spec = Portal();
   spec.bays = 0;
@@ -206,6 +280,11 @@ TEST(PlaneFrameStructure, RefusesAnInvalidSpecNamingTheField) {
       std::string::npos);
   spec.base.rotation = 1e7;
   EXPECT_THROW(BuildPlaneFrame(spec), InputError);  // the benchmark frame is clamped
+  spec = Portal();
+  spec.beam_shear_area = -1;
+  EXPECT_NE(spec.Validate().ToString().find("beam.shear_area: must be >= 0"),
+            std::string::npos)
+      << spec.Validate().ToString();
 }
 
 }  // namespace

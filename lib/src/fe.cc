@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "femup/errors.h"
+#include "femup/frame3d.h"
 
 namespace femup {
 namespace {
@@ -58,7 +59,56 @@ void AddTransverseConsistent(double mass_per_length, double length, Matrix6* m) 
   }
 }
 
+// The 3D section of a member in the x-y plane bending about z: the
+// out-of-plane properties (Iy, J, shear along z) do not enter the in-plane
+// part, and are given only so that the section is valid.
+FrameSection3d InPlaneSection(const BeamSection& s, const BeamShear& shear) {
+  CheckSection(s);
+  if (!(shear.area >= 0) || !std::isfinite(shear.area)) {
+    throw InputError("beam section", "the shear area must be >= 0 and finite");
+  }
+  FrameSection3d t;
+  t.E = s.E;
+  t.nu = shear.nu;
+  t.A = s.A;
+  t.Iy = t.Iz = t.J = s.I;
+  t.rho = s.rho;
+  t.shear_area_y = t.shear_area_z = shear.area;
+  return t;
+}
+
+BeamTheory Theory(const BeamShear& shear) {
+  return shear.area > 0 ? BeamTheory::kTimoshenko : BeamTheory::kEulerBernoulli;
+}
+
+// Rows and columns ux, uy, rz of both ends of a 12 x 12 frame3d.h matrix.
+Matrix6 InPlane(const Matrix12& g) {
+  constexpr int kDofs[6] = {0, 1, 5, 6, 7, 11};
+  Matrix6 out;
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j) out(i, j) = g(kDofs[i], kDofs[j]);
+  return out;
+}
+
+// Local y in the plane, normal to the member: local z is then global z.
+Eigen::Vector3d InPlaneNormal(double x1, double y1, double x2, double y2) {
+  return {-(y2 - y1), x2 - x1, 0.0};
+}
+
 }  // namespace
+
+Matrix6 Frame2dStiffness(const BeamSection& s, const BeamShear& shear, double x1, double y1,
+                         double x2, double y2) {
+  return InPlane(Frame3dStiffness(InPlaneSection(s, shear), {x1, y1, 0.0}, {x2, y2, 0.0},
+                                  InPlaneNormal(x1, y1, x2, y2), Theory(shear)));
+}
+
+Matrix6 Frame2dConsistentMass(const BeamSection& s, const BeamShear& shear, double x1,
+                              double y1, double x2, double y2) {
+  return InPlane(Frame3dConsistentMass(InPlaneSection(s, shear), {x1, y1, 0.0},
+                                       {x2, y2, 0.0}, InPlaneNormal(x1, y1, x2, y2),
+                                       Theory(shear)));
+}
 
 Matrix6 Frame2dStiffness(const BeamSection& s, double x1, double y1, double x2,
                          double y2) {

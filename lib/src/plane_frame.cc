@@ -126,6 +126,15 @@ Invalid PlaneFrameSpec::Validate() const {
       at(std::string("base.") + name)
           << "a spring stiffness must be >= 0 and finite, got " << k;
   }
+  for (const auto& [name, a] :
+       {std::pair<const char*, double>{"column.shear_area", column_shear_area},
+        {"beam.shear_area", beam_shear_area}}) {
+    if (field.empty() && !(a >= 0 && std::isfinite(a)))
+      at(name) << "must be >= 0 and finite (0: half the area), got " << a;
+  }
+  if (field.empty() && theory != BeamTheory::kEulerBernoulli &&
+      theory != BeamTheory::kTimoshenko)
+    at("theory") << "must be euler_bernoulli or timoshenko";
   if (!field.empty()) return {field, msg.str()};
   Invalid bad = CheckSection(column, "column");
   if (bad.ok()) bad = CheckSection(beam, "beam");
@@ -138,6 +147,11 @@ ParametrisedModel BuildPlaneFrame(const PlaneFrameSpec& spec) {
     throw InputError("model.base",
                      "base springs are a plane_frame Structure's (the study model); "
                      "the benchmark frame is clamped");
+  }
+  if (spec.theory != BeamTheory::kEulerBernoulli) {
+    throw InputError("model.theory",
+                     "Timoshenko members are a plane_frame Structure's (the study model); "
+                     "the benchmark frame is Euler-Bernoulli");
   }
   const int lines = spec.bays + 1;
   const FrameLayout layout = LayOut(spec);
@@ -268,9 +282,20 @@ Structure BuildPlaneFrameStructure(const PlaneFrameSpec& spec) {
     }
   }
   const int n = static_cast<int>(s.dof_labels.size());
+  // An Euler-Bernoulli frame's form variant: the same members with shear
+  // deformation (its global K and M, the base springs included).
+  const bool timoshenko = spec.theory == BeamTheory::kTimoshenko;
+  Triplets kv = kt, mv;
+  auto shear = [&](bool column) {
+    const BeamSection& sec = column ? spec.column : spec.beam;
+    const double stated = column ? spec.column_shear_area : spec.beam_shear_area;
+    return BeamShear{stated > 0 ? stated : 0.5 * sec.A, 0.3};
+  };
   for (std::size_t m = 0; m < members.size(); ++m) {
     const FrameMember& mb = members[m];
     const BeamSection& sec = mb.column ? spec.column : spec.beam;
+    const BeamShear sheared = shear(mb.column);
+    const BeamShear model_shear = timoshenko ? sheared : BeamShear{};
     Triplets ke, me, we;
     for (std::size_t k = m * per_member; k < (m + 1) * per_member; ++k) {
       const FramePiece& p = layout.pieces[k];
@@ -285,8 +310,15 @@ Structure BuildPlaneFrameStructure(const PlaneFrameSpec& spec) {
       s.segments.push_back({p.a < 0 ? base_node[line] : p.a, p.b,
                             Eigen::Vector3d(p.xa, p.ya, 0.0),
                             Eigen::Vector3d(p.xb, p.yb, 0.0), static_cast<int>(m)});
-      Scatter(Frame2dStiffness(sec, p.xa, p.ya, p.xb, p.yb), d, &ke);
-      Scatter(Frame2dConsistentMass(sec, p.xa, p.ya, p.xb, p.yb), d, &me);
+      if (timoshenko) {
+        Scatter(Frame2dStiffness(sec, model_shear, p.xa, p.ya, p.xb, p.yb), d, &ke);
+        Scatter(Frame2dConsistentMass(sec, model_shear, p.xa, p.ya, p.xb, p.yb), d, &me);
+      } else {
+        Scatter(Frame2dStiffness(sec, p.xa, p.ya, p.xb, p.yb), d, &ke);
+        Scatter(Frame2dConsistentMass(sec, p.xa, p.ya, p.xb, p.yb), d, &me);
+        Scatter(Frame2dStiffness(sec, sheared, p.xa, p.ya, p.xb, p.yb), d, &kv);
+        Scatter(Frame2dConsistentMass(sec, sheared, p.xa, p.ya, p.xb, p.yb), d, &mv);
+      }
       if (mb.column && mb.storey <= spec.wet_storeys) {
         Scatter(Frame2dTransverseMass(sec.rho * sec.A, p.xa, p.ya, p.xb, p.yb), d, &we);
       }
@@ -308,11 +340,18 @@ Structure BuildPlaneFrameStructure(const PlaneFrameSpec& spec) {
   }
   s.stiffness = FromTriplets(n, kt);
   s.mass = FromTriplets(n, mt);
+  if (!timoshenko) {
+    std::ostringstream what;
+    what << "shear deformation (Timoshenko members; shear areas " << shear(true).area
+         << " m^2 in the columns, " << shear(false).area << " m^2 in the beams)";
+    s.form_variants.push_back({what.str(), FromTriplets(n, kv), FromTriplets(n, mv)});
+  }
   s.length = spec.storeys * spec.storey_height;
   std::ostringstream desc;
   desc << "2D plane frame, " << spec.storeys << " storeys x " << spec.bays << " bays ("
        << spec.storey_height << " m x " << spec.bay_width << " m), " << members.size()
-       << " members of " << per_member << " elements, columns ";
+       << " members of " << per_member << " "
+       << (timoshenko ? "Timoshenko" : "Euler-Bernoulli") << " elements, columns ";
   if (spec.base.rigid()) {
     desc << "clamped";
   } else {

@@ -412,6 +412,10 @@ void BindDiagnosis(py::module_& m) {
                (c.region.empty() ? "" : " at " + c.region) + ": " +
                std::to_string(c.probability) + ">";
       });
+  py::class_<femup::FormErrorAllowance>(m, "FormErrorAllowance")
+      .def_readonly("name", &femup::FormErrorAllowance::name)
+      .def_readonly("max_frequency_change", &femup::FormErrorAllowance::max_frequency_change)
+      .def_readonly("noise_units", &femup::FormErrorAllowance::noise_units);
   py::class_<femup::EffectRanking>(m, "EffectRanking")
       .def_readonly("classes", &femup::EffectRanking::classes)
       .def_readonly("kind_probabilities", &femup::EffectRanking::kind_probabilities)
@@ -419,7 +423,8 @@ void BindDiagnosis(py::module_& m) {
       .def_readonly("shape_temperature", &femup::EffectRanking::shape_temperature)
       .def_readonly("best_chi2_p_value", &femup::EffectRanking::best_chi2_p_value)
       .def_readonly("num_residuals", &femup::EffectRanking::num_residuals)
-      .def_readonly("skipped", &femup::EffectRanking::skipped);
+      .def_readonly("skipped", &femup::EffectRanking::skipped)
+      .def_readonly("form_errors", &femup::EffectRanking::form_errors);
   py::class_<femup::StructureDiagnosisResult>(
       m, "StructureDiagnosisResult", "What `femup diagnose` computes for other models.")
       .def_readonly("study_name", &femup::StructureDiagnosisResult::study_name)

@@ -1,5 +1,6 @@
 #include "femup/studies/effect_ranking.h"
 
+#include <Eigen/Cholesky>
 #include <Eigen/QR>
 #include <Eigen/SVD>
 #include <algorithm>
@@ -137,12 +138,13 @@ struct Nominal {
   std::vector<char> is_frequency;
 };
 
-Nominal NominalResidual(const std::shared_ptr<const Structure>& structure,
+Nominal NominalResidual(const SparseMatrix& stiffness, const SparseMatrix& mass,
+                        const std::vector<std::string>& dof_labels,
                         const std::vector<ModalData>& states,
-                        const EigenSensitivityOptions& options) {
+                        const EigenSensitivityOptions& options, const std::string& what) {
   // One unknown whose basis is zero: the nominal matrices whatever its value
   // (the engine needs an unknown; any structure has this one).
-  ParametrisedModel model(structure->stiffness, structure->mass, structure->dof_labels);
+  ParametrisedModel model(stiffness, mass, dof_labels);
   Parameter unused;
   unused.name = "nominal";
   unused.kind = ParameterKind::kStiffness;
@@ -154,8 +156,7 @@ Nominal NominalResidual(const std::shared_ptr<const Structure>& structure,
   Eigen::VectorXd r;
   std::string why;
   if (!problem.evaluate(Eigen::VectorXd::Zero(1), &r, nullptr, &why)) {
-    throw InputError("measurements",
-                     "the nominal model cannot be compared with the data: " + why);
+    throw InputError("measurements", what + " cannot be compared with the data: " + why);
   }
   Nominal out{r, {}};
   for (const std::string& label : problem.residual_labels) {
@@ -165,6 +166,15 @@ Nominal NominalResidual(const std::shared_ptr<const Structure>& structure,
         label.compare(label.size() - suffix.size(), suffix.size(), suffix) == 0);
   }
   return out;
+}
+
+// The frequency rows' covariance I + sum_j u_j u_j' (u_j: form variant j's
+// change of the nominal frequency residuals, in noise units), as its lower
+// Cholesky factor; the identity when there is no variant.
+Eigen::MatrixXd FormErrorFactor(const std::vector<Eigen::VectorXd>& directions, int rows) {
+  Eigen::MatrixXd cov = Eigen::MatrixXd::Identity(rows, rows);
+  for (const Eigen::VectorXd& u : directions) cov += u * u.transpose();
+  return cov.llt().matrixL();
 }
 
 }  // namespace
@@ -278,7 +288,9 @@ EffectRanking RankModelEffects(const Structure& structure_in,
   // "none", then every instance of every family.
   RankedClass none;
   none.kind = "none";
-  const Nominal nominal_fit = NominalResidual(structure, states, fit);
+  const Nominal nominal_fit =
+      NominalResidual(structure->stiffness, structure->mass, structure->dof_labels, states,
+                      fit, "the nominal model");
   const Eigen::VectorXd& nominal = nominal_fit.residual;
   const std::vector<char>& is_frequency = nominal_fit.is_frequency;
   out.num_residuals = static_cast<int>(nominal.size());
@@ -339,12 +351,55 @@ EffectRanking RankModelEffects(const Structure& structure_in,
     }
   }
 
+  // The model's own form error (Structure::form_variants): each variant moves
+  // the nominal frequencies by u_j (in noise units); the frequencies' noise
+  // becomes I + sum_j u_j u_j', one standard deviation of model-form error
+  // along each variant's change, and every class's frequency residuals and
+  // Jacobian rows are whitened by it. A change the model's own formulation can
+  // make (all modes softer alike, for shear deformation) then costs little,
+  // and no family is named for it alone.
+  std::vector<int> frequency_rows;
+  for (int r = 0; r < out.num_residuals; ++r)
+    if (is_frequency[r]) frequency_rows.push_back(r);
+  if (options.formulation_error && !structure->form_variants.empty() &&
+      !frequency_rows.empty()) {
+    std::vector<Eigen::VectorXd> directions;
+    for (const FormVariant& v : structure->form_variants) {
+      const Nominal varied = NominalResidual(v.stiffness, v.mass, structure->dof_labels,
+                                             states, fit, "the model's form variant");
+      Eigen::VectorXd u(frequency_rows.size());
+      for (std::size_t k = 0; k < frequency_rows.size(); ++k)
+        u[k] = varied.residual[frequency_rows[k]] - nominal[frequency_rows[k]];
+      // Relative frequency change: a lambda row is in units of 2 sigma_f.
+      out.form_errors.push_back(
+          {v.name, u.cwiseAbs().maxCoeff() * options.frequency_sigma, u.norm()});
+      directions.push_back(std::move(u));
+    }
+    const Eigen::MatrixXd factor =
+        FormErrorFactor(directions, static_cast<int>(frequency_rows.size()));
+    auto whiten = [&](Eigen::VectorXd* r, Eigen::MatrixXd* j) {
+      Eigen::VectorXd rf(frequency_rows.size());
+      Eigen::MatrixXd jf(frequency_rows.size(), j->cols());
+      for (std::size_t k = 0; k < frequency_rows.size(); ++k) {
+        rf[k] = (*r)[frequency_rows[k]];
+        jf.row(k) = j->row(frequency_rows[k]);
+      }
+      rf = factor.triangularView<Eigen::Lower>().solve(rf);
+      jf = factor.triangularView<Eigen::Lower>().solve(jf);
+      for (std::size_t k = 0; k < frequency_rows.size(); ++k) {
+        (*r)[frequency_rows[k]] = rf[k];
+        j->row(frequency_rows[k]) = jf.row(k);
+      }
+    };
+    for (std::size_t i = 0; i < classes.size(); ++i) whiten(&residuals[i], &jacobians[i]);
+  }
+
   // Noise temperatures from the best fit, one for the frequencies and one for
   // the shapes: a model's form error shows in its frequencies first, and one
   // temperature for both would be diluted by shape residuals that fit.
   std::size_t best = 0;
   for (std::size_t i = 1; i < classes.size(); ++i)
-    if (classes[i].chi2 < classes[best].chi2) best = i;
+    if (residuals[i].squaredNorm() < residuals[best].squaredNorm()) best = i;
   int num_frequencies = 0;
   double chi2_f = 0, chi2_s = 0;
   for (int r = 0; r < out.num_residuals; ++r) {
@@ -360,7 +415,7 @@ EffectRanking RankModelEffects(const Structure& structure_in,
   const int dof_f = std::max(1, num_frequencies - num_params);
   const int dof_s = std::max(1, out.num_residuals - num_frequencies - shape_modes);
   const int dof = std::max(1, out.num_residuals - shape_modes - num_params);
-  out.best_chi2_p_value = boost::math::gamma_q(0.5 * dof, 0.5 * classes[best].chi2);
+  out.best_chi2_p_value = boost::math::gamma_q(0.5 * dof, 0.5 * residuals[best].squaredNorm());
   const double p_f = boost::math::gamma_q(0.5 * dof_f, 0.5 * chi2_f);
   const double p_s = out.num_residuals > num_frequencies
                          ? boost::math::gamma_q(0.5 * dof_s, 0.5 * chi2_s)

@@ -47,6 +47,7 @@ StructureDiagnosisResult RunStructureDiagnosis(const Study& study) {
   options.use_shapes = spec.use_shapes;
   options.solver = spec.solver;
   options.priors = spec.priors;
+  options.formulation_error = spec.formulation_error;
   r.priors = spec.priors;
   // A named family that does not apply is the study's error, before any fit.
   for (const std::string& kind : options.kinds) {
@@ -104,6 +105,11 @@ void WriteStructureDiagnosisOutputs(const StructureDiagnosisResult& r, bool plot
   j["shape_temperature"] = k.shape_temperature;
   j["best_chi2_p_value"] = k.best_chi2_p_value;
   j["residuals"] = k.num_residuals;
+  j["form_errors"] = nlohmann::json::array();
+  for (const FormErrorAllowance& e : k.form_errors)
+    j["form_errors"].push_back({{"variant", e.name},
+                                {"max_frequency_change", e.max_frequency_change},
+                                {"noise_units", e.noise_units}});
   j["kinds"] = nlohmann::json::array();
   for (const auto& [kind, p] : k.kind_probabilities)
     j["kinds"].push_back({{"kind", kind}, {"probability", p}});
@@ -173,6 +179,12 @@ std::string StructureDiagnosisReport(const StructureDiagnosisResult& r) {
       o << " together P " << std::fixed << std::setprecision(2) << top.group_probability
         << "\n";
     }
+  }
+  for (const FormErrorAllowance& e : k.form_errors) {
+    o << "model form error allowed for: " << e.name << " changes the measured modes' "
+      << "frequencies by up to " << std::fixed << std::setprecision(2)
+      << 100 * e.max_frequency_change << " % (" << std::setprecision(1) << e.noise_units
+      << " noise units)\n";
   }
   if (k.temperature > 1 || k.shape_temperature > 1) {
     o << "note: no class fits within the stated noise (best p " << std::scientific

@@ -179,7 +179,7 @@ void ReadStatedPriors(const Field& f, const Study& study, DiagnosisSpec* d) {
 
 DiagnosisSpec ReadDiagnosis(const Field& f, const Study& study) {
   f.ExpectKeys({"noise", "candidates", "max_effects", "held_out", "use_shapes",
-                "mesh_error", "form_error", "localise", "solver", "confidence",
+                "mesh_error", "formulation_error", "form_error", "localise", "solver", "confidence",
                 "evidence", "evidence_samples", "priors", "weights"});
   DiagnosisSpec d;
   if (f.Has("noise")) {
@@ -232,6 +232,7 @@ DiagnosisSpec ReadDiagnosis(const Field& f, const Study& study) {
   }
   if (f.Has("use_shapes")) d.use_shapes = f["use_shapes"].Bool();
   if (f.Has("mesh_error")) d.mesh_error = f["mesh_error"].Bool();
+  if (f.Has("formulation_error")) d.formulation_error = f["formulation_error"].Bool();
   if (f.Has("form_error")) {
     d.form_error = f["form_error"].Num();
     if (!(d.form_error >= 0 && d.form_error < 1))

@@ -232,7 +232,7 @@ FrameSection3d ReadTube(const Field& f, const FrameSection3d& defaults) {
 // A 2D plane frame (portal, multi-bay, multi-storey) as a Structure of members.
 Structure ReadPlaneFrame(const Field& m) {
   m.ExpectKeys({"type", "storeys", "bays", "storey_height", "bay_width",
-                "elements_per_member", "wet_storeys", "column", "beam", "base"});
+                "elements_per_member", "wet_storeys", "column", "beam", "base", "theory"});
   PlaneFrameSpec spec;
   spec.storeys = m["storeys"].Int();
   spec.bays = m["bays"].Int();
@@ -243,11 +243,21 @@ Structure ReadPlaneFrame(const Field& m) {
   if (m.Has("wet_storeys")) spec.wet_storeys = m["wet_storeys"].Int();
   for (const char* which : {"column", "beam"}) {
     const Field s = m[which];
-    s.ExpectKeys({"E", "A", "I", "rho"});
+    s.ExpectKeys({"E", "A", "I", "rho", "shear_area"});
     const BeamSection section{s["E"].Positive(), s["A"].Positive(), s["I"].Positive(),
                               s["rho"].Positive()};
-    (std::string(which) == "column" ? spec.column : spec.beam) = section;
+    const bool column = std::string(which) == "column";
+    (column ? spec.column : spec.beam) = section;
+    if (s.Has("shear_area")) {
+      const double a = s["shear_area"].Positive();
+      if (a > section.A)
+        s["shear_area"].Fail("kappa A cannot exceed the area A (" +
+                             std::to_string(section.A) + " m^2)");
+      (column ? spec.column_shear_area : spec.beam_shear_area) = a;
+    }
   }
+  if (m.Has("theory") && !BeamTheoryFromString(m["theory"].Str(), &spec.theory))
+    m["theory"].Fail("expected euler_bernoulli or timoshenko");
   if (m.Has("base")) {
     // Springs at every column base; a direction not given stays rigid.
     const Field b = m["base"];

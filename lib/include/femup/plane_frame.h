@@ -18,6 +18,7 @@
 #pragma once
 
 #include "femup/fe.h"
+#include "femup/frame3d.h"
 #include "femup/invalid.h"
 #include "femup/model.h"
 #include "femup/structure.h"
@@ -46,6 +47,16 @@ struct PlaneFrameSpec {
   BeamSection column{210e9, 0.02, 4e-4, 7850};
   BeamSection beam{210e9, 0.012, 2.5e-4, 7850};
   PlaneFrameBase base;  // BuildPlaneFrameStructure only; BuildPlaneFrame: rigid
+  // BuildPlaneFrameStructure only: members without shear deformation
+  // (Euler-Bernoulli, the default) or with it (Timoshenko, fe.h's BeamShear,
+  // Poisson's ratio 0.3).
+  BeamTheory theory = BeamTheory::kEulerBernoulli;
+  // Shear areas kappa A (m^2) of the columns and the beams; 0: half the area, a
+  // thin-walled section's (rolled I and H sections have 0.3-0.6 A, solid
+  // rectangles 5/6 A). Used by a Timoshenko frame and, for an Euler-Bernoulli
+  // one, by its form variant (Structure::form_variants).
+  double column_shear_area = 0;
+  double beam_shear_area = 0;
   // Ok when valid; otherwise the field and what is wrong.
   Invalid Validate() const;
 };
@@ -64,7 +75,9 @@ ParametrisedModel BuildPlaneFrame(const PlaneFrameSpec& spec);
 // coordinates (x along the bays, y up). With base springs, each column base is
 // a node "b<line>" (after the others) with a DOF per sprung direction, the
 // spring in K, and listed in Structure::supports ("base rotation at b1", ...);
-// the description says which. blocks_per_storey is not used. Throws
+// the description says which. An Euler-Bernoulli frame carries, as
+// Structure::form_variants, the same frame with shear deformation (the form
+// error the diagnosis allows for). blocks_per_storey is not used. Throws
 // InputError naming the field for an invalid spec.
 Structure BuildPlaneFrameStructure(const PlaneFrameSpec& spec);
 

@@ -47,6 +47,16 @@ struct SupportSpring {
   std::string unit;      // of the stiffness: "N/m" or "N m/rad"
 };
 
+// The same model in a richer formulation that its builder can make and the
+// model leaves out (a frame of Euler-Bernoulli members with shear deformation),
+// on the same DOFs: the difference is a model-form error the diagnosis allows
+// for (effect_ranking.h).
+struct FormVariant {
+  std::string name;  // what it adds, for reports
+  SparseMatrix stiffness;
+  SparseMatrix mass;
+};
+
 struct Structure {
   // What built it: "chain", "cantilever", "space_frame", "matrix_market", ...;
   // says which unmodelled effects apply (model_effects.h).
@@ -76,6 +86,8 @@ struct Structure {
   // mass; empty: every node with translational DOFs. Large models name a few
   // (a space frame: the joints of its top level), not thousands of fits.
   std::vector<std::string> attached_mass_nodes;
+  // Richer formulations of this model (see FormVariant); empty: none known.
+  std::vector<FormVariant> form_variants;
   // Index of the element with the given id, or -1.
   int FindElement(int id) const;
 };

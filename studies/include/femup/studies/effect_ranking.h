@@ -22,6 +22,17 @@
 // a family that absorbs the form error (an E scaling) would still be named
 // with confidence (docs/diagnosis.md, "Blind suites on other structures").
 //
+// The model's own form error: where the model's builder knows a richer
+// formulation of it (Structure::form_variants: a frame of Euler-Bernoulli
+// members with shear deformation), the change that formulation makes to the
+// nominal frequencies, u (in noise units), is allowed for as correlated noise:
+// the frequencies' covariance is I + u u' (one standard deviation of form
+// error along u, every variant alike), and every class is judged with it. An
+// effect that only mimics the model's own form error (an E scaling making
+// every mode softer as shear deformation does) then earns little evidence over
+// "none", and a real effect larger than the form error is still found. This
+// comes before the temperatures, which then judge what is left.
+//
 // Observational equivalence: two classes whose fits predict the data alike
 // (their whitened residuals differ by at most 1 in squared norm: less than one
 // standard deviation in all) and whose Jacobians at the fits span the same
@@ -63,6 +74,9 @@ struct EffectRankingOptions {
   // 10 of it) on the full model, from where the search ended: what is reported
   // is always the full model's fit.
   int ritz_min_dofs = 3000;
+  // Allow for the model's form error where the structure carries form
+  // variants (above); false: judge the classes on the stated noise alone.
+  bool formulation_error = true;
   // What the study states about the families (empty: their defaults). Each
   // family it names must be among those tried.
   StatedPriors priors;
@@ -88,6 +102,13 @@ struct RankedClass {
   std::vector<EffectMagnitude> magnitudes;
 };
 
+// A form variant's size on these data (see above).
+struct FormErrorAllowance {
+  std::string name;                 // FormVariant::name
+  double max_frequency_change = 0;  // relative, largest over the measured modes
+  double noise_units = 0;           // norm of its change of the frequency residuals
+};
+
 struct EffectRanking {
   std::vector<RankedClass> classes;                                // most probable first
   std::vector<std::pair<std::string, double>> kind_probabilities;  // most probable first
@@ -96,6 +117,7 @@ struct EffectRanking {
   double best_chi2_p_value = 1;
   int num_residuals = 0;
   std::vector<std::string> skipped;  // "<kind>: why it does not apply"
+  std::vector<FormErrorAllowance> form_errors;  // allowed for, one per variant
 };
 
 // Throws InputError for invalid options, an unknown family, a named family that

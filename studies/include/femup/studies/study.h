@@ -146,6 +146,10 @@ struct DiagnosisSpec {
   std::vector<std::pair<std::string, int>> held_out_modes;
   bool use_shapes = true;
   bool mesh_error = true;  // add the discretisation error to the noise
+  // Allow for the model's own form error where its builder knows a richer
+  // formulation (a plane frame's members with shear deformation;
+  // effect_ranking.h). Not used by the cantilever's own pipeline.
+  bool formulation_error = true;
   // The candidate families' form error, as a fraction of the nominal model's
   // misfit per frequency and shape entry, added to the noise in quadrature: a
   // family of a few parameters describes a real effect only to some fraction
