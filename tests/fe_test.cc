@@ -269,7 +269,8 @@ TEST(Frame2dShear, WithoutShearAreaEqualsTheEulerBernoulliElement) {
   for (const Segment& g : TestSegments()) {
     const Matrix6 k = Frame2dStiffness(PaperSection(), g.x1, g.y1, g.x2, g.y2);
     const Matrix6 m = Frame2dConsistentMass(PaperSection(), g.x1, g.y1, g.x2, g.y2);
-    const Matrix6 k3 = Frame2dStiffness(PaperSection(), BeamShear{}, g.x1, g.y1, g.x2, g.y2);
+    const Matrix6 k3 =
+        Frame2dStiffness(PaperSection(), BeamShear{}, g.x1, g.y1, g.x2, g.y2);
     const Matrix6 m3 =
         Frame2dConsistentMass(PaperSection(), BeamShear{}, g.x1, g.y1, g.x2, g.y2);
     EXPECT_LE((k - k3).cwiseAbs().maxCoeff(), 1e-12 * k.cwiseAbs().maxCoeff());
@@ -289,7 +290,8 @@ TEST(Frame2dShear, CantileverTipDeflectionHasTheShearTerm) {
     const Eigen::Vector3d f(-e.y() * p, e.x() * p, 0.0);
     const Eigen::Vector3d u = k.bottomRightCorner<3, 3>().ldlt().solve(f);
     const double deflection = u.head<2>().dot(Eigen::Vector2d(-e.y(), e.x()));
-    const double expected = p * l * l * l / (3 * s.E * s.I) + p * l / (shear.area * g_mod);
+    const double expected =
+        p * l * l * l / (3 * s.E * s.I) + p * l / (shear.area * g_mod);
     EXPECT_NEAR(deflection, expected, 1e-9 * expected) << l;
     EXPECT_NEAR(u.head<2>().dot(e), 0.0, 1e-9 * expected);  // no axial motion
     // Stiffer without shear: the Euler-Bernoulli element gives the bending term.

@@ -243,8 +243,9 @@ TEST(PlaneFrameStructure, TheoryAndShearAreasFromAStudyFileAndTheirErrors) {
       "  storey_height: 3\n  bay_width: 5\n"
       "  beam: {E: 210e9, A: 0.01, I: 2e-4, rho: 7850}\n";
   const Study study = ParseStudyModel(
-      head + "  theory: timoshenko\n  column: {E: 210e9, A: 0.01, I: 8e-5, rho: 7850, "
-             "shear_area: 0.004}\n",
+      head +
+          "  theory: timoshenko\n  column: {E: 210e9, A: 0.01, I: 8e-5, rho: 7850, "
+          "shear_area: 0.004}\n",
       "portal.yaml");
   EXPECT_TRUE(study.structure.form_variants.empty());
   for (const auto& [bad, field] :

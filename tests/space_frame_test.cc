@@ -656,6 +656,16 @@ TEST(SpaceFrameStructure, ElementsSumToTheModelAndMatchItsFactors) {
     EXPECT_LT(max_abs(level_mass[level - 1] - m.parameter(p).basis.ToSparse()),
               1e-12 * m_scale);
   }
+  // Its form variant is the generator's Timoshenko frame; a Timoshenko frame
+  // has none.
+  ASSERT_EQ(s.form_variants.size(), 1u);
+  SpaceFrameSpec sheared = spec;
+  sheared.theory = BeamTheory::kTimoshenko;
+  const ParametrisedModel t = BuildSpaceFrame(sheared);
+  EXPECT_LT(max_abs(s.form_variants[0].stiffness - t.stiffness()), 1e-12 * k_scale);
+  EXPECT_LT(max_abs(s.form_variants[0].mass - t.mass()), 1e-12 * m_scale);
+  EXPECT_GT(max_abs(s.form_variants[0].stiffness - s.stiffness), 1e-6 * k_scale);
+  EXPECT_TRUE(BuildSpaceFrameStructure(sheared).form_variants.empty());
   // Nodes with their coordinates; attached masses looked for at the six
   // joints of the top level only.
   ASSERT_EQ(6 * s.nodes.size(), static_cast<std::size_t>(n));

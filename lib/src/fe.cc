@@ -97,8 +97,8 @@ Eigen::Vector3d InPlaneNormal(double x1, double y1, double x2, double y2) {
 
 }  // namespace
 
-Matrix6 Frame2dStiffness(const BeamSection& s, const BeamShear& shear, double x1, double y1,
-                         double x2, double y2) {
+Matrix6 Frame2dStiffness(const BeamSection& s, const BeamShear& shear, double x1,
+                         double y1, double x2, double y2) {
   return InPlane(Frame3dStiffness(InPlaneSection(s, shear), {x1, y1, 0.0}, {x2, y2, 0.0},
                                   InPlaneNormal(x1, y1, x2, y2), Theory(shear)));
 }

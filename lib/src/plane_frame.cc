@@ -149,9 +149,10 @@ ParametrisedModel BuildPlaneFrame(const PlaneFrameSpec& spec) {
                      "the benchmark frame is clamped");
   }
   if (spec.theory != BeamTheory::kEulerBernoulli) {
-    throw InputError("model.theory",
-                     "Timoshenko members are a plane_frame Structure's (the study model); "
-                     "the benchmark frame is Euler-Bernoulli");
+    throw InputError(
+        "model.theory",
+        "Timoshenko members are a plane_frame Structure's (the study model); "
+        "the benchmark frame is Euler-Bernoulli");
   }
   const int lines = spec.bays + 1;
   const FrameLayout layout = LayOut(spec);

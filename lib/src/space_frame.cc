@@ -489,6 +489,33 @@ Structure BuildSpaceFrameStructure(const SpaceFrameSpec& spec) {
         return Frame3dTransverseMass(sec.rho * sec.A, e.end1, e.end2, e.reference);
       },
       false, &w_groups);
+  // An Euler-Bernoulli frame's form variant: its members with shear
+  // deformation through their sections' shear areas (where every section has
+  // them).
+  const bool shear_areas = spec.legs.Validate(BeamTheory::kTimoshenko).ok() &&
+                           spec.braces.Validate(BeamTheory::kTimoshenko).ok() &&
+                           spec.horizontals.Validate(BeamTheory::kTimoshenko).ok();
+  if (theory == BeamTheory::kEulerBernoulli && shear_areas) {
+    std::vector<BasisMatrix> unused;
+    FormVariant v;
+    v.name = "shear deformation (Timoshenko members, the sections' shear areas)";
+    v.stiffness = AssembleGroups(
+        n, elements, by_group,
+        [&](const SpaceFrameElement& e) {
+          return Frame3dStiffness(SectionOf(spec, e.member), e.end1, e.end2, e.reference,
+                                  BeamTheory::kTimoshenko);
+        },
+        true, &unused);
+    unused.clear();
+    v.mass = AssembleGroups(
+        n, elements, by_group,
+        [&](const SpaceFrameElement& e) {
+          return Frame3dConsistentMass(SectionOf(spec, e.member), e.end1, e.end2,
+                                       e.reference, BeamTheory::kTimoshenko);
+        },
+        true, &unused);
+    s.form_variants.push_back(std::move(v));
+  }
 
   std::ostringstream d;
   d << "space frame, " << spec.bays_x << " x " << spec.bays_y << " bays, " << spec.levels

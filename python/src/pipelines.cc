@@ -414,7 +414,8 @@ void BindDiagnosis(py::module_& m) {
       });
   py::class_<femup::FormErrorAllowance>(m, "FormErrorAllowance")
       .def_readonly("name", &femup::FormErrorAllowance::name)
-      .def_readonly("max_frequency_change", &femup::FormErrorAllowance::max_frequency_change)
+      .def_readonly("max_frequency_change",
+                    &femup::FormErrorAllowance::max_frequency_change)
       .def_readonly("noise_units", &femup::FormErrorAllowance::noise_units);
   py::class_<femup::EffectRanking>(m, "EffectRanking")
       .def_readonly("classes", &femup::EffectRanking::classes)

@@ -138,25 +138,34 @@ struct Nominal {
   std::vector<char> is_frequency;
 };
 
-Nominal NominalResidual(const SparseMatrix& stiffness, const SparseMatrix& mass,
-                        const std::vector<std::string>& dof_labels,
-                        const std::vector<ModalData>& states,
-                        const EigenSensitivityOptions& options, const std::string& what) {
-  // One unknown whose basis is zero: the nominal matrices whatever its value
-  // (the engine needs an unknown; any structure has this one).
-  ParametrisedModel model(stiffness, mass, dof_labels);
-  Parameter unused;
-  unused.name = "nominal";
-  unused.kind = ParameterKind::kStiffness;
-  unused.basis = BasisMatrix(SparseMatrix(model.num_dofs(), model.num_dofs()));
-  model.AddParameter(std::move(unused));
-  const NonlinearProblem problem =
-      BuildOutputErrorProblem(std::make_shared<const ModelPencil>(std::move(model)),
-                              states, options, Eigen::VectorXd::Zero(1));
+// The nominal model with the given extra unknowns (empty: one whose basis is
+// zero, since the engine needs an unknown), as the engine's output-error
+// problem on the measured states.
+NonlinearProblem NominalProblem(const Structure& s, std::vector<Parameter> unknowns,
+                                const std::vector<ModalData>& states,
+                                const EigenSensitivityOptions& options) {
+  ParametrisedModel model(s.stiffness, s.mass, s.dof_labels);
+  if (unknowns.empty()) {
+    Parameter unused;
+    unused.name = "nominal";
+    unused.kind = ParameterKind::kStiffness;
+    unused.basis = BasisMatrix(SparseMatrix(model.num_dofs(), model.num_dofs()));
+    unknowns.push_back(std::move(unused));
+  }
+  const int n = static_cast<int>(unknowns.size());
+  for (Parameter& p : unknowns) model.AddParameter(std::move(p));
+  return BuildOutputErrorProblem(std::make_shared<const ModelPencil>(std::move(model)),
+                                 states, options, Eigen::VectorXd::Zero(n));
+}
+
+Nominal NominalResidual(const Structure& structure, const std::vector<ModalData>& states,
+                        const EigenSensitivityOptions& options) {
+  const NonlinearProblem problem = NominalProblem(structure, {}, states, options);
   Eigen::VectorXd r;
   std::string why;
   if (!problem.evaluate(Eigen::VectorXd::Zero(1), &r, nullptr, &why)) {
-    throw InputError("measurements", what + " cannot be compared with the data: " + why);
+    throw InputError("measurements",
+                     "the nominal model cannot be compared with the data: " + why);
   }
   Nominal out{r, {}};
   for (const std::string& label : problem.residual_labels) {
@@ -168,10 +177,39 @@ Nominal NominalResidual(const SparseMatrix& stiffness, const SparseMatrix& mass,
   return out;
 }
 
+// A form variant's change of the residuals, to first order: the nominal model
+// moved along (K_v - K, M_v - M) by the engine's own eigen-derivatives at the
+// nominal modes. The variant's own modes are not paired with the data: with
+// few sensors or frequencies only, a variant whose modes swap order would be
+// paired with other modes than the nominal's, and its "change" would be the
+// distance between two modes.
+Eigen::VectorXd FormVariantChange(const Structure& structure, const FormVariant& v,
+                                  const std::vector<ModalData>& states,
+                                  const EigenSensitivityOptions& options) {
+  std::vector<Parameter> unknowns(2);
+  unknowns[0].name = "form variant stiffness";
+  unknowns[0].kind = ParameterKind::kStiffness;
+  unknowns[0].basis =
+      BasisMatrix(SparseMatrix((v.stiffness - structure.stiffness).pruned()));
+  unknowns[1].name = "form variant mass";
+  unknowns[1].kind = ParameterKind::kMass;
+  unknowns[1].basis = BasisMatrix(SparseMatrix((v.mass - structure.mass).pruned()));
+  const NonlinearProblem problem = NominalProblem(structure, unknowns, states, options);
+  Eigen::VectorXd r;
+  Eigen::MatrixXd j;
+  std::string why;
+  if (!problem.evaluate(Eigen::VectorXd::Zero(2), &r, &j, &why)) {
+    throw InputError("measurements", "the model's form variant (" + v.name +
+                                         ") cannot be compared with the data: " + why);
+  }
+  return j.col(0) + j.col(1);
+}
+
 // The frequency rows' covariance I + sum_j u_j u_j' (u_j: form variant j's
 // change of the nominal frequency residuals, in noise units), as its lower
 // Cholesky factor; the identity when there is no variant.
-Eigen::MatrixXd FormErrorFactor(const std::vector<Eigen::VectorXd>& directions, int rows) {
+Eigen::MatrixXd FormErrorFactor(const std::vector<Eigen::VectorXd>& directions,
+                                int rows) {
   Eigen::MatrixXd cov = Eigen::MatrixXd::Identity(rows, rows);
   for (const Eigen::VectorXd& u : directions) cov += u * u.transpose();
   return cov.llt().matrixL();
@@ -288,9 +326,7 @@ EffectRanking RankModelEffects(const Structure& structure_in,
   // "none", then every instance of every family.
   RankedClass none;
   none.kind = "none";
-  const Nominal nominal_fit =
-      NominalResidual(structure->stiffness, structure->mass, structure->dof_labels, states,
-                      fit, "the nominal model");
+  const Nominal nominal_fit = NominalResidual(*structure, states, fit);
   const Eigen::VectorXd& nominal = nominal_fit.residual;
   const std::vector<char>& is_frequency = nominal_fit.is_frequency;
   out.num_residuals = static_cast<int>(nominal.size());
@@ -365,11 +401,10 @@ EffectRanking RankModelEffects(const Structure& structure_in,
       !frequency_rows.empty()) {
     std::vector<Eigen::VectorXd> directions;
     for (const FormVariant& v : structure->form_variants) {
-      const Nominal varied = NominalResidual(v.stiffness, v.mass, structure->dof_labels,
-                                             states, fit, "the model's form variant");
+      const Eigen::VectorXd change = FormVariantChange(*structure, v, states, fit);
       Eigen::VectorXd u(frequency_rows.size());
       for (std::size_t k = 0; k < frequency_rows.size(); ++k)
-        u[k] = varied.residual[frequency_rows[k]] - nominal[frequency_rows[k]];
+        u[k] = change[frequency_rows[k]];
       // Relative frequency change: a lambda row is in units of 2 sigma_f.
       out.form_errors.push_back(
           {v.name, u.cwiseAbs().maxCoeff() * options.frequency_sigma, u.norm()});
@@ -415,7 +450,8 @@ EffectRanking RankModelEffects(const Structure& structure_in,
   const int dof_f = std::max(1, num_frequencies - num_params);
   const int dof_s = std::max(1, out.num_residuals - num_frequencies - shape_modes);
   const int dof = std::max(1, out.num_residuals - shape_modes - num_params);
-  out.best_chi2_p_value = boost::math::gamma_q(0.5 * dof, 0.5 * residuals[best].squaredNorm());
+  out.best_chi2_p_value =
+      boost::math::gamma_q(0.5 * dof, 0.5 * residuals[best].squaredNorm());
   const double p_f = boost::math::gamma_q(0.5 * dof_f, 0.5 * chi2_f);
   const double p_s = out.num_residuals > num_frequencies
                          ? boost::math::gamma_q(0.5 * dof_s, 0.5 * chi2_s)

@@ -179,8 +179,8 @@ void ReadStatedPriors(const Field& f, const Study& study, DiagnosisSpec* d) {
 
 DiagnosisSpec ReadDiagnosis(const Field& f, const Study& study) {
   f.ExpectKeys({"noise", "candidates", "max_effects", "held_out", "use_shapes",
-                "mesh_error", "formulation_error", "form_error", "localise", "solver", "confidence",
-                "evidence", "evidence_samples", "priors", "weights"});
+                "mesh_error", "formulation_error", "form_error", "localise", "solver",
+                "confidence", "evidence", "evidence_samples", "priors", "weights"});
   DiagnosisSpec d;
   if (f.Has("noise")) {
     const Field n = f["noise"];

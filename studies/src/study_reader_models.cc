@@ -232,7 +232,8 @@ FrameSection3d ReadTube(const Field& f, const FrameSection3d& defaults) {
 // A 2D plane frame (portal, multi-bay, multi-storey) as a Structure of members.
 Structure ReadPlaneFrame(const Field& m) {
   m.ExpectKeys({"type", "storeys", "bays", "storey_height", "bay_width",
-                "elements_per_member", "wet_storeys", "column", "beam", "base", "theory"});
+                "elements_per_member", "wet_storeys", "column", "beam", "base",
+                "theory"});
   PlaneFrameSpec spec;
   spec.storeys = m["storeys"].Int();
   spec.bays = m["bays"].Int();

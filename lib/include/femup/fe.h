@@ -38,8 +38,8 @@ Matrix6 Frame2dConsistentMass(const BeamSection& s, double x1, double y1, double
 // is left out as in frame3d.h). With shear.area == 0 both equal the
 // Euler-Bernoulli matrices above. Throws InputError for a bad section, a
 // negative shear area or nu outside (-1, 0.5].
-Matrix6 Frame2dStiffness(const BeamSection& s, const BeamShear& shear, double x1, double y1,
-                         double x2, double y2);
+Matrix6 Frame2dStiffness(const BeamSection& s, const BeamShear& shear, double x1,
+                         double y1, double x2, double y2);
 Matrix6 Frame2dConsistentMass(const BeamSection& s, const BeamShear& shear, double x1,
                               double y1, double x2, double y2);
 // The transverse part of the consistent mass only (no axial inertia): the

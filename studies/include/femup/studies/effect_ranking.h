@@ -116,7 +116,7 @@ struct EffectRanking {
   double shape_temperature = 1;  // of the shapes' noise
   double best_chi2_p_value = 1;
   int num_residuals = 0;
-  std::vector<std::string> skipped;  // "<kind>: why it does not apply"
+  std::vector<std::string> skipped;             // "<kind>: why it does not apply"
   std::vector<FormErrorAllowance> form_errors;  // allowed for, one per variant
 };
 
