@@ -173,6 +173,14 @@ void BindStructure(py::module_& m) {
           "baseline M (scipy.sparse.csc_matrix view)")
       .def_readonly("dof_labels", &femup::Structure::dof_labels)
       .def_property_readonly(
+          "form_variant_names",
+          [](const femup::Structure& s) {
+            std::vector<std::string> names;
+            for (const femup::FormVariant& v : s.form_variants) names.push_back(v.name);
+            return names;
+          },
+          "the richer formulations the diagnosis allows for (e.g. shear deformation)")
+      .def_property_readonly(
           "num_dofs",
           [](const femup::Structure& s) { return static_cast<int>(s.dof_labels.size()); })
       .def_property_readonly("elements",
@@ -415,7 +423,21 @@ void BindBuilders(py::module_& m) {
       .def_readwrite("blocks_per_storey", &femup::PlaneFrameSpec::blocks_per_storey)
       .def_readwrite("wet_storeys", &femup::PlaneFrameSpec::wet_storeys)
       .def_readwrite("column", &femup::PlaneFrameSpec::column)
-      .def_readwrite("beam", &femup::PlaneFrameSpec::beam);
+      .def_readwrite("beam", &femup::PlaneFrameSpec::beam)
+      .def_property(
+          "theory",
+          [](const femup::PlaneFrameSpec& s) { return femup::ToString(s.theory); },
+          [](femup::PlaneFrameSpec& s, const std::string& text) {
+            if (!femup::BeamTheoryFromString(text, &s.theory)) {
+              throw femup::InputError(
+                  "model.theory",
+                  "expected euler_bernoulli or timoshenko, got '" + text + "'");
+            }
+          })
+      .def_readwrite("column_shear_area", &femup::PlaneFrameSpec::column_shear_area,
+                     "kappa A (m^2); 0: A / 2")
+      .def_readwrite("beam_shear_area", &femup::PlaneFrameSpec::beam_shear_area,
+                     "kappa A (m^2); 0: A / 2");
   m.def("build_plane_frame", &femup::BuildPlaneFrame, py::arg("spec"),
         "The large plane frame with factors on substructures (a ParametrisedModel).");
   m.def("build_plane_frame_structure", &femup::BuildPlaneFrameStructure, py::arg("spec"),

@@ -131,6 +131,20 @@ def test_structure_diagnosis_matches_diagnosis_json(run_cli):
     close(result.ranking.temperature, expected["temperature"])
 
 
+def test_frame_diagnosis_states_the_form_error_it_allowed_for(run_cli):
+    path = EXAMPLES / "diagnosis" / "portal_frame.yaml"
+    expected = run_cli("diagnose", path, "diagnosis.json")
+    result = femup.diagnose(femup.load_study(str(path)))
+    allowed = result.ranking.form_errors
+    assert [e.name for e in allowed] == [e["variant"] for e in expected["form_errors"]]
+    assert "shear deformation" in allowed[0].name
+    for e, x in zip(allowed, expected["form_errors"]):
+        close(e.max_frequency_change, x["max_frequency_change"], rel=1e-9)
+        close(e.noise_units, x["noise_units"], rel=1e-9)
+    assert (result.classes[0].kind, result.classes[0].region) == (
+        expected["verdict"]["kind"], expected["verdict"]["region"])
+
+
 def test_the_two_diagnosis_pipelines_directly_and_their_refusals():
     cantilever = femup.load_study(str(EXAMPLES / "diagnosis" / "added_mass.yaml"))
     building = femup.load_study(str(EXAMPLES / "diagnosis" / "shear_building.yaml"))
