@@ -466,7 +466,10 @@ TEST(EigenSensitivity, RitzBasisFollowsALargeChangeOfOneGroup) {
   spec.levels = 3;
   spec.level_height = 10;
   spec.bay_width_x = 12;
-  spec.bay_width_y = 12;
+  // Not square in plan: the x and y sways of a square frame are a double
+  // eigenvalue, whose shapes any rotation within the pair represents (round-off
+  // decides which, and the reduced and full models need not agree on it).
+  spec.bay_width_y = 11;
   spec.elements_per_member = 3;
   spec.blocks_per_level = 1;
   spec.bracing = FaceBracing::kX;
@@ -498,7 +501,9 @@ TEST(EigenSensitivity, RitzBasisFollowsALargeChangeOfOneGroup) {
   ASSERT_TRUE(full.evaluate(truth, &rf, &jf, &why)) << why;
   ASSERT_TRUE(ritz.evaluate(truth, &rr, &jr, &why)) << why;
   EXPECT_LT(rf.cwiseAbs().maxCoeff(), 1e-6);  // the full model at its own truth
-  EXPECT_LT(rr.cwiseAbs().maxCoeff(), 0.15);  // in standard deviations; measured 0.106
+  // In standard deviations; measured 0.34. (On a square plan this was 0.106 on
+  // one machine and 996 on another: the double sway eigenvalue.)
+  EXPECT_LT(rr.cwiseAbs().maxCoeff(), 0.5);
   const int column = static_cast<int>(it - names.begin());
   EXPECT_LT((jf.col(column) - jr.col(column)).norm(), 0.05 * jf.col(column).norm());
 }
