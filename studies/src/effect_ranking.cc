@@ -420,7 +420,9 @@ EffectRanking RankModelEffects(const Structure& structure_in,
         jf.row(k) = j->row(frequency_rows[k]);
       }
       rf = factor.triangularView<Eigen::Lower>().solve(rf);
-      jf = factor.triangularView<Eigen::Lower>().solve(jf);
+      // "none" has no unknowns: Eigen's triangular solve of an empty
+      // right-hand side reads its first coefficient (UBSan: a null reference).
+      if (jf.cols() > 0) jf = factor.triangularView<Eigen::Lower>().solve(jf);
       for (std::size_t k = 0; k < frequency_rows.size(); ++k) {
         (*r)[frequency_rows[k]] = rf[k];
         j->row(frequency_rows[k]) = jf.row(k);
