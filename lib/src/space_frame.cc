@@ -506,7 +506,6 @@ Structure BuildSpaceFrameStructure(const SpaceFrameSpec& spec) {
                                   BeamTheory::kTimoshenko);
         },
         true, &unused);
-    unused.clear();
     v.mass = AssembleGroups(
         n, elements, by_group,
         [&](const SpaceFrameElement& e) {

@@ -20,6 +20,20 @@ namespace femup_python {
 
 namespace {
 
+// A frame spec's `theory` property (plane and space frames alike): its name,
+// and the setter that refuses an unknown one naming the study's field.
+template <typename Spec>
+std::string TheoryName(const Spec& s) {
+  return femup::ToString(s.theory);
+}
+template <typename Spec>
+void SetTheory(Spec& s, const std::string& text) {
+  if (!femup::BeamTheoryFromString(text, &s.theory)) {
+    throw femup::InputError("model.theory",
+                            "expected euler_bernoulli or timoshenko, got '" + text + "'");
+  }
+}
+
 using femup::ParameterFamily;
 
 femup::ParameterKind KindFrom(const std::string& text, const std::string& field) {
@@ -424,16 +438,8 @@ void BindBuilders(py::module_& m) {
       .def_readwrite("wet_storeys", &femup::PlaneFrameSpec::wet_storeys)
       .def_readwrite("column", &femup::PlaneFrameSpec::column)
       .def_readwrite("beam", &femup::PlaneFrameSpec::beam)
-      .def_property(
-          "theory",
-          [](const femup::PlaneFrameSpec& s) { return femup::ToString(s.theory); },
-          [](femup::PlaneFrameSpec& s, const std::string& text) {
-            if (!femup::BeamTheoryFromString(text, &s.theory)) {
-              throw femup::InputError(
-                  "model.theory",
-                  "expected euler_bernoulli or timoshenko, got '" + text + "'");
-            }
-          })
+      .def_property("theory", &TheoryName<femup::PlaneFrameSpec>,
+                    &SetTheory<femup::PlaneFrameSpec>)
       .def_readwrite("column_shear_area", &femup::PlaneFrameSpec::column_shear_area,
                      "kappa A (m^2); 0: A / 2")
       .def_readwrite("beam_shear_area", &femup::PlaneFrameSpec::beam_shear_area,
@@ -479,23 +485,8 @@ void BindBuilders(py::module_& m) {
             }
           })
       .def_readwrite("water_depth", &femup::SpaceFrameSpec::water_depth)
-      .def_property(
-          "theory",
-          [](const femup::SpaceFrameSpec& s) {
-            return s.theory == femup::BeamTheory::kTimoshenko ? "timoshenko"
-                                                              : "euler_bernoulli";
-          },
-          [](femup::SpaceFrameSpec& s, const std::string& text) {
-            if (text == "timoshenko") {
-              s.theory = femup::BeamTheory::kTimoshenko;
-            } else if (text == "euler_bernoulli") {
-              s.theory = femup::BeamTheory::kEulerBernoulli;
-            } else {
-              throw femup::InputError(
-                  "model.theory",
-                  "expected euler_bernoulli or timoshenko, got '" + text + "'");
-            }
-          })
+      .def_property("theory", &TheoryName<femup::SpaceFrameSpec>,
+                    &SetTheory<femup::SpaceFrameSpec>)
       .def_readwrite("legs", &femup::SpaceFrameSpec::legs)
       .def_readwrite("braces", &femup::SpaceFrameSpec::braces)
       .def_readwrite("horizontals", &femup::SpaceFrameSpec::horizontals)
