@@ -4,7 +4,7 @@
 #include <filesystem>
 
 #include "femup/errors.h"
-#include "femup/run_report.h"
+#include "femup/reporting/run_report.h"
 #include "femup/solvers/linear_solver.h"
 #include "femup/solvers/nonlinear_solver.h"
 

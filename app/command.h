@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "femup/output_dir.h"
+#include "femup/reporting/output_dir.h"
 #include "femup/progress.h"
 #include "femup/studies/study.h"
 

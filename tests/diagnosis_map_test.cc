@@ -11,6 +11,7 @@
 
 #include "femup/builders.h"
 #include "femup/plane_frame.h"
+#include "femup/reporting/diagnosis_map_figure.h"
 #include "scratch_dir.h"
 
 namespace femup {

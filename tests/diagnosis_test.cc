@@ -18,8 +18,9 @@
 #include <string>
 
 #include "femup/errors.h"
-#include "femup/output_dir.h"
 #include "femup/problems/effect_fit.h"
+#include "femup/reporting/diagnose_outputs.h"
+#include "femup/reporting/output_dir.h"
 #include "femup/studies/diagnose_study.h"
 #include "femup/studies/study.h"
 #include "scratch_dir.h"

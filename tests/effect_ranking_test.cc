@@ -22,6 +22,7 @@
 #include "femup/errors.h"
 #include "femup/modal.h"
 #include "femup/plane_frame.h"
+#include "femup/reporting/structure_diagnosis_outputs.h"
 #include "femup/space_frame.h"
 #include "femup/studies/structure_diagnosis.h"
 #include "scratch_dir.h"

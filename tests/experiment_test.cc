@@ -10,7 +10,10 @@
 
 #include "femup/errors.h"
 #include "femup/modal.h"
-#include "femup/output_dir.h"
+#include "femup/reporting/compare_outputs.h"
+#include "femup/reporting/identify_outputs.h"
+#include "femup/reporting/output_dir.h"
+#include "femup/reporting/simulate_outputs.h"
 #include "femup/studies/compare_study.h"
 #include "femup/studies/simulate_study.h"
 #include "femup/studies/study.h"

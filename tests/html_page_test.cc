@@ -1,6 +1,6 @@
 // HtmlPage: a self-contained page; escaping, base64 (RFC 4648's test vectors),
 // inline PNG figures, tables, empty sections left out, bad ids refused.
-#include "femup/html_page.h"
+#include "femup/reporting/html_page.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // OutputDir: all-or-nothing output into a folder that may not exist yet.
-#include "femup/output_dir.h"
+#include "femup/reporting/output_dir.h"
 
 #include <gtest/gtest.h>
 

@@ -4,8 +4,9 @@
 
 #include <filesystem>
 
-#include "femup/output_dir.h"
 #include "femup/problems/paper_chain.h"
+#include "femup/reporting/output_dir.h"
+#include "femup/reporting/update_outputs.h"
 #include "femup/studies/modes_study.h"
 #include "femup/studies/noise_study.h"
 #include "femup/studies/update_study.h"

@@ -1,4 +1,4 @@
-#include "femup/plot.h"
+#include "femup/reporting/plot.h"
 
 #include <gtest/gtest.h>
 #include <sys/stat.h>

@@ -1,7 +1,7 @@
 // WriteRunReport: report.html staged with the other outputs, holding the
 // summary, every plot (captioned from its gnuplot script), the study file, the
 // warnings and the files written; committed with them, or not at all.
-#include "femup/run_report.h"
+#include "femup/reporting/run_report.h"
 
 #include <gtest/gtest.h>
 
@@ -9,9 +9,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "femup/html_page.h"
-#include "femup/output_dir.h"
-#include "femup/plot.h"
+#include "femup/reporting/html_page.h"
+#include "femup/reporting/output_dir.h"
+#include "femup/reporting/plot.h"
 #include "scratch_dir.h"
 
 namespace femup {

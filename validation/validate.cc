@@ -21,7 +21,7 @@
 
 #include "femup/errors.h"
 #include "femup/evaluation/nist_strd.h"
-#include "femup/output_dir.h"
+#include "femup/reporting/output_dir.h"
 
 namespace femup_validate {
 

@@ -2,6 +2,7 @@
 // spread as the data are corrupted).
 #include "commands.h"
 #include "femup/errors.h"
+#include "femup/reporting/noise_outputs.h"
 #include "femup/studies/noise_study.h"
 
 namespace femup::cli {

@@ -11,7 +11,7 @@
 #include "benchmark_generator.h"
 #include "blind_benchmark_common.h"
 #include "femup/evaluation/blind_benchmark.h"
-#include "femup/plot.h"
+#include "femup/reporting/plot.h"
 #include "json_util.h"
 #include "render_staged.h"
 

@@ -10,6 +10,7 @@
 #include "femup/errors.h"
 #include "femup/frf_impulse.h"
 #include "femup/measurement.h"
+#include "femup/reporting/identify_outputs.h"
 #include "femup/studies/identify_study.h"
 #include "femup/uff.h"
 

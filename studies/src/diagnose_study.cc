@@ -1,10 +1,11 @@
 // femup diagnose (diagnose_study.h): RunDiagnosis checks the stated priors and
 // runs the steps of diagnose_study_steps.h (data, fits, evidence, localisation)
-// and states the verdict; the outputs and the report are in
-// diagnose_study_outputs.cc.
+// and states the verdict; the outputs and the report are in the reporting
+// layer (reporting/src/diagnose_outputs.cc).
 #include "femup/studies/diagnose_study.h"
 
 #include <algorithm>
+#include <iomanip>
 #include <memory>
 #include <sstream>
 
@@ -14,6 +15,12 @@
 #include "femup/solvers/nonlinear_solver.h"
 
 namespace femup {
+
+std::string diagnose_steps::Fixed(double v, int digits) {
+  std::ostringstream o;
+  o << std::fixed << std::setprecision(digits) << v;
+  return o.str();
+}
 
 using diagnose_steps::Fixed;
 

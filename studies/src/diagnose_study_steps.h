@@ -62,7 +62,7 @@ void ScoreClasses(const DiagnosisSpec& spec, const std::vector<std::string>& kin
 void LocaliseByElement(const DiagnosisSpec& spec, const CantileverSpec& nominal,
                        const NonlinearSolver& solver, DiagnosisResult* result);
 
-// diagnose_study_outputs.cc: `v` with `digits` decimals.
+// diagnose_study.cc: `v` with `digits` decimals.
 std::string Fixed(double v, int digits);
 
 }  // namespace femup::diagnose_steps

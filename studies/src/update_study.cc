@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <limits>
 
-#include "dof_labels.h"
+#include "femup/dof_labels.h"
 #include "femup/errors.h"
 #include "femup/modal.h"
 #include "femup/studies/factor_solve.h"

@@ -29,7 +29,7 @@
 #include <vector>
 
 #include "femup/invalid.h"
-#include "femup/output_dir.h"
+#include "femup/reporting/output_dir.h"
 #include "femup/progress.h"
 
 namespace femup {

@@ -8,7 +8,6 @@
 #include <string>
 #include <vector>
 
-#include "femup/output_dir.h"
 #include "femup/studies/update_study.h"
 
 namespace femup {
@@ -23,11 +22,5 @@ struct CompareResult {
 // Throws InputError for a study that cannot be read or run (naming it); a
 // solve that fails is a result (its status is reported).
 CompareResult RunCompare(const std::vector<std::string>& study_paths);
-
-// comparison.json and, when `plots`, added_mass_factors.png and sa.png.
-void WriteCompareOutputs(const CompareResult& result, bool plots, OutputDir* out,
-                         std::vector<std::string>* warnings);
-
-std::string CompareReport(const CompareResult& result);
 
 }  // namespace femup

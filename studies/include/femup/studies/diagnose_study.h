@@ -33,7 +33,6 @@
 #include <string>
 #include <vector>
 
-#include "femup/output_dir.h"
 #include "femup/problems/effect_fit.h"
 #include "femup/problems/effect_priors.h"
 #include "femup/problems/effects.h"
@@ -132,11 +131,5 @@ struct DiagnosisResult {
 // a model that is not a cantilever, unusable measurements, bad options, or
 // stated priors that do not apply (before any fit).
 DiagnosisResult RunDiagnosis(const Study& study);
-
-// diagnosis.json and, when `plots`, localisation.png, effects.png, gap.png.
-void WriteDiagnosisOutputs(const DiagnosisResult& result, bool plots, OutputDir* out,
-                           std::vector<std::string>* warnings);
-
-std::string DiagnosisReport(const DiagnosisResult& result);
 
 }  // namespace femup

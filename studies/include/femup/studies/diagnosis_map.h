@@ -8,7 +8,6 @@
 #include <string>
 #include <vector>
 
-#include "femup/plot.h"
 #include "femup/structure.h"
 #include "femup/studies/effect_ranking.h"
 
@@ -41,11 +40,5 @@ struct DiagnosisMap {
 // support, which has no DOF, reaches down to its start height), the nodes
 // with DOFs, support nodes.
 DiagnosisMap MapGeometry(const Structure& structure);
-
-// The map's figure: the structure in grey, then each element, node and the
-// supports coloured by the probability of the explanation there (bands
-// >= 0.5, 0.1-0.5, 0.01-0.1), the global explanations in the title.
-Figure DiagnosisMapFigure(const DiagnosisMap& map, const EffectRanking& ranking,
-                          const std::string& title);
 
 }  // namespace femup

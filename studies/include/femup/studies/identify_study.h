@@ -15,7 +15,6 @@
 
 #include "femup/era.h"
 #include "femup/invalid.h"
-#include "femup/output_dir.h"
 
 namespace femup {
 
@@ -42,11 +41,5 @@ struct IdentifyResult {
 
 // Throws InputError naming the file (and line, from the readers) or the option.
 IdentifyResult RunIdentify(const IdentifyOptions& options);
-// Writes <prefix>modes.json and, when `plots`, <prefix>stabilisation.png and
-// <prefix>identified_shapes.png.
-void WriteIdentifyOutputs(const IdentifyResult& result, bool plots, OutputDir* out,
-                          std::vector<std::string>* warnings,
-                          const std::string& prefix = "");
-std::string IdentifyReport(const IdentifyResult& result);
 
 }  // namespace femup

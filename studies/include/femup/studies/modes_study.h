@@ -6,7 +6,6 @@
 #include <vector>
 
 #include "femup/modal.h"
-#include "femup/output_dir.h"
 #include "femup/studies/study.h"
 
 namespace femup {
@@ -23,8 +22,5 @@ struct ModesResult {
 
 // `num_modes` <= 0: every mode for models up to 1500 DOFs, else 10.
 ModesResult RunModes(const Study& study, int num_modes);
-void WriteModesOutputs(const ModesResult& result, bool plots, OutputDir* out,
-                       std::vector<std::string>* warnings);
-std::string ModesReport(const ModesResult& result);
 
 }  // namespace femup

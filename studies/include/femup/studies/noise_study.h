@@ -7,7 +7,6 @@
 #include <vector>
 
 #include "femup/invalid.h"
-#include "femup/output_dir.h"
 #include "femup/progress.h"
 #include "femup/studies/study.h"
 
@@ -60,9 +59,5 @@ struct NoiseRunOptions {
 // its own counter-based generator, CounterRng(seed, l, d): results do not
 // depend on the order of evaluation.
 NoiseStudyResult RunNoiseStudy(const Study& study, const NoiseRunOptions& options = {});
-
-void WriteNoiseOutputs(const NoiseStudyResult& result, bool plots, OutputDir* out,
-                       std::vector<std::string>* warnings);
-std::string NoiseReport(const NoiseStudyResult& result);
 
 }  // namespace femup

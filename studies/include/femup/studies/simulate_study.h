@@ -9,7 +9,6 @@
 #include <string>
 #include <vector>
 
-#include "femup/output_dir.h"
 #include "femup/studies/study.h"
 #include "femup/time_response.h"
 
@@ -41,11 +40,5 @@ struct SimulateResult {
 // Throws InputError when the study has no `records` section or the records
 // cannot be made (strip-theory water on a structure that is not a cantilever).
 SimulateResult RunSimulate(const Study& study);
-
-// Writes each state's record file, truth.json and, when `plots`, records.png.
-void WriteSimulateOutputs(const SimulateResult& result, bool plots, OutputDir* out,
-                          std::vector<std::string>* warnings);
-
-std::string SimulateReport(const SimulateResult& result);
 
 }  // namespace femup

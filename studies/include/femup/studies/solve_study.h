@@ -8,7 +8,6 @@
 #include <string>
 #include <vector>
 
-#include "femup/output_dir.h"
 #include "femup/problems/linear_problem.h"
 #include "femup/solvers/linear_solver.h"
 
@@ -36,8 +35,5 @@ struct SolveResult {
 
 SolveResult RunSolve(const SolveFiles& files, const std::string& solver,
                      const LinearSolverOptions& options);
-void WriteSolveOutputs(const SolveResult& result, bool plots, OutputDir* out,
-                       std::vector<std::string>* warnings);
-std::string SolveReport(const SolveResult& result);
 
 }  // namespace femup

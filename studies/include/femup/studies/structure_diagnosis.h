@@ -9,7 +9,6 @@
 #include <string>
 #include <vector>
 
-#include "femup/output_dir.h"
 #include "femup/studies/diagnosis_map.h"
 #include "femup/studies/effect_ranking.h"
 #include "femup/studies/study.h"
@@ -33,16 +32,5 @@ struct StructureDiagnosisResult {
 // prior that does not fit the model's families (each before any fit runs), or
 // data the fit cannot use.
 StructureDiagnosisResult RunStructureDiagnosis(const Study& study);
-
-// diagnosis.json (every class with kind, region, probability, chi2, evidence,
-// parameters and magnitudes; the families' probabilities; the noise
-// temperature; the families that do not apply and why; the stated priors),
-// effects.png (the families' probabilities) and diagnosis_map.png (where:
-// diagnosis_map.h).
-void WriteStructureDiagnosisOutputs(const StructureDiagnosisResult& r, bool plots,
-                                    OutputDir* out, std::vector<std::string>* warnings);
-
-// The terminal report: the verdict and the ranked classes.
-std::string StructureDiagnosisReport(const StructureDiagnosisResult& r);
 
 }  // namespace femup

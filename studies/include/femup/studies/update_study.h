@@ -7,7 +7,6 @@
 #include <string>
 #include <vector>
 
-#include "femup/output_dir.h"
 #include "femup/problems/linear_problem.h"
 #include "femup/solvers/linear_solver.h"
 #include "femup/studies/study.h"
@@ -74,13 +73,5 @@ struct UpdateResult {
 // Runs the update. Throws InputError for unusable input; a rank-deficient or
 // failed solve is reported in result.solution.summary.
 UpdateResult RunUpdate(const Study& study);
-
-// Writes result.json, the updated matrices (Matrix Market) and, when `plots`,
-// factors.png, frequencies.png and shapes_<state>.png into `out`.
-void WriteUpdateOutputs(const UpdateResult& result, bool plots, OutputDir* out,
-                        std::vector<std::string>* warnings);
-
-// Human-readable summary for the terminal.
-std::string UpdateReport(const UpdateResult& result);
 
 }  // namespace femup

@@ -1,4 +1,4 @@
-#include "femup/html_page.h"
+#include "femup/reporting/html_page.h"
 
 #include <openssl/evp.h>
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "femup/plot.h"
+#include "femup/reporting/plot.h"
 #include "femup/solvers/regularisation.h"
 
 namespace femup {

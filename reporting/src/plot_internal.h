@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "femup/plot.h"
+#include "femup/reporting/plot.h"
 
 namespace femup::plot_internal {
 

@@ -1,7 +1,7 @@
 // Running gnuplot for RenderFigure: finding it on PATH (GnuplotAvailable) and
 // running it on a script in the script's folder, with its error output kept
 // for the message when it fails.
-#include "femup/plot.h"
+#include "femup/reporting/plot.h"
 
 #include <fcntl.h>
 #include <spawn.h>

@@ -1,4 +1,4 @@
-#include "femup/run_report.h"
+#include "femup/reporting/run_report.h"
 
 #include <algorithm>
 #include <chrono>
@@ -7,7 +7,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "femup/html_page.h"
+#include "femup/reporting/html_page.h"
 
 namespace femup {
 namespace {

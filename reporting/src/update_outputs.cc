@@ -1,6 +1,8 @@
 // The outputs of femup run (update_study.h): result.json, the updated matrices
 // and the system as Matrix Market files, the plots (factors, frequencies, mode
 // shapes, L-curve and GCV) and the terminal report.
+#include "femup/reporting/update_outputs.h"
+
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
@@ -8,10 +10,10 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "dof_labels.h"
+#include "femup/dof_labels.h"
 #include "femup/matrix_market.h"
-#include "femup/plot.h"
-#include "femup/studies/update_study.h"
+#include "femup/reporting/identify_outputs.h"
+#include "femup/reporting/plot.h"
 #include "json_util.h"
 #include "regularisation_output.h"
 #include "render_staged.h"

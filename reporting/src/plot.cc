@@ -1,7 +1,7 @@
 // Figures for gnuplot: RenderFigure checks a figure, writes its data (one block
 // per series) and a gnuplot script that draws it, and has gnuplot render the
 // PNG when gnuplot is installed (plot_gnuplot.cc runs it).
-#include "femup/plot.h"
+#include "femup/reporting/plot.h"
 
 #include <sys/stat.h>
 

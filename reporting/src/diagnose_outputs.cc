@@ -1,14 +1,15 @@
 // The outputs of femup diagnose: diagnosis.json (verdict, noise, classes, the
 // gap mode by mode before and after the top class, the localisation), the
 // plots (where, which, how far the gap shrinks) and the terminal report.
+#include "femup/reporting/diagnose_outputs.h"
+
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "diagnose_study_steps.h"
-#include "femup/plot.h"
+#include "femup/reporting/plot.h"
 #include "femup/studies/diagnose_study.h"
 #include "json_util.h"
 #include "render_staged.h"
@@ -16,19 +17,13 @@
 
 namespace femup {
 
-namespace diagnose_steps {
+namespace {
 
 std::string Fixed(double v, int digits) {
   std::ostringstream o;
   o << std::fixed << std::setprecision(digits) << v;
   return o.str();
 }
-
-}  // namespace diagnose_steps
-
-using diagnose_steps::Fixed;
-
-namespace {
 
 struct GapSummary {
   double rms_fitted = 0, rms_held_out = NAN, mean_mac_fitted = NAN,

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "femup/output_dir.h"
+#include "femup/reporting/output_dir.h"
 
 namespace femup {
 

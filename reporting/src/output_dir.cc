@@ -1,4 +1,4 @@
-#include "femup/output_dir.h"
+#include "femup/reporting/output_dir.h"
 
 #include <filesystem>
 #include <fstream>

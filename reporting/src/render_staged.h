@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "femup/output_dir.h"
-#include "femup/plot.h"
+#include "femup/reporting/output_dir.h"
+#include "femup/reporting/plot.h"
 
 namespace femup {
 void RenderStaged(const Figure& figure, const std::string& name, OutputDir* out,

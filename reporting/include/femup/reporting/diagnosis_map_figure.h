@@ -1,0 +1,19 @@
+// The diagnosis map drawn: the structure's geometry (femup/studies/diagnosis_map.h)
+// coloured by where the ranked explanations lie.
+#pragma once
+
+#include <string>
+
+#include "femup/reporting/plot.h"
+#include "femup/studies/diagnosis_map.h"
+#include "femup/studies/effect_ranking.h"
+
+namespace femup {
+
+// The map's figure: the structure in grey, then each element, node and the
+// supports coloured by the probability of the explanation there (bands
+// >= 0.5, 0.1-0.5, 0.01-0.1), the global explanations in the title.
+Figure DiagnosisMapFigure(const DiagnosisMap& map, const EffectRanking& ranking,
+                          const std::string& title);
+
+}  // namespace femup

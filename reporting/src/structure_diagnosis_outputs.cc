@@ -1,0 +1,155 @@
+#include "femup/reporting/structure_diagnosis_outputs.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "femup/errors.h"
+#include "femup/reporting/diagnosis_map_figure.h"
+#include "json_util.h"
+#include "render_staged.h"
+#include "stated_priors_text.h"
+
+namespace femup {
+
+namespace {
+
+std::string Label(const RankedClass& c) {
+  return c.region.empty() ? c.kind : c.kind + " at " + c.region;
+}
+
+}  // namespace
+
+void WriteStructureDiagnosisOutputs(const StructureDiagnosisResult& r, bool plots,
+                                    OutputDir* out, std::vector<std::string>* warnings) {
+  nlohmann::json j;
+  j["study"] = r.study_name;
+  j["model_type"] = r.model_type;
+  const EffectRanking& k = r.ranking;
+  const RankedClass& top = k.classes.front();
+  j["verdict"] = {{"kind", top.kind},
+                  {"region", top.region},
+                  {"probability", top.probability},
+                  {"kind_probability", k.kind_probabilities.front().second},
+                  {"separated", top.probability >= r.confidence},
+                  {"equivalent", top.equivalent},
+                  {"group_probability", top.group_probability}};
+  j["temperature"] = k.temperature;
+  j["shape_temperature"] = k.shape_temperature;
+  j["best_chi2_p_value"] = k.best_chi2_p_value;
+  j["residuals"] = k.num_residuals;
+  j["form_errors"] = nlohmann::json::array();
+  for (const FormErrorAllowance& e : k.form_errors)
+    j["form_errors"].push_back({{"variant", e.name},
+                                {"max_frequency_change", e.max_frequency_change},
+                                {"noise_units", e.noise_units}});
+  j["kinds"] = nlohmann::json::array();
+  for (const auto& [kind, p] : k.kind_probabilities)
+    j["kinds"].push_back({{"kind", kind}, {"probability", p}});
+  j["classes"] = nlohmann::json::array();
+  for (const RankedClass& c : k.classes) {
+    nlohmann::json cj = {{"kind", c.kind},
+                         {"region", c.region},
+                         {"probability", c.probability},
+                         {"chi2", c.chi2},
+                         {"log_evidence", c.evidence.log_evidence},
+                         {"log_occam", c.evidence.log_occam},
+                         {"log_prior", c.log_prior},
+                         {"converged", c.converged},
+                         {"equivalent", c.equivalent},
+                         {"group_probability", c.group_probability}};
+    cj["parameters"] = nlohmann::json::array();
+    for (std::size_t i = 0; i < c.names.size(); ++i)
+      cj["parameters"].push_back({{"name", c.names[i]}, {"value", c.theta[i]}});
+    cj["magnitudes"] = nlohmann::json::array();
+    for (const EffectMagnitude& m : c.magnitudes)
+      cj["magnitudes"].push_back(
+          {{"name", m.name}, {"unit", m.unit}, {"value", m.value}});
+    j["classes"].push_back(cj);
+  }
+  j["not_applicable"] = k.skipped;
+  j["stated_priors"] = StatedPriorsJson(r.priors);
+  out->WriteText("diagnosis.json", j.dump(2) + "\n");
+  if (!plots) return;
+  Figure f;
+  Plot p;
+  p.title = "Which effect: posterior probability of each family";
+  p.y_label = "probability";
+  PlotSeries bars;
+  bars.style = PlotSeries::Style::kBars;
+  for (std::size_t i = 0; i < k.kind_probabilities.size(); ++i) {
+    p.x_tick_labels.push_back(k.kind_probabilities[i].first);
+    bars.x.push_back(static_cast<double>(i + 1));
+    bars.y.push_back(k.kind_probabilities[i].second);
+  }
+  p.series.push_back(bars);
+  f.panels.push_back(p);
+  RenderStaged(f, "effects", out, warnings);
+  if (!r.map.empty()) {
+    RenderStaged(DiagnosisMapFigure(r.map, k, "Where: " + r.study_name), "diagnosis_map",
+                 out, warnings);
+  }
+}
+
+std::string StructureDiagnosisReport(const StructureDiagnosisResult& r) {
+  std::ostringstream o;
+  const EffectRanking& k = r.ranking;
+  const RankedClass& top = k.classes.front();
+  o << "diagnosis of " << r.study_name << " (" << r.model_type << " model)\n";
+  if (!r.priors.empty()) o << "stated priors: " << StatedPriorsLine(r.priors) << "\n";
+  if (top.kind == "none") {
+    o << "verdict: no significant gap (P " << std::fixed << std::setprecision(2)
+      << top.probability << ")\n";
+  } else {
+    o << "verdict: " << Label(top) << " (P " << std::fixed << std::setprecision(2)
+      << top.probability << "; family " << k.kind_probabilities.front().first << " P "
+      << k.kind_probabilities.front().second << ")";
+    if (top.probability < r.confidence) o << ", not separated at " << r.confidence;
+    o << "\n";
+    if (!top.equivalent.empty()) {
+      o << "  these data cannot tell it from:";
+      for (const std::string& e : top.equivalent) o << " " << e << ";";
+      o << " together P " << std::fixed << std::setprecision(2) << top.group_probability
+        << "\n";
+    }
+  }
+  for (const FormErrorAllowance& e : k.form_errors) {
+    o << "model form error allowed for: " << e.name << " changes the measured modes' "
+      << "frequencies by up to " << std::fixed << std::setprecision(2)
+      << 100 * e.max_frequency_change << " % (" << std::setprecision(1) << e.noise_units
+      << " noise units)\n";
+  }
+  if (k.temperature > 1 || k.shape_temperature > 1) {
+    o << "note: no class fits within the stated noise (best p " << std::scientific
+      << std::setprecision(1) << k.best_chi2_p_value
+      << "): the model's own form error, or noise understated; standard deviations "
+         "scaled by "
+      << std::fixed << std::setprecision(2) << std::sqrt(k.temperature)
+      << " (frequencies) and " << std::sqrt(k.shape_temperature) << " (shapes)\n";
+  }
+  o << "classes (most probable first):\n";
+  const std::size_t shown = std::min<std::size_t>(k.classes.size(), 8);
+  for (std::size_t i = 0; i < shown; ++i) {
+    const RankedClass& c = k.classes[i];
+    o << "  " << std::left << std::setw(40) << Label(c) << std::right << " P "
+      << std::fixed << std::setprecision(3) << c.probability << "  chi2 "
+      << std::setprecision(1) << c.chi2;
+    for (const EffectMagnitude& m : c.magnitudes) {
+      o << "  " << m.name << " " << std::setprecision(4) << std::defaultfloat << m.value;
+      if (!m.unit.empty() && m.unit.front() != '1') o << " " << m.unit;
+    }
+    if (!c.equivalent.empty()) {
+      o << "  (the same change as:";
+      for (const std::string& e : c.equivalent) o << " " << e << ";";
+      o << " together P " << std::setprecision(3) << std::fixed << c.group_probability
+        << ")";
+    }
+    o << "\n";
+  }
+  for (const std::string& s : k.skipped) o << "not applicable: " << s << "\n";
+  return o.str();
+}
+
+}  // namespace femup
