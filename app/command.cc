@@ -3,7 +3,7 @@
 
 #include <filesystem>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 #include "femup/reporting/run_report.h"
 #include "femup/solvers/linear_solver.h"
 #include "femup/solvers/nonlinear_solver.h"

@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "femup/core/progress.h"
 #include "femup/reporting/output_dir.h"
-#include "femup/progress.h"
 #include "femup/studies/study.h"
 
 namespace femup::cli {

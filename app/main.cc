@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "commands/commands.h"
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 
 namespace femup::cli {
 namespace {

@@ -46,9 +46,9 @@
 #include <string>
 #include <vector>
 
-#include "femup/matrix_market.h"
-#include "femup/modal.h"
-#include "femup/space_frame.h"
+#include "femup/core/fe/space_frame.h"
+#include "femup/core/io/matrix_market.h"
+#include "femup/core/linalg/modal.h"
 #include "peer_runner.h"
 
 namespace {

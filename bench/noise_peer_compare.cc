@@ -34,8 +34,8 @@
 #include <thread>
 #include <vector>
 
-#include "femup/errors.h"
-#include "femup/matrix_market.h"
+#include "femup/core/errors.h"
+#include "femup/core/io/matrix_market.h"
 #include "femup/studies/noise_study.h"
 #include "femup/studies/study.h"
 #include "peer_runner.h"

@@ -2,8 +2,8 @@
 // solve, per form. Run: ./build/bench/paper_chain_bench
 #include <benchmark/benchmark.h>
 
-#include "femup/measurement.h"
-#include "femup/modal.h"
+#include "femup/core/linalg/modal.h"
+#include "femup/core/sysid/measurement.h"
 #include "femup/problems/correction_system.h"
 #include "femup/problems/noise.h"
 #include "femup/problems/paper_chain.h"

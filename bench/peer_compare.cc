@@ -29,7 +29,7 @@
 #include <vector>
 
 #include "bounded_problem.h"
-#include "femup/matrix_market.h"
+#include "femup/core/io/matrix_market.h"
 #include "femup/solvers/linear_solver.h"
 #include "peer_runner.h"
 

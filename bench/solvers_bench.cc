@@ -68,10 +68,10 @@
 #include <vector>
 
 #include "bounded_problem.h"
+#include "femup/core/fe/plane_frame.h"
+#include "femup/core/linalg/modal.h"
+#include "femup/core/sysid/measurement.h"
 #include "femup/evaluation/ill_posed.h"
-#include "femup/measurement.h"
-#include "femup/modal.h"
-#include "femup/plane_frame.h"
 #include "femup/problems/correction_system.h"
 #include "femup/problems/eigen_sensitivity.h"
 #include "femup/problems/noise.h"

@@ -48,11 +48,11 @@
 #include <string>
 #include <vector>
 
-#include "femup/matrix_market.h"
-#include "femup/measurement.h"
+#include "femup/core/fe/space_frame.h"
+#include "femup/core/io/matrix_market.h"
+#include "femup/core/sysid/measurement.h"
 #include "femup/problems/normal_correction_system.h"
 #include "femup/solvers/linear_solver.h"
-#include "femup/space_frame.h"
 #include "peer_runner.h"
 
 namespace {

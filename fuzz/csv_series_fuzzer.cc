@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <string_view>
 
-#include "femup/csv_series.h"
-#include "femup/errors.h"
+#include "femup/core/errors.h"
+#include "femup/core/io/csv_series.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string_view text(reinterpret_cast<const char*>(data), size);

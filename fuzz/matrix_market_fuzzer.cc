@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <string_view>
 
-#include "femup/errors.h"
-#include "femup/matrix_market.h"
+#include "femup/core/errors.h"
+#include "femup/core/io/matrix_market.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string_view text(reinterpret_cast<const char*>(data), size);

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string_view>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 #include "modes_json.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

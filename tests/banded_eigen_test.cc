@@ -2,7 +2,7 @@
 // the analytic spectrum of a clamped Euler-Bernoulli beam, the analytic
 // spectrum of a fixed-free spring chain, and the dense generalised solver on a
 // random banded pencil.
-#include "femup/banded_eigen.h"
+#include "femup/core/linalg/banded_eigen.h"
 
 #include <gtest/gtest.h>
 

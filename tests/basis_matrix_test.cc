@@ -1,6 +1,6 @@
 // BasisMatrix: a basis held on its DOFs equals the n x n matrix it came from,
 // whichever way it is built, and its products and triplets act on those DOFs.
-#include "femup/basis_matrix.h"
+#include "femup/core/fe/basis_matrix.h"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <random>
 #include <vector>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 
 namespace femup {
 namespace {

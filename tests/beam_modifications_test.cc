@@ -3,7 +3,7 @@
 // references: the element stiffness of fe.h, closed-form integrals of polynomial
 // fields, exact frequency ratios, rigid-body kinetic energy, the Euler-Bernoulli
 // frequency equation of a cantilever with a tip mass, and a finer mesh.
-#include "femup/beam_modifications.h"
+#include "femup/core/fe/beam_modifications.h"
 
 #include <gtest/gtest.h>
 
@@ -16,9 +16,9 @@
 #include <string>
 #include <vector>
 
-#include "femup/builders.h"
-#include "femup/errors.h"
-#include "femup/fe.h"
+#include "femup/core/errors.h"
+#include "femup/core/fe/builders.h"
+#include "femup/core/fe/fe.h"
 #include "femup/studies/study.h"
 #include "paper_beam.h"
 #include "scratch_dir.h"

@@ -14,7 +14,7 @@
 #include <tuple>
 #include <vector>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 #include "femup/problems/effect_fit.h"
 
 namespace femup {

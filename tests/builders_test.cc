@@ -1,7 +1,7 @@
 // Built-in structures (lib/include/femup/builders.h): the spring-mass chain
 // against hand-written matrices, the frame cantilever against Euler-Bernoulli
 // beam theory, Rayleigh and Dunkerley bounds and the paper's values.
-#include "femup/builders.h"
+#include "femup/core/fe/builders.h"
 
 #include <gtest/gtest.h>
 
@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "femup/errors.h"
-#include "femup/modal.h"
+#include "femup/core/errors.h"
+#include "femup/core/linalg/modal.h"
 #include "paper_beam.h"
 
 namespace femup {

@@ -11,12 +11,12 @@
 #include <string>
 #include <vector>
 
-#include "femup/builders.h"
-#include "femup/errors.h"
-#include "femup/measurement.h"
-#include "femup/modal.h"
+#include "femup/core/errors.h"
+#include "femup/core/fe/builders.h"
+#include "femup/core/fe/structure.h"
+#include "femup/core/linalg/modal.h"
+#include "femup/core/sysid/measurement.h"
 #include "femup/problems/paper_chain.h"
-#include "femup/structure.h"
 #include "paper_beam.h"
 
 namespace femup {

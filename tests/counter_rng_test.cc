@@ -1,7 +1,7 @@
 // CounterRng (lib/include/femup/counter_rng.h): Random123's published
 // known-answer vectors for Philox4x64-10, streams that depend only on
 // (seed, stream, substream), and the moments of its normal and uniform draws.
-#include "femup/counter_rng.h"
+#include "femup/core/counter_rng.h"
 
 #include <gtest/gtest.h>
 

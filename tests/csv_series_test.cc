@@ -1,6 +1,6 @@
 // CSV time series: delimiter detection, tolerated forms, round trips, and the
 // checks (uniform step, row width, whole finite numbers) with their messages.
-#include "femup/csv_series.h"
+#include "femup/core/io/csv_series.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "femup/errors.h"
-#include "femup/uff.h"
+#include "femup/core/errors.h"
+#include "femup/core/io/uff.h"
 #include "scratch_dir.h"
 
 namespace femup {

@@ -9,8 +9,8 @@
 #include <cmath>
 #include <fstream>
 
-#include "femup/builders.h"
-#include "femup/plane_frame.h"
+#include "femup/core/fe/builders.h"
+#include "femup/core/fe/plane_frame.h"
 #include "femup/reporting/diagnosis_map_figure.h"
 #include "scratch_dir.h"
 

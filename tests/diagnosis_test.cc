@@ -17,7 +17,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 #include "femup/problems/effect_fit.h"
 #include "femup/reporting/diagnose_outputs.h"
 #include "femup/reporting/output_dir.h"

@@ -9,9 +9,9 @@
 #include <cmath>
 #include <string>
 
-#include "femup/builders.h"
-#include "femup/errors.h"
-#include "femup/plane_frame.h"
+#include "femup/core/errors.h"
+#include "femup/core/fe/builders.h"
+#include "femup/core/fe/plane_frame.h"
 
 namespace femup {
 namespace {

@@ -18,12 +18,12 @@
 #include <set>
 #include <sstream>
 
-#include "femup/builders.h"
-#include "femup/errors.h"
-#include "femup/modal.h"
-#include "femup/plane_frame.h"
+#include "femup/core/errors.h"
+#include "femup/core/fe/builders.h"
+#include "femup/core/fe/plane_frame.h"
+#include "femup/core/fe/space_frame.h"
+#include "femup/core/linalg/modal.h"
 #include "femup/reporting/structure_diagnosis_outputs.h"
-#include "femup/space_frame.h"
 #include "femup/studies/structure_diagnosis.h"
 #include "scratch_dir.h"
 

@@ -19,10 +19,10 @@
 #include <string>
 #include <vector>
 
-#include "femup/builders.h"
-#include "femup/errors.h"
-#include "femup/fe.h"
-#include "femup/structure.h"
+#include "femup/core/errors.h"
+#include "femup/core/fe/builders.h"
+#include "femup/core/fe/fe.h"
+#include "femup/core/fe/structure.h"
 #include "paper_beam.h"
 
 namespace femup {

@@ -2,7 +2,7 @@
 // checked against closed-form derivatives of a 2-dof system and a mass scaling,
 // and against central finite differences of SolveModes on a chain and a
 // cantilever.
-#include "femup/eigen_derivatives.h"
+#include "femup/core/linalg/eigen_derivatives.h"
 
 #include <gtest/gtest.h>
 
@@ -11,10 +11,10 @@
 #include <cmath>
 #include <random>
 
-#include "femup/builders.h"
-#include "femup/errors.h"
-#include "femup/modal.h"
-#include "femup/structure.h"
+#include "femup/core/errors.h"
+#include "femup/core/fe/builders.h"
+#include "femup/core/fe/structure.h"
+#include "femup/core/linalg/modal.h"
 #include "paper_beam.h"
 
 namespace femup {

@@ -13,14 +13,14 @@
 #include <limits>
 #include <random>
 
-#include "femup/builders.h"
-#include "femup/errors.h"
-#include "femup/modal.h"
+#include "femup/core/errors.h"
+#include "femup/core/fe/builders.h"
+#include "femup/core/fe/sensor.h"
+#include "femup/core/fe/space_frame.h"
+#include "femup/core/fe/structure.h"
+#include "femup/core/linalg/modal.h"
 #include "femup/problems/noise.h"
 #include "femup/problems/paper_chain.h"
-#include "femup/sensor.h"
-#include "femup/space_frame.h"
-#include "femup/structure.h"
 
 namespace femup {
 namespace {

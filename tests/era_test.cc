@@ -3,7 +3,7 @@
 // fixed-free spring-mass chain whose modes are known in closed form:
 // n equal masses m and springs k give w_j = 2 sqrt(k/m) sin(theta_j / 2) and
 // shapes phi_i = sin(i theta_j), theta_j = (2j - 1) pi / (2n + 1).
-#include "femup/era.h"
+#include "femup/core/sysid/era.h"
 
 #include <gtest/gtest.h>
 
@@ -14,10 +14,10 @@
 #include <string>
 #include <vector>
 
-#include "femup/errors.h"
-#include "femup/frf_impulse.h"
-#include "femup/modal.h"
-#include "femup/time_response.h"
+#include "femup/core/errors.h"
+#include "femup/core/linalg/modal.h"
+#include "femup/core/sysid/frf_impulse.h"
+#include "femup/core/sysid/time_response.h"
 
 namespace femup {
 namespace {

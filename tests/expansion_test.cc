@@ -3,14 +3,14 @@
 // mode (exactly, for serep/lsq when the mode is in the basis, and for dynamic
 // expansion with the mode's eigenvalue); a shape outside the basis shows in the
 // sensor MAC.
-#include "femup/expansion.h"
+#include "femup/core/sysid/expansion.h"
 
 #include <gtest/gtest.h>
 
-#include "femup/builders.h"
-#include "femup/errors.h"
-#include "femup/sensor.h"
-#include "femup/structure.h"
+#include "femup/core/errors.h"
+#include "femup/core/fe/builders.h"
+#include "femup/core/fe/sensor.h"
+#include "femup/core/fe/structure.h"
 
 namespace femup {
 namespace {

@@ -8,8 +8,9 @@
 #include <cmath>
 #include <fstream>
 
-#include "femup/errors.h"
-#include "femup/modal.h"
+#include "femup/core/errors.h"
+#include "femup/core/io/uff.h"
+#include "femup/core/linalg/modal.h"
 #include "femup/reporting/compare_outputs.h"
 #include "femup/reporting/identify_outputs.h"
 #include "femup/reporting/output_dir.h"
@@ -18,7 +19,6 @@
 #include "femup/studies/simulate_study.h"
 #include "femup/studies/study.h"
 #include "femup/studies/update_study.h"
-#include "femup/uff.h"
 #include "scratch_dir.h"
 
 namespace femup {

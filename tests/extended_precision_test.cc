@@ -11,7 +11,7 @@
 #include <random>
 #include <string>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 
 namespace femup {
 namespace {

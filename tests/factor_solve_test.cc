@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "femup/counter_rng.h"
+#include "femup/core/counter_rng.h"
 #include "femup/problems/noise.h"
 #include "femup/studies/study.h"
 

@@ -1,6 +1,6 @@
 // 2D frame element matrices (lib/include/femup/fe.h), checked against textbook
 // entries, rigid-body kinematics and mass totals computed by hand.
-#include "femup/fe.h"
+#include "femup/core/fe/fe.h"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include <limits>
 #include <vector>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 #include "paper_beam.h"
 
 namespace femup {

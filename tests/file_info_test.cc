@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 #include "scratch_dir.h"
 
 namespace femup {

@@ -1,13 +1,13 @@
 // What is wrong with an input (lib/include/femup/invalid.h): ok and its bool,
 // putting a field under a prefix, the one rendering, and the InputError that
 // ThrowIfInvalid makes of it.
-#include "femup/invalid.h"
+#include "femup/core/invalid.h"
 
 #include <gtest/gtest.h>
 
 #include <string>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 
 namespace femup {
 namespace {

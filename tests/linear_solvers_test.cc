@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
+#include "femup/core/linalg/modal.h"
+#include "femup/core/sysid/measurement.h"
 #include "femup/evaluation/nist_strd.h"
-#include "femup/measurement.h"
-#include "femup/modal.h"
 #include "femup/problems/correction_system.h"
 #include "femup/problems/paper_chain.h"
 #include "femup/solvers/linear_solver.h"

@@ -16,7 +16,7 @@
 #include <utility>
 #include <vector>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 #include "femup/evaluation/nist_strd.h"
 #include "femup/problems/linear_problem.h"
 #include "femup/solvers/identifiability.h"

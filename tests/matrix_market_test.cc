@@ -1,4 +1,4 @@
-#include "femup/matrix_market.h"
+#include "femup/core/io/matrix_market.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -18,7 +18,7 @@
 #include <tuple>
 #include <vector>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 #include "scratch_dir.h"
 
 namespace femup {

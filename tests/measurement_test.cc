@@ -1,7 +1,7 @@
 // Measured modal data (lib/include/femup/measurement.h): validation messages,
 // reordering of sensor rows, and the modes predicted for the paper's chain
 // (values from method.md, section 4).
-#include "femup/measurement.h"
+#include "femup/core/sysid/measurement.h"
 
 #include <gtest/gtest.h>
 
@@ -10,8 +10,8 @@
 #include <limits>
 #include <string>
 
-#include "femup/errors.h"
-#include "femup/modal.h"
+#include "femup/core/errors.h"
+#include "femup/core/linalg/modal.h"
 #include "femup/problems/paper_chain.h"
 
 namespace femup {

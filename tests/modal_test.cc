@@ -1,6 +1,6 @@
 // Modal analysis (lib/include/femup/modal.h), checked against eigen residuals,
 // the analytic spectrum of a fixed-free chain and hand-built MAC examples.
-#include "femup/modal.h"
+#include "femup/core/linalg/modal.h"
 
 #include <gtest/gtest.h>
 
@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "femup/builders.h"
-#include "femup/errors.h"
+#include "femup/core/errors.h"
+#include "femup/core/fe/builders.h"
 #include "paper_beam.h"
 
 namespace femup {

@@ -9,9 +9,9 @@
 
 #include <cmath>
 
-#include "femup/builders.h"
-#include "femup/errors.h"
-#include "femup/modal.h"
+#include "femup/core/errors.h"
+#include "femup/core/fe/builders.h"
+#include "femup/core/linalg/modal.h"
 #include "femup/solvers/nonlinear_solver.h"
 
 namespace femup {

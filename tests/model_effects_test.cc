@@ -11,10 +11,10 @@
 #include <Eigen/LU>
 #include <cmath>
 
-#include "femup/beam_modifications.h"
-#include "femup/builders.h"
-#include "femup/errors.h"
-#include "femup/modal.h"
+#include "femup/core/errors.h"
+#include "femup/core/fe/beam_modifications.h"
+#include "femup/core/fe/builders.h"
+#include "femup/core/linalg/modal.h"
 #include "paper_beam.h"
 
 namespace femup {

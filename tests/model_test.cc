@@ -1,7 +1,7 @@
 // ParametrisedModel (lib/include/femup/model.h) and the parameter plans that
 // build it from a Structure (lib/include/femup/structure.h), checked against
 // hand-assembled matrices.
-#include "femup/model.h"
+#include "femup/core/fe/model.h"
 
 #include <gtest/gtest.h>
 
@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "femup/builders.h"
-#include "femup/errors.h"
-#include "femup/structure.h"
+#include "femup/core/errors.h"
+#include "femup/core/fe/builders.h"
+#include "femup/core/fe/structure.h"
 #include "paper_beam.h"
 
 namespace femup {

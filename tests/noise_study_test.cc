@@ -9,7 +9,7 @@
 #include <cmath>
 #include <string>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 
 namespace femup {
 namespace {

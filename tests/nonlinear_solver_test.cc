@@ -17,7 +17,7 @@
 #include <thread>
 #include <vector>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 #include "femup/problems/linear_problem.h"
 #include "femup/problems/nonlinear_problem.h"
 #include "femup/solvers/backend_linear_solvers.h"

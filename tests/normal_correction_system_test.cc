@@ -11,13 +11,13 @@
 #include <Eigen/Dense>
 #include <random>
 
-#include "femup/errors.h"
-#include "femup/modal.h"
-#include "femup/plane_frame.h"
+#include "femup/core/errors.h"
+#include "femup/core/fe/plane_frame.h"
+#include "femup/core/fe/space_frame.h"
+#include "femup/core/linalg/modal.h"
 #include "femup/problems/correction_system.h"
 #include "femup/problems/paper_chain.h"
 #include "femup/solvers/linear_solver.h"
-#include "femup/space_frame.h"
 
 namespace femup {
 namespace {

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 #include "scratch_dir.h"
 
 namespace femup {

@@ -5,8 +5,8 @@
 
 #include <vector>
 
-#include "femup/builders.h"
-#include "femup/fe.h"
+#include "femup/core/fe/builders.h"
+#include "femup/core/fe/fe.h"
 
 namespace femup {
 namespace fixtures {

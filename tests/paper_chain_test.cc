@@ -4,8 +4,8 @@
 
 #include <gtest/gtest.h>
 
-#include "femup/measurement.h"
-#include "femup/modal.h"
+#include "femup/core/linalg/modal.h"
+#include "femup/core/sysid/measurement.h"
 #include "femup/problems/correction_system.h"
 #include "femup/solvers/linear_solver.h"
 

@@ -1,6 +1,6 @@
 // ParallelFor (parallel.h): every index once, the same results whatever the
 // thread count, and the exception of the lowest failing index.
-#include "femup/parallel.h"
+#include "femup/core/parallel.h"
 
 #include <gtest/gtest.h>
 

@@ -7,9 +7,9 @@
 
 #include <cmath>
 
-#include "femup/errors.h"
-#include "femup/modal.h"
-#include "femup/plane_frame.h"
+#include "femup/core/errors.h"
+#include "femup/core/fe/plane_frame.h"
+#include "femup/core/linalg/modal.h"
 #include "femup/problems/model_effect_pencil.h"
 #include "femup/solvers/nonlinear_solver.h"
 #include "femup/studies/study.h"

@@ -2,14 +2,14 @@
 // against counts from its definition, the sums of its substructure matrices,
 // the total mass, and the sway stiffness of a portal frame with a rigid beam
 // (two fixed-guided columns: 24 E I / h^3).
-#include "femup/plane_frame.h"
+#include "femup/core/fe/plane_frame.h"
 
 #include <gtest/gtest.h>
 
 #include <Eigen/SparseCholesky>
 #include <string>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 
 namespace femup {
 namespace {

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 
 namespace femup {
 namespace {

@@ -1,6 +1,6 @@
 // The progress bar (lib/include/femup/progress.h): its line, its silence when
 // the output is not a terminal, and updates from several threads.
-#include "femup/progress.h"
+#include "femup/core/progress.h"
 
 #include <gtest/gtest.h>
 

@@ -10,7 +10,7 @@
 #include <cmath>
 #include <random>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 #include "femup/evaluation/ill_posed.h"
 #include "femup/solvers/linear_solver.h"
 

@@ -13,7 +13,7 @@
 #include <limits>
 #include <vector>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 #include "femup/solvers/model_evidence.h"
 
 namespace femup {

@@ -1,6 +1,6 @@
 // Sensors between nodes (femup/sensor.h): checked against closed forms, not
 // against the code's own output.
-#include "femup/sensor.h"
+#include "femup/core/fe/sensor.h"
 
 #include <gtest/gtest.h>
 
@@ -8,9 +8,9 @@
 #include <Eigen/SparseCholesky>
 #include <random>
 
-#include "femup/builders.h"
-#include "femup/plane_frame.h"
-#include "femup/space_frame.h"
+#include "femup/core/fe/builders.h"
+#include "femup/core/fe/plane_frame.h"
+#include "femup/core/fe/space_frame.h"
 #include "paper_beam.h"
 
 namespace femup {

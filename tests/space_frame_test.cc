@@ -6,7 +6,7 @@
 // m for a translation, m L^2 / 12 for a rotation), invariance under rotation,
 // member masses summed by hand from the spec, counts from the spec's
 // definition, and the dense eigensolver for the sparse one.
-#include "femup/space_frame.h"
+#include "femup/core/fe/space_frame.h"
 
 #include <gtest/gtest.h>
 
@@ -19,9 +19,9 @@
 #include <string>
 #include <vector>
 
-#include "femup/errors.h"
-#include "femup/frame3d.h"
-#include "femup/modal.h"
+#include "femup/core/errors.h"
+#include "femup/core/fe/frame3d.h"
+#include "femup/core/linalg/modal.h"
 
 namespace femup {
 namespace {

@@ -1,7 +1,7 @@
 // SparseCholesky (sparse_cholesky.h) against Eigen's dense LLT on small
 // matrices: solves, half solves with dense and sparse right-hand sides, the
 // weighted inner products they give, for every ordering; and its errors.
-#include "femup/sparse_cholesky.h"
+#include "femup/core/linalg/sparse_cholesky.h"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <limits>
 #include <random>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 
 namespace femup {
 namespace {

@@ -1,4 +1,4 @@
-#include "sparse_eigen.h"
+#include "linalg/sparse_eigen.h"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 
 namespace femup {
 namespace internal {

@@ -2,7 +2,7 @@
 // coefficient against DNV-RP-C205 Table A-1, the strip mass per length against
 // the displaced fluid of a circle, and the wet added-mass matrix against the
 // element transverse mass (fe.h) and closed-form integrals of cubic fields.
-#include "femup/strip_theory.h"
+#include "femup/core/fe/strip_theory.h"
 
 #include <gtest/gtest.h>
 
@@ -14,9 +14,9 @@
 #include <string>
 #include <vector>
 
-#include "femup/builders.h"
-#include "femup/errors.h"
-#include "femup/fe.h"
+#include "femup/core/errors.h"
+#include "femup/core/fe/builders.h"
+#include "femup/core/fe/fe.h"
 #include "paper_beam.h"
 
 namespace femup {

@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 
 namespace femup {
 namespace {

@@ -2,7 +2,7 @@
 // against the closed-form impulse response of a single-DOF oscillator and
 // against the matrix exponential of the first-order (state-space) equations
 // with the damping matrix built explicitly.
-#include "femup/time_response.h"
+#include "femup/core/sysid/time_response.h"
 
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@
 #include <unsupported/Eigen/MatrixFunctions>
 #include <vector>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 
 namespace femup {
 namespace {

@@ -3,7 +3,7 @@
 // DOFs, by an explicit map and by node coordinates; complex shapes and
 // eigenvalues against hand computations; a pyuff mode-shape file and a complex
 // mode of another exporter; every kind of bad input, named.
-#include "femup/uff_modes.h"
+#include "femup/core/io/uff_modes.h"
 
 #include <gtest/gtest.h>
 
@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "femup/builders.h"
-#include "femup/errors.h"
-#include "femup/modal.h"
+#include "femup/core/errors.h"
+#include "femup/core/fe/builders.h"
+#include "femup/core/linalg/modal.h"
 #include "scratch_dir.h"
 
 namespace femup {

@@ -11,11 +11,11 @@
 #include <string>
 #include <vector>
 
-#include "femup/errors.h"
-#include "femup/modal.h"
+#include "femup/core/errors.h"
+#include "femup/core/io/uff.h"
+#include "femup/core/linalg/modal.h"
 #include "femup/studies/identify_study.h"
 #include "femup/studies/study.h"
-#include "femup/uff.h"
 #include "scratch_dir.h"
 
 namespace femup {

@@ -2,7 +2,7 @@
 // of the pyuff repository, an HBM catman time history, a pyuff mode shape),
 // round trips of every dataset variant in ASCII and binary, the tolerated
 // irregularities, and malformed files.
-#include "femup/uff.h"
+#include "femup/core/io/uff.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 #include "scratch_dir.h"
 
 namespace femup {

@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 #include "femup/evaluation/nist_strd.h"
 #include "femup/reporting/output_dir.h"
 

@@ -13,7 +13,7 @@
 #include <utility>
 #include <vector>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 #include "femup/evaluation/nist_strd.h"
 
 namespace femup_validate {

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "femup/measurement.h"
-#include "femup/modal.h"
+#include "femup/core/linalg/modal.h"
+#include "femup/core/sysid/measurement.h"
 #include "femup/problems/correction_system.h"
 #include "femup/problems/paper_chain.h"
 #include "femup/solvers/identifiability.h"

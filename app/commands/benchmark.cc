@@ -4,7 +4,7 @@
 #include <filesystem>
 
 #include "commands.h"
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 #include "femup/evaluation/blind_benchmark.h"
 
 namespace femup::cli {

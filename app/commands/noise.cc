@@ -1,7 +1,7 @@
 // femup noise: the noise study of a study file (the added-mass factors'
 // spread as the data are corrupted).
 #include "commands.h"
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 #include "femup/reporting/noise_outputs.h"
 #include "femup/studies/noise_study.h"
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "femup/builders.h"
+#include "femup/core/fe/builders.h"
 #include "femup/problems/effect_fit.h"
 
 namespace femup {

@@ -6,8 +6,8 @@
 #include <limits>
 
 #include "benchmark_generator.h"
-#include "femup/banded_eigen.h"
-#include "femup/errors.h"
+#include "femup/core/errors.h"
+#include "femup/core/linalg/banded_eigen.h"
 #include "femup/problems/effect_fit.h"
 #include "femup/solvers/sampled_evidence.h"
 

@@ -17,9 +17,9 @@
 
 #include "benchmark_generator.h"
 #include "blind_benchmark_common.h"
-#include "femup/errors.h"
+#include "femup/core/errors.h"
+#include "femup/core/parallel.h"
 #include "femup/evaluation/benchmark_oracle.h"
-#include "femup/parallel.h"
 #include "femup/problems/effect_fit.h"
 #include "femup/studies/diagnose_study.h"
 #include "femup/studies/study.h"

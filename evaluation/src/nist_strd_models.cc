@@ -11,7 +11,7 @@
 #include <unsupported/Eigen/AutoDiff>
 #include <vector>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 #include "femup/evaluation/nist_strd.h"
 
 namespace femup {

@@ -6,8 +6,8 @@
 #include <map>
 #include <sstream>
 
-#include "femup/errors.h"
-#include "femup/modal.h"
+#include "femup/core/errors.h"
+#include "femup/core/linalg/modal.h"
 
 namespace femup {
 

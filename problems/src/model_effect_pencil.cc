@@ -1,6 +1,6 @@
 #include "femup/problems/model_effect_pencil.h"
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 
 namespace femup {
 

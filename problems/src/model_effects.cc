@@ -4,8 +4,8 @@
 #include <cmath>
 #include <map>
 
-#include "femup/errors.h"
-#include "femup/sensor.h"
+#include "femup/core/errors.h"
+#include "femup/core/fe/sensor.h"
 
 namespace femup {
 

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 
 namespace femup {
 

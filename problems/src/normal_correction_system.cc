@@ -7,8 +7,8 @@
 #include <limits>
 #include <sstream>
 
-#include "femup/errors.h"
-#include "femup/sparse_cholesky.h"
+#include "femup/core/errors.h"
+#include "femup/core/linalg/sparse_cholesky.h"
 
 namespace femup {
 namespace {

@@ -1,7 +1,7 @@
 #include "femup/problems/paper_chain.h"
 
-#include "femup/builders.h"
-#include "femup/errors.h"
+#include "femup/core/errors.h"
+#include "femup/core/fe/builders.h"
 
 namespace femup {
 

@@ -7,10 +7,10 @@
 #include <cmath>
 #include <string>
 
-#include "femup/errors.h"
-#include "femup/modal.h"
+#include "femup/core/errors.h"
+#include "femup/core/linalg/modal.h"
+#include "femup/core/linalg/sparse_cholesky.h"
 #include "femup/problems/eigen_sensitivity.h"
-#include "femup/sparse_cholesky.h"
 
 namespace femup {
 

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "femup/model.h"
+#include "femup/core/fe/model.h"
 
 namespace femup_python {
 

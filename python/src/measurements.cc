@@ -5,14 +5,14 @@
 #include <vector>
 
 #include "common.h"
-#include "femup/csv_series.h"
-#include "femup/era.h"
-#include "femup/errors.h"
-#include "femup/frf_impulse.h"
-#include "femup/measurement.h"
+#include "femup/core/errors.h"
+#include "femup/core/io/csv_series.h"
+#include "femup/core/io/uff.h"
+#include "femup/core/sysid/era.h"
+#include "femup/core/sysid/frf_impulse.h"
+#include "femup/core/sysid/measurement.h"
 #include "femup/reporting/identify_outputs.h"
 #include "femup/studies/identify_study.h"
-#include "femup/uff.h"
 
 namespace femup_python {
 

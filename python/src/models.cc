@@ -5,16 +5,16 @@
 #include <vector>
 
 #include "common.h"
-#include "femup/builders.h"
-#include "femup/errors.h"
-#include "femup/frame3d.h"
-#include "femup/matrix_market.h"
-#include "femup/measurement.h"
-#include "femup/modal.h"
-#include "femup/model.h"
-#include "femup/plane_frame.h"
-#include "femup/space_frame.h"
-#include "femup/structure.h"
+#include "femup/core/errors.h"
+#include "femup/core/fe/builders.h"
+#include "femup/core/fe/frame3d.h"
+#include "femup/core/fe/model.h"
+#include "femup/core/fe/plane_frame.h"
+#include "femup/core/fe/space_frame.h"
+#include "femup/core/fe/structure.h"
+#include "femup/core/io/matrix_market.h"
+#include "femup/core/linalg/modal.h"
+#include "femup/core/sysid/measurement.h"
 
 namespace femup_python {
 

@@ -5,7 +5,7 @@
 #include <pybind11/pybind11.h>
 
 #include "common.h"
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 
 namespace femup_python {
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "common.h"
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 #include "femup/reporting/diagnose_outputs.h"
 #include "femup/reporting/modes_outputs.h"
 #include "femup/reporting/noise_outputs.h"

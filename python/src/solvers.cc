@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "common.h"
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 #include "femup/problems/correction_system.h"
 #include "femup/problems/eigen_sensitivity.h"
 #include "femup/problems/linear_problem.h"

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "common.h"
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 
 namespace femup_python {
 

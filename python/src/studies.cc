@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "common.h"
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 #include "femup/studies/factor_solve.h"
 #include "femup/studies/study.h"
 

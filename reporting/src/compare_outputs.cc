@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 #include "femup/reporting/plot.h"
 #include "femup/studies/study.h"
 #include "json_util.h"

@@ -9,10 +9,10 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "femup/counter_rng.h"
-#include "femup/errors.h"
-#include "femup/modal.h"
-#include "femup/parallel.h"
+#include "femup/core/counter_rng.h"
+#include "femup/core/errors.h"
+#include "femup/core/linalg/modal.h"
+#include "femup/core/parallel.h"
 #include "femup/problems/correction_system.h"
 #include "femup/problems/noise.h"
 #include "femup/studies/factor_solve.h"

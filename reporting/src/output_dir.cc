@@ -5,7 +5,7 @@
 #include <random>
 #include <vector>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 
 namespace femup {
 

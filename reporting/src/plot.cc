@@ -14,7 +14,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 #include "plot_internal.h"
 
 namespace femup {

@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 #include "femup/reporting/diagnosis_map_figure.h"
 #include "json_util.h"
 #include "render_staged.h"

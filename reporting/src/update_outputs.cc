@@ -10,8 +10,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "femup/dof_labels.h"
-#include "femup/matrix_market.h"
+#include "femup/core/fe/dof_labels.h"
+#include "femup/core/io/matrix_market.h"
 #include "femup/reporting/identify_outputs.h"
 #include "femup/reporting/plot.h"
 #include "json_util.h"

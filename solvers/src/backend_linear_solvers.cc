@@ -6,7 +6,7 @@
 #include <iomanip>
 #include <sstream>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 #include "femup/problems/nonlinear_problem.h"
 #include "femup/solvers/identifiability.h"
 #include "femup/solvers/nonlinear_solver.h"

@@ -8,7 +8,7 @@
 #include <sstream>
 #include <utility>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 #include "femup/solvers/kkt.h"
 #include "linear_common.h"
 

@@ -8,7 +8,7 @@
 #include <numeric>
 #include <sstream>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 
 namespace femup {
 namespace {

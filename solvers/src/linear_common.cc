@@ -5,7 +5,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 #include "femup/solvers/uncertainty.h"
 
 namespace femup::internal {

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 #include "femup/solvers/backend_linear_solvers.h"
 #include "femup/solvers/bvls.h"
 #include "femup/solvers/lstsq.h"

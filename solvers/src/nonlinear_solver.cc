@@ -8,7 +8,7 @@
 #include <sstream>
 #include <utility>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 #include "femup/solvers/ceres_solver.h"
 #include "femup/solvers/ipopt_solver.h"
 #include "femup/solvers/kkt.h"

@@ -10,7 +10,7 @@
 #include <limits>
 #include <sstream>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 
 namespace femup {
 

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <limits>
 
-#include "femup/counter_rng.h"
-#include "femup/errors.h"
+#include "femup/core/counter_rng.h"
+#include "femup/core/errors.h"
 
 namespace femup {
 

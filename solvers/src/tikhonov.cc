@@ -3,7 +3,7 @@
 #include <Eigen/QR>
 #include <sstream>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 #include "linear_common.h"
 
 namespace femup {

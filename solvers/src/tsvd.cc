@@ -5,7 +5,7 @@
 #include <limits>
 #include <sstream>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 #include "linear_common.h"
 
 namespace femup {

@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "diagnose_study_steps.h"
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 #include "femup/problems/effect_priors.h"
 #include "femup/solvers/nonlinear_solver.h"
 

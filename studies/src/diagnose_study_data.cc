@@ -8,8 +8,8 @@
 #include <sstream>
 
 #include "diagnose_study_steps.h"
-#include "femup/errors.h"
-#include "femup/sensor.h"
+#include "femup/core/errors.h"
+#include "femup/core/fe/sensor.h"
 
 namespace femup::diagnose_steps {
 namespace {

@@ -4,7 +4,7 @@
 #include <map>
 
 #include "diagnose_study_steps.h"
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 #include "femup/problems/effect_priors.h"
 
 namespace femup::diagnose_steps {

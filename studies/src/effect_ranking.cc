@@ -11,8 +11,8 @@
 #include <memory>
 #include <string_view>
 
-#include "femup/errors.h"
-#include "femup/parallel.h"
+#include "femup/core/errors.h"
+#include "femup/core/parallel.h"
 #include "femup/problems/effect_priors.h"
 #include "femup/problems/model_effect_pencil.h"
 #include "femup/solvers/nonlinear_solver.h"

@@ -4,7 +4,7 @@
 #include <chrono>
 #include <limits>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 #include "femup/problems/correction_system.h"
 #include "femup/problems/eigen_sensitivity.h"
 #include "femup/problems/normal_correction_system.h"

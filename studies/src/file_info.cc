@@ -10,8 +10,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "femup/errors.h"
-#include "femup/matrix_market.h"
+#include "femup/core/errors.h"
+#include "femup/core/io/matrix_market.h"
 #include "file_info_uff.h"
 
 namespace femup {

@@ -11,8 +11,8 @@
 #include <sstream>
 #include <variant>
 
-#include "femup/errors.h"
-#include "femup/uff_modes.h"
+#include "femup/core/errors.h"
+#include "femup/core/io/uff_modes.h"
 
 namespace femup::file_info {
 namespace {

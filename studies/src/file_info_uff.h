@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "femup/uff.h"
+#include "femup/core/io/uff.h"
 
 namespace femup::file_info {
 

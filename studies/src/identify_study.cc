@@ -7,10 +7,10 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "femup/csv_series.h"
-#include "femup/errors.h"
-#include "femup/frf_impulse.h"
-#include "femup/uff.h"
+#include "femup/core/errors.h"
+#include "femup/core/io/csv_series.h"
+#include "femup/core/io/uff.h"
+#include "femup/core/sysid/frf_impulse.h"
 
 namespace femup {
 namespace {

@@ -11,12 +11,12 @@
 #include <set>
 #include <sstream>
 
-#include "femup/errors.h"
-#include "femup/expansion.h"
-#include "femup/modal.h"
+#include "femup/core/errors.h"
+#include "femup/core/io/uff.h"
+#include "femup/core/io/uff_modes.h"
+#include "femup/core/linalg/modal.h"
+#include "femup/core/sysid/expansion.h"
 #include "femup/studies/study.h"
-#include "femup/uff.h"
-#include "femup/uff_modes.h"
 #include "modes_json.h"
 
 namespace femup {

@@ -7,12 +7,12 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "femup/csv_series.h"
-#include "femup/dof_labels.h"
-#include "femup/errors.h"
-#include "femup/modal.h"
-#include "femup/strip_theory.h"
-#include "femup/uff.h"
+#include "femup/core/errors.h"
+#include "femup/core/fe/dof_labels.h"
+#include "femup/core/fe/strip_theory.h"
+#include "femup/core/io/csv_series.h"
+#include "femup/core/io/uff.h"
+#include "femup/core/linalg/modal.h"
 
 namespace femup {
 namespace {

@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 
 namespace femup {
 

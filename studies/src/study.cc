@@ -14,7 +14,7 @@
 #include <sstream>
 #include <string_view>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 #include "study_reader.h"
 
 namespace femup {

@@ -6,7 +6,7 @@
 #include <memory>
 #include <set>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 #include "femup/problems/effect_priors.h"
 #include "femup/problems/effects.h"
 #include "femup/problems/model_effects.h"

@@ -8,8 +8,8 @@
 #include <filesystem>
 #include <set>
 
-#include "femup/errors.h"
-#include "femup/sensor.h"
+#include "femup/core/errors.h"
+#include "femup/core/fe/sensor.h"
 #include "study_reader.h"
 
 namespace femup::study_reader {

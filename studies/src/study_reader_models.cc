@@ -8,11 +8,11 @@
 #include <filesystem>
 #include <sstream>
 
-#include "femup/builders.h"
-#include "femup/errors.h"
-#include "femup/matrix_market.h"
-#include "femup/plane_frame.h"
-#include "femup/space_frame.h"
+#include "femup/core/errors.h"
+#include "femup/core/fe/builders.h"
+#include "femup/core/fe/plane_frame.h"
+#include "femup/core/fe/space_frame.h"
+#include "femup/core/io/matrix_market.h"
 #include "study_reader.h"
 
 namespace femup::study_reader {

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "femup/errors.h"
+#include "femup/core/errors.h"
 #include "study_reader.h"
 
 namespace femup::study_reader {

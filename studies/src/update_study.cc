@@ -6,9 +6,9 @@
 #include <algorithm>
 #include <limits>
 
-#include "femup/dof_labels.h"
-#include "femup/errors.h"
-#include "femup/modal.h"
+#include "femup/core/errors.h"
+#include "femup/core/fe/dof_labels.h"
+#include "femup/core/linalg/modal.h"
 #include "femup/studies/factor_solve.h"
 
 namespace femup {

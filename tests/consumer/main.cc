@@ -2,8 +2,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "femup/measurement.h"
-#include "femup/modal.h"
+#include "femup/core/linalg/modal.h"
+#include "femup/core/sysid/measurement.h"
 #include "femup/problems/correction_system.h"
 #include "femup/problems/paper_chain.h"
 #include "femup/solvers/linear_solver.h"

@@ -33,8 +33,8 @@
 #include <string>
 #include <vector>
 
+#include "femup/core/invalid.h"
 #include "femup/evaluation/blind_benchmark.h"
-#include "femup/invalid.h"
 #include "femup/studies/study.h"
 
 namespace femup {

@@ -28,9 +28,9 @@
 #include <string>
 #include <vector>
 
-#include "femup/invalid.h"
+#include "femup/core/invalid.h"
+#include "femup/core/progress.h"
 #include "femup/reporting/output_dir.h"
-#include "femup/progress.h"
 
 namespace femup {
 

@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "femup/measurement.h"
-#include "femup/modal.h"
-#include "femup/model.h"
+#include "femup/core/fe/model.h"
+#include "femup/core/linalg/modal.h"
+#include "femup/core/sysid/measurement.h"
 #include "femup/problems/linear_problem.h"
 
 namespace femup {

@@ -26,9 +26,9 @@
 #include <string>
 #include <vector>
 
-#include "femup/builders.h"
-#include "femup/invalid.h"
-#include "femup/measurement.h"
+#include "femup/core/fe/builders.h"
+#include "femup/core/invalid.h"
+#include "femup/core/sysid/measurement.h"
 #include "femup/problems/effects.h"
 #include "femup/problems/nonlinear_problem.h"
 

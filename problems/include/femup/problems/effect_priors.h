@@ -31,12 +31,12 @@
 #include <string>
 #include <vector>
 
-#include "femup/builders.h"
-#include "femup/invalid.h"
+#include "femup/core/fe/builders.h"
+#include "femup/core/fe/structure.h"
+#include "femup/core/invalid.h"
 #include "femup/problems/effects.h"
 #include "femup/problems/model_effects.h"
 #include "femup/problems/nonlinear_problem.h"
-#include "femup/structure.h"
 
 namespace femup {
 

@@ -43,8 +43,8 @@
 #include <utility>
 #include <vector>
 
-#include "femup/builders.h"
-#include "femup/measurement.h"
+#include "femup/core/fe/builders.h"
+#include "femup/core/sysid/measurement.h"
 
 namespace femup {
 

@@ -42,10 +42,10 @@
 #include <string>
 #include <vector>
 
-#include "femup/invalid.h"
-#include "femup/measurement.h"
-#include "femup/modal.h"
-#include "femup/model.h"
+#include "femup/core/fe/model.h"
+#include "femup/core/invalid.h"
+#include "femup/core/linalg/modal.h"
+#include "femup/core/sysid/measurement.h"
 #include "femup/problems/nonlinear_problem.h"
 #include "femup/problems/parametrised_pencil.h"
 #include "femup/problems/ritz_basis.h"

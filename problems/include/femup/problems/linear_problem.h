@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "femup/invalid.h"
+#include "femup/core/invalid.h"
 
 namespace femup {
 

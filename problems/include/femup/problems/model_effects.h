@@ -48,10 +48,10 @@
 #include <string>
 #include <vector>
 
-#include "femup/measurement.h"
-#include "femup/model.h"
+#include "femup/core/fe/model.h"
+#include "femup/core/fe/structure.h"
+#include "femup/core/sysid/measurement.h"
 #include "femup/problems/effects.h"
-#include "femup/structure.h"
 
 namespace femup {
 

@@ -8,9 +8,9 @@
 #include <random>
 #include <string>
 
-#include "femup/counter_rng.h"
-#include "femup/invalid.h"
-#include "femup/measurement.h"
+#include "femup/core/counter_rng.h"
+#include "femup/core/invalid.h"
+#include "femup/core/sysid/measurement.h"
 
 namespace femup {
 

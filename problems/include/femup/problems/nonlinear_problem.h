@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "femup/invalid.h"
+#include "femup/core/invalid.h"
 #include "femup/problems/linear_problem.h"
 
 namespace femup {

@@ -24,8 +24,8 @@
 
 #include <vector>
 
-#include "femup/measurement.h"
-#include "femup/model.h"
+#include "femup/core/fe/model.h"
+#include "femup/core/sysid/measurement.h"
 #include "femup/problems/linear_problem.h"
 
 namespace femup {

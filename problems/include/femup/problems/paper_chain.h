@@ -5,8 +5,8 @@
 
 #include <string>
 
-#include "femup/model.h"
-#include "femup/structure.h"
+#include "femup/core/fe/model.h"
+#include "femup/core/fe/structure.h"
 
 namespace femup {
 

@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "femup/basis_matrix.h"
-#include "femup/model.h"
+#include "femup/core/fe/basis_matrix.h"
+#include "femup/core/fe/model.h"
 
 namespace femup {
 

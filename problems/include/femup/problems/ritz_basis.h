@@ -6,7 +6,7 @@
 #include <memory>
 #include <vector>
 
-#include "femup/measurement.h"
+#include "femup/core/sysid/measurement.h"
 #include "femup/problems/parametrised_pencil.h"
 
 namespace femup {

@@ -9,7 +9,7 @@
 #include <Eigen/Core>
 #include <string>
 
-#include "femup/invalid.h"
+#include "femup/core/invalid.h"
 
 namespace femup {
 

@@ -22,7 +22,7 @@
 #include <string>
 #include <vector>
 
-#include "femup/invalid.h"
+#include "femup/core/invalid.h"
 #include "femup/problems/linear_problem.h"
 #include "femup/solvers/identifiability.h"
 #include "femup/solvers/regularisation.h"

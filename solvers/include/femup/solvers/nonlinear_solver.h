@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "femup/invalid.h"
+#include "femup/core/invalid.h"
 #include "femup/problems/nonlinear_problem.h"
 #include "femup/solvers/solver_summary.h"
 

@@ -25,7 +25,7 @@
 #include <string>
 #include <vector>
 
-#include "femup/invalid.h"
+#include "femup/core/invalid.h"
 
 namespace femup {
 

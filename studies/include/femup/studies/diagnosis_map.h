@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "femup/structure.h"
+#include "femup/core/fe/structure.h"
 #include "femup/studies/effect_ranking.h"
 
 namespace femup {

@@ -50,12 +50,12 @@
 #include <string>
 #include <vector>
 
-#include "femup/invalid.h"
-#include "femup/measurement.h"
+#include "femup/core/fe/structure.h"
+#include "femup/core/invalid.h"
+#include "femup/core/sysid/measurement.h"
 #include "femup/problems/effect_priors.h"
 #include "femup/problems/model_effects.h"
 #include "femup/solvers/model_evidence.h"
-#include "femup/structure.h"
 
 namespace femup {
 

@@ -8,8 +8,8 @@
 #include <memory>
 #include <vector>
 
-#include "femup/measurement.h"
-#include "femup/modal.h"
+#include "femup/core/linalg/modal.h"
+#include "femup/core/sysid/measurement.h"
 #include "femup/problems/correction_system.h"
 #include "femup/problems/linear_problem.h"
 #include "femup/solvers/linear_solver.h"

@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "femup/csv_series.h"
-#include "femup/uff.h"
+#include "femup/core/io/csv_series.h"
+#include "femup/core/io/uff.h"
 
 namespace femup {
 

@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "femup/era.h"
-#include "femup/invalid.h"
+#include "femup/core/invalid.h"
+#include "femup/core/sysid/era.h"
 
 namespace femup {
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "femup/modal.h"
+#include "femup/core/linalg/modal.h"
 #include "femup/studies/study.h"
 
 namespace femup {

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "femup/invalid.h"
-#include "femup/progress.h"
+#include "femup/core/invalid.h"
+#include "femup/core/progress.h"
 #include "femup/studies/study.h"
 
 namespace femup {

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "femup/core/sysid/time_response.h"
 #include "femup/studies/study.h"
-#include "femup/time_response.h"
 
 namespace femup {
 

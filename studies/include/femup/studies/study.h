@@ -11,19 +11,19 @@
 #include <string_view>
 #include <vector>
 
-#include "femup/builders.h"
-#include "femup/expansion.h"
-#include "femup/measurement.h"
-#include "femup/model.h"
+#include "femup/core/fe/builders.h"
+#include "femup/core/fe/model.h"
+#include "femup/core/fe/structure.h"
+#include "femup/core/io/uff_modes.h"
+#include "femup/core/sysid/expansion.h"
+#include "femup/core/sysid/measurement.h"
 #include "femup/problems/correction_system.h"
 #include "femup/problems/effect_priors.h"
 #include "femup/problems/eigen_sensitivity.h"
 #include "femup/problems/noise.h"
 #include "femup/solvers/linear_solver.h"
 #include "femup/solvers/nonlinear_solver.h"
-#include "femup/structure.h"
 #include "femup/studies/identify_study.h"
-#include "femup/uff_modes.h"
 
 namespace femup {
 

@@ -1,0 +1,124 @@
+// Structure: an assembled finite element model with its elements kept apart, so
+// that correction factors can be attached to elements or groups of elements.
+// Builders (chain, 2D frame, Matrix Market import) produce a Structure; a
+// ParameterPlan turns it into a ParametrisedModel.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "femup/core/fe/model.h"
+
+namespace femup {
+
+// One element (or substructure) in global free DOFs.
+struct ElementMatrices {
+  int id = 0;                     // 1-based element number
+  std::string label;              // used in parameter names: "3" (chain), "e3" (frame)
+  SparseMatrix stiffness;         // K_e, num_dofs x num_dofs
+  SparseMatrix mass;              // M_e (structural mass of the element)
+  SparseMatrix added_mass_basis;  // Mw_e: the basis for water added mass
+  bool wet = false;               // below the water line
+  double x0 = 0, x1 = 0;          // position along the structure (m), where it applies
+};
+
+// A node of a model with geometry.
+struct ModelNode {
+  std::string name;  // the prefix of its DOF labels: "n3" of "n3:ux"
+  Eigen::Vector3d xyz = Eigen::Vector3d::Zero();  // m, the model's axes
+};
+
+// A straight line element of the mesh (a beam or bar), along which a point's
+// displacement is interpolated by the beam's shape functions (sensor.h): its
+// end nodes (indices into Structure::nodes; -1 for a rigid support, which has
+// no node and no DOFs) and their coordinates.
+struct LineSegment {
+  int node_a = -1, node_b = -1;
+  Eigen::Vector3d a = Eigen::Vector3d::Zero(), b = Eigen::Vector3d::Zero();  // m
+  int element = -1;  // the Structure::elements entry it belongs to (a member, a group)
+};
+
+// A support modelled as a spring to the ground on one free DOF (a chain's
+// ground spring, a cantilever's elastic base): what support flexibility softens.
+struct SupportSpring {
+  int dof = -1;          // index into dof_labels
+  double stiffness = 0;  // N/m or N m/rad, > 0
+  std::string name;      // "ground spring", "base rotation"
+  std::string unit;      // of the stiffness: "N/m" or "N m/rad"
+};
+
+// The same model in a richer formulation that its builder can make and the
+// model leaves out (a frame of Euler-Bernoulli members with shear deformation),
+// on the same DOFs: the difference is a model-form error the diagnosis allows
+// for (effect_ranking.h).
+struct FormVariant {
+  std::string name;  // what it adds, for reports
+  SparseMatrix stiffness;
+  SparseMatrix mass;
+};
+
+struct Structure {
+  // What built it: "chain", "cantilever", "space_frame", "matrix_market", ...;
+  // says which unmodelled effects apply (model_effects.h).
+  std::string type;
+  std::string description;
+  SparseMatrix stiffness;  // baseline K (includes supports, springs)
+  SparseMatrix mass;       // baseline M (includes lumped masses)
+  std::vector<std::string> dof_labels;
+  std::vector<ElementMatrices> elements;
+  double length = 0;  // overall length where it applies (m), 0 otherwise
+  // Positions along the structure of each DOF (for plots), may be empty.
+  std::vector<double> dof_positions;
+  // The DOFs that shape plots draw, in drawing order (e.g. one leg of a space
+  // frame, bottom to top); empty: every transverse (":ux") DOF.
+  std::vector<int> plot_dofs;
+  // Every node of models with geometry (a cantilever: node k at (0, height, 0),
+  // supported ones too; a space frame's free nodes); empty for a chain or a
+  // Matrix Market model. Used to place test sensors by their coordinates.
+  std::vector<ModelNode> nodes;
+  // The mesh's line elements, where the model has them (a cantilever, a plane
+  // or space frame); empty for a chain or a Matrix Market model. Sensors and
+  // attached masses between nodes are placed on them.
+  std::vector<LineSegment> segments;
+  // Supports that are springs in the model (rigid supports have no DOF here).
+  std::vector<SupportSpring> supports;
+  // The nodes (ModelNode::name) where the diagnosis looks for an attached
+  // mass; empty: every node with translational DOFs. Large models name a few
+  // (a space frame: the joints of its top level), not thousands of fits.
+  std::vector<std::string> attached_mass_nodes;
+  // Richer formulations of this model (see FormVariant); empty: none known.
+  std::vector<FormVariant> form_variants;
+  // Index of the element with the given id, or -1.
+  int FindElement(int id) const;
+};
+
+// How one family of factors (mass, stiffness or added mass) is laid out.
+struct ParameterFamily {
+  enum class Scope {
+    kNone,        // no factors of this kind
+    kPerElement,  // one factor per selected element
+    kSingle,      // one factor for all selected elements together
+    kGroups,      // one factor per listed group of element ids
+  };
+  enum class Selection { kAll, kWet, kDry };
+  Scope scope = Scope::kNone;
+  Selection selection = Selection::kAll;
+  std::vector<std::vector<int>> groups;  // used when scope == kGroups
+};
+
+struct ParameterPlan {
+  ParameterFamily mass;
+  ParameterFamily stiffness;
+  ParameterFamily added_mass;  // only wet elements can carry added mass
+};
+
+// The paper's plan: mass and stiffness per element, added mass per wet element.
+ParameterPlan PaperParameterPlan();
+
+// Builds the parametrised model. Parameter order: mass, stiffness, added mass,
+// each in element order. Names: "<kind>[<label>]", groups "<kind>[<l1>+<l2>+...]"
+// and single factors "<kind>[all]" / "<kind>[wet]" / "<kind>[dry]".
+// Throws InputError for unknown element ids or an empty selection.
+ParametrisedModel BuildModel(const Structure& structure, const ParameterPlan& plan);
+
+}  // namespace femup

@@ -1,0 +1,68 @@
+// Modal analysis: the generalised symmetric eigenproblem K phi = lambda M phi,
+// mass normalisation, the modal assurance criterion (MAC) and mode pairing.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "femup/core/fe/model.h"
+#include "femup/core/invalid.h"
+
+namespace femup {
+
+struct Modes {
+  Eigen::VectorXd eigenvalues;  // lambda = omega^2 (rad^2/s^2), ascending
+  Eigen::MatrixXd shapes;       // num_dofs x num_modes, columns M-normalised
+  int size() const { return static_cast<int>(eigenvalues.size()); }
+  Eigen::VectorXd FrequenciesHz() const;  // sqrt(lambda) / 2 pi (0 for lambda < 0)
+};
+
+struct EigenOptions {
+  enum class Method { kAuto, kDense, kSparseShiftInvert };
+  Method method = Method::kAuto;
+  int num_modes = -1;        // -1: all (dense only); sparse needs 1 <= k < n
+  int dense_limit = 1500;    // kAuto uses dense at or below this many DOFs
+  double shift = 0.0;        // sparse: modes nearest this eigenvalue (rad^2/s^2)
+  double tolerance = 1e-10;  // sparse: Krylov convergence tolerance
+  int max_iterations = 1000;
+  // Ok when valid, otherwise the field and what is wrong. The messages name
+  // the field too ("num_modes must be ..."): callers show the message alone.
+  Invalid Validate() const;
+};
+
+// Lowest modes of (K, M), M-normalised, with the sign fixed so that the entry of
+// largest magnitude is positive. Throws InputError when M is not positive
+// definite, sizes differ, or the sparse solver does not converge.
+Modes SolveModes(const SparseMatrix& stiffness, const SparseMatrix& mass,
+                 const EigenOptions& options = {});
+
+// Scales each column of `shapes` so that phi' M phi = 1.
+void MassNormalise(const SparseMatrix& mass, Eigen::MatrixXd* shapes);
+
+// MAC(a, b) = (a'b)^2 / ((a'a)(b'b)), in [0, 1]; 0 when either is zero.
+double Mac(const Eigen::VectorXd& a, const Eigen::VectorXd& b);
+// MAC of every column of a against every column of b.
+Eigen::MatrixXd MacMatrix(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b);
+
+struct ModePair {
+  int reference = -1;  // column in the reference set
+  int candidate = -1;  // matched column in the candidate set
+  double mac = 0;
+};
+// Pairs each reference mode with a distinct candidate, taking the largest
+// remaining MAC first; pairs with MAC below `min_mac` are left unpaired
+// (candidate = -1). Result is in reference order.
+std::vector<ModePair> PairModesByMac(const Eigen::MatrixXd& reference,
+                                     const Eigen::MatrixXd& candidate,
+                                     double min_mac = 0.0);
+// Pairs each reference mode with a distinct candidate keeping the order: when
+// reference i < j are both paired, candidate(i) < candidate(j). Among such
+// pairings it pairs as many as it can and, of those, maximises the sum of MACs
+// (dynamic programming, O(references x candidates)). For structures whose modes
+// keep their order under any change of mass and stiffness, such as a beam in
+// bending (each mode has one more node than the one below), with the reference
+// modes listed in ascending frequency. Result is in reference order.
+std::vector<ModePair> PairModesInOrder(const Eigen::MatrixXd& reference,
+                                       const Eigen::MatrixXd& candidate);
+
+}  // namespace femup

@@ -1,0 +1,583 @@
+#include "femup/core/fe/space_frame.h"
+
+#include <Eigen/SparseCore>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "fe/assembly.h"
+#include "femup/core/errors.h"
+
+namespace femup {
+namespace {
+
+using internal::FromTriplets;
+using internal::Scatter;
+using internal::Triplets;
+
+constexpr int kMemberKinds = 3;  // legs, braces, horizontals
+const char* const kMemberNames[kMemberKinds] = {"legs", "braces", "horizontals"};
+
+Invalid CheckSection(const FrameSection3d& s, BeamTheory theory,
+                     const std::string& field) {
+  return s.Validate(theory).Under(field);
+}
+
+const FrameSection3d& SectionOf(const SpaceFrameSpec& spec, SpaceFrameMember m) {
+  switch (m) {
+    case SpaceFrameMember::kLeg:
+      return spec.legs;
+    case SpaceFrameMember::kBrace:
+      return spec.braces;
+    case SpaceFrameMember::kHorizontal:
+      break;
+  }
+  return spec.horizontals;
+}
+
+// Stiffness / added-mass group of an element: level, then block, then member.
+int GroupOf(const SpaceFrameElement& e, int blocks) {
+  return ((e.level - 1) * blocks + (e.block - 1)) * kMemberKinds +
+         static_cast<int>(e.member);
+}
+
+std::array<int, 12> DofsOf(const SpaceFrameElement& e) {
+  std::array<int, 12> d;
+  for (int i = 0; i < 6; ++i) {
+    d[i] = e.node1 < 0 ? -1 : 6 * e.node1 + i;
+    d[6 + i] = e.node2 < 0 ? -1 : 6 * e.node2 + i;
+  }
+  return d;
+}
+
+// Elements sorted by group (stable): group g is order[offset[g] .. offset[g+1]).
+struct Grouping {
+  std::vector<int> order;
+  std::vector<int> offset;
+};
+
+template <typename GroupFn>
+Grouping GroupElements(const std::vector<SpaceFrameElement>& elements, int groups,
+                       GroupFn group_of) {
+  Grouping g;
+  g.offset.assign(groups + 1, 0);
+  for (const SpaceFrameElement& e : elements) {
+    const int k = group_of(e);
+    if (k >= 0) ++g.offset[k + 1];
+  }
+  for (int k = 0; k < groups; ++k) g.offset[k + 1] += g.offset[k];
+  g.order.resize(g.offset[groups]);
+  std::vector<int> next(g.offset.begin(), g.offset.end() - 1);
+  for (std::size_t i = 0; i < elements.size(); ++i) {
+    const int k = group_of(elements[i]);
+    if (k >= 0) g.order[next[k]++] = static_cast<int>(i);
+  }
+  return g;
+}
+
+// Assembles every group's basis into `bases` (one per group, held on its DOFs;
+// empty groups give empty bases) from the element matrices `matrix(element)`; returns
+// their sum when `total` is set (else a 0 x 0 matrix). One triplet list: each group's
+// triplets are a segment of it, so the sum costs no second copy.
+template <typename MatrixFn>
+SparseMatrix AssembleGroups(int n, const std::vector<SpaceFrameElement>& elements,
+                            const Grouping& g, MatrixFn matrix, bool total,
+                            std::vector<BasisMatrix>* bases) {
+  const int groups = static_cast<int>(g.offset.size()) - 1;
+  // With a total, all triplets at once; without, the biggest group's.
+  std::size_t reserve = 0, group_reserve = 0;
+  for (int k = 0; k < groups; ++k) {
+    std::size_t here = 0;
+    for (int j = g.offset[k]; j < g.offset[k + 1]; ++j) {
+      const SpaceFrameElement& e = elements[g.order[j]];
+      const std::size_t free = 6 * ((e.node1 >= 0) + (e.node2 >= 0));
+      here += free * free;
+    }
+    reserve += here;
+    group_reserve = std::max(group_reserve, here);
+  }
+  Triplets t;
+  t.reserve(total ? reserve : group_reserve);
+  bases->clear();
+  bases->resize(static_cast<std::size_t>(groups));
+  for (int k = 0; k < groups; ++k) {
+    if (g.offset[k + 1] == g.offset[k]) continue;
+    const std::size_t start = t.size();
+    for (int j = g.offset[k]; j < g.offset[k + 1]; ++j) {
+      const SpaceFrameElement& e = elements[g.order[j]];
+      Scatter(matrix(e), DofsOf(e), &t);
+    }
+    (*bases)[k] = BasisMatrix::FromTriplets(n, t.begin() + start, t.end());
+    if (!total) t.clear();
+  }
+  if (!total) return SparseMatrix();
+  return FromTriplets(n, t);
+}
+
+}  // namespace
+
+const char* ToString(FaceBracing bracing) {
+  switch (bracing) {
+    case FaceBracing::kNone:
+      return "none";
+    case FaceBracing::kDiagonal:
+      return "diagonal";
+    case FaceBracing::kX:
+      return "x";
+  }
+  return "unknown";
+}
+
+bool FaceBracingFromString(const std::string& text, FaceBracing* bracing) {
+  for (FaceBracing b : {FaceBracing::kNone, FaceBracing::kDiagonal, FaceBracing::kX}) {
+    if (text == ToString(b)) {
+      *bracing = b;
+      return true;
+    }
+  }
+  return false;
+}
+
+Invalid SpaceFrameSpec::Validate() const {
+  std::string field;
+  std::ostringstream msg;
+  auto at = [&](const char* name) -> std::ostream& {
+    field = name;
+    return msg;
+  };
+  auto positive = [](double x) { return x > 0 && std::isfinite(x); };
+  if (levels < 1)
+    at("levels") << "must be >= 1, got " << levels;
+  else if (bays_x < 1)
+    at("bays_x") << "must be >= 1, got " << bays_x;
+  else if (bays_y < 1)
+    at("bays_y") << "must be >= 1, got " << bays_y;
+  else if (!positive(level_height))
+    at("level_height") << "must be positive and finite";
+  else if (!positive(bay_width_x))
+    at("bay_width_x") << "must be positive and finite";
+  else if (!positive(bay_width_y))
+    at("bay_width_y") << "must be positive and finite";
+  else if (elements_per_member < 1)
+    at("elements_per_member") << "must be >= 1, got " << elements_per_member;
+  else if (blocks_per_level < 1 || blocks_per_level > bays_x)
+    at("blocks_per_level") << "must be in 1.." << bays_x << ", got " << blocks_per_level;
+  else if (bracing != FaceBracing::kNone && bracing != FaceBracing::kDiagonal &&
+           bracing != FaceBracing::kX)
+    at("bracing") << "must be none, diagonal or x";
+  else if (!(water_depth >= 0) || !std::isfinite(water_depth))
+    at("water_depth") << "must be >= 0 and finite";
+  else if (theory != BeamTheory::kEulerBernoulli && theory != BeamTheory::kTimoshenko)
+    at("theory") << "must be euler_bernoulli or timoshenko";
+  if (!field.empty()) return {field, msg.str()};
+  // Sizes whose sparse matrices would overflow their int indices (about 18
+  // stored entries per DOF).
+  const double nx = bays_x + 1.0, ny = bays_y + 1.0, faces = 2.0 * (bays_x + bays_y);
+  const double members = nx * ny + (nx - 1) * ny + nx * (ny - 1) + 4 * faces;
+  const double dofs =
+      6.0 * levels * (nx * ny + faces + (elements_per_member - 1) * members);
+  if (dofs > 5e7) {
+    msg << levels << " levels of " << bays_x << " x " << bays_y << " bays with "
+        << elements_per_member << " elements per member exceed the limit of 5e7 DOFs";
+    return {"levels", msg.str()};
+  }
+  Invalid bad = CheckSection(legs, theory, "legs");
+  if (bad.ok()) bad = CheckSection(braces, theory, "braces");
+  if (bad.ok()) bad = CheckSection(horizontals, theory, "horizontals");
+  return bad;
+}
+
+SpaceFrameGeometryData SpaceFrameGeometry(const SpaceFrameSpec& spec) {
+  ThrowIfInvalid(spec.Validate(), "model");
+  const int bx = spec.bays_x, by = spec.bays_y, nx = bx + 1, ny = by + 1;
+  const int levels = spec.levels, blocks = spec.blocks_per_level;
+  const int per_level = nx * ny;
+  const double h = spec.level_height, wx = spec.bay_width_x, wy = spec.bay_width_y;
+  const Eigen::Vector3d ref_z(0, 0, 1), ref_x(1, 0, 0);
+
+  SpaceFrameGeometryData g;
+  // Joint (i, j, k): X line i, Y line j, level k (0 = base, clamped).
+  auto joint = [&](int i, int j, int k) {
+    return k == 0 ? -1 : (k - 1) * per_level + j * nx + i;
+  };
+  auto position = [&](int i, int j, int k) {
+    return Eigen::Vector3d(i * wx, j * wy, k * h);
+  };
+  for (int k = 1; k <= levels; ++k) {
+    for (int j = 0; j < ny; ++j) {
+      for (int i = 0; i < nx; ++i) g.nodes.push_back(position(i, j, k));
+    }
+  }
+  auto line_block = [&](int i) { return std::min(blocks - 1, i * blocks / nx) + 1; };
+  auto bay_block = [&](int i) { return i * blocks / bx + 1; };
+
+  // Face panels of one storey: bottom corners a, b and top corners c (above a),
+  // d (above b), as (i, j) grid positions.
+  struct Panel {
+    int ai, aj, bi, bj;
+    int index;  // bay index along the face, for the diagonal's direction
+    int block;
+  };
+  std::vector<Panel> panels;
+  if (spec.bracing != FaceBracing::kNone) {
+    for (int j : {0, by}) {
+      for (int i = 0; i < bx; ++i) panels.push_back({i, j, i + 1, j, i, bay_block(i)});
+    }
+    for (int i : {0, bx}) {
+      for (int j = 0; j < by; ++j) panels.push_back({i, j, i, j + 1, j, line_block(i)});
+    }
+  }
+  // X-brace centres, storey by storey.
+  const int first_centre = static_cast<int>(g.nodes.size());
+  if (spec.bracing == FaceBracing::kX) {
+    for (int k = 1; k <= levels; ++k) {
+      for (const Panel& p : panels) {
+        g.nodes.push_back(0.25 *
+                          (position(p.ai, p.aj, k - 1) + position(p.bi, p.bj, k - 1) +
+                           position(p.ai, p.aj, k) + position(p.bi, p.bj, k)));
+      }
+    }
+  }
+
+  struct Member {
+    int a, b;
+    Eigen::Vector3d pa, pb, ref;
+    SpaceFrameMember kind;
+    int level, block;
+  };
+  std::vector<Member> members;
+  auto add = [&](int i0, int j0, int k0, int i1, int j1, int k1,
+                 const Eigen::Vector3d& ref, SpaceFrameMember kind, int level,
+                 int block) {
+    members.push_back({joint(i0, j0, k0), joint(i1, j1, k1), position(i0, j0, k0),
+                       position(i1, j1, k1), ref, kind, level, block});
+  };
+  for (int k = 1; k <= levels; ++k) {
+    for (int j = 0; j < ny; ++j) {
+      for (int i = 0; i < nx; ++i) {
+        add(i, j, k - 1, i, j, k, ref_x, SpaceFrameMember::kLeg, k, line_block(i));
+      }
+    }
+    for (int j = 0; j < ny; ++j) {
+      for (int i = 0; i < bx; ++i) {
+        add(i, j, k, i + 1, j, k, ref_z, SpaceFrameMember::kHorizontal, k, bay_block(i));
+      }
+    }
+    for (int i = 0; i < nx; ++i) {
+      for (int j = 0; j < by; ++j) {
+        add(i, j, k, i, j + 1, k, ref_z, SpaceFrameMember::kHorizontal, k, line_block(i));
+      }
+    }
+    for (std::size_t q = 0; q < panels.size(); ++q) {
+      const Panel& p = panels[q];
+      const auto brace = SpaceFrameMember::kBrace;
+      if (spec.bracing == FaceBracing::kDiagonal) {
+        if ((p.index + k) % 2 == 0) {
+          add(p.ai, p.aj, k - 1, p.bi, p.bj, k, ref_z, brace, k, p.block);
+        } else {
+          add(p.bi, p.bj, k - 1, p.ai, p.aj, k, ref_z, brace, k, p.block);
+        }
+      } else {
+        const int c = first_centre + (k - 1) * static_cast<int>(panels.size()) +
+                      static_cast<int>(q);
+        const Eigen::Vector3d pc = g.nodes[c];
+        const int corners[4][3] = {
+            {p.ai, p.aj, k - 1}, {p.bi, p.bj, k}, {p.bi, p.bj, k - 1}, {p.ai, p.aj, k}};
+        // Bottom corners towards the centre, the centre towards the top ones.
+        for (int r = 0; r < 4; ++r) {
+          const int ci = corners[r][0], cj = corners[r][1], ck = corners[r][2];
+          if (ck == k - 1) {
+            members.push_back({joint(ci, cj, ck), c, position(ci, cj, ck), pc, ref_z,
+                               brace, k, p.block});
+          } else {
+            members.push_back({c, joint(ci, cj, ck), pc, position(ci, cj, ck), ref_z,
+                               brace, k, p.block});
+          }
+        }
+      }
+    }
+  }
+
+  const int e = spec.elements_per_member;
+  g.elements.reserve(members.size() * e);
+  g.nodes.reserve(g.nodes.size() + members.size() * (e - 1));
+  for (const Member& mb : members) {
+    int prev = mb.a;
+    Eigen::Vector3d p = mb.pa;
+    for (int s = 1; s <= e; ++s) {
+      const double t = static_cast<double>(s) / e;
+      const Eigen::Vector3d q =
+          s == e ? mb.pb : Eigen::Vector3d(mb.pa + t * (mb.pb - mb.pa));
+      int next = mb.b;
+      if (s < e) {
+        next = static_cast<int>(g.nodes.size());
+        g.nodes.push_back(q);
+      }
+      SpaceFrameElement el;
+      el.node1 = prev;
+      el.node2 = next;
+      el.end1 = p;
+      el.end2 = q;
+      el.reference = mb.ref;
+      el.member = mb.kind;
+      el.level = mb.level;
+      el.block = mb.block;
+      el.wet = 0.5 * (p.z() + q.z()) < spec.water_depth;
+      g.elements.push_back(el);
+      prev = next;
+      p = q;
+    }
+  }
+  return g;
+}
+
+SpaceFrameSize SpaceFrameModelSize(const SpaceFrameSpec& spec) {
+  const SpaceFrameGeometryData g = SpaceFrameGeometry(spec);
+  const int blocks = spec.blocks_per_level;
+  const int groups = spec.levels * blocks * kMemberKinds;
+  std::vector<char> stiff(groups, 0), wet(groups, 0);
+  SpaceFrameSize size;
+  size.num_nodes = static_cast<long long>(g.nodes.size());
+  size.num_dofs = 6 * size.num_nodes;
+  size.num_elements = static_cast<long long>(g.elements.size());
+  long long inner = 0;
+  for (const SpaceFrameElement& e : g.elements) {
+    stiff[GroupOf(e, blocks)] = 1;
+    if (e.wet) {
+      wet[GroupOf(e, blocks)] = 1;
+      ++size.num_wet_elements;
+    }
+    if (e.node1 >= 0 && e.node2 >= 0) ++inner;
+  }
+  size.num_mass_factors = spec.levels;
+  size.num_stiffness_factors =
+      static_cast<int>(std::count(stiff.begin(), stiff.end(), 1));
+  size.num_added_mass_factors = static_cast<int>(std::count(wet.begin(), wet.end(), 1));
+  size.num_parameters =
+      size.num_mass_factors + size.num_stiffness_factors + size.num_added_mass_factors;
+  size.nnz_bound = 36 * (size.num_nodes + 2 * inner);
+  return size;
+}
+
+ParametrisedModel BuildSpaceFrame(const SpaceFrameSpec& spec) {
+  SpaceFrameGeometryData g = SpaceFrameGeometry(spec);
+  const std::vector<SpaceFrameElement>& elements = g.elements;
+  const int n = 6 * static_cast<int>(g.nodes.size());
+  const int blocks = spec.blocks_per_level;
+  const int groups = spec.levels * blocks * kMemberKinds;
+  const BeamTheory theory = spec.theory;
+  std::vector<std::string> labels;
+  labels.reserve(n);
+  for (std::size_t k = 0; k < g.nodes.size(); ++k) {
+    const std::string node = "n" + std::to_string(k + 1);
+    for (const char* d : {":ux", ":uy", ":uz", ":rx", ":ry", ":rz"}) {
+      labels.push_back(node + d);
+    }
+  }
+  g.nodes = {};  // only the elements are needed from here
+
+  const Grouping by_group = GroupElements(
+      elements, groups, [&](const SpaceFrameElement& e) { return GroupOf(e, blocks); });
+  const Grouping by_level = GroupElements(
+      elements, spec.levels, [](const SpaceFrameElement& e) { return e.level - 1; });
+  const Grouping wet_by_group = GroupElements(
+      elements, groups,
+      [&](const SpaceFrameElement& e) { return e.wet ? GroupOf(e, blocks) : -1; });
+
+  std::vector<BasisMatrix> k_groups, m_levels, w_groups;
+  SparseMatrix k = AssembleGroups(
+      n, elements, by_group,
+      [&](const SpaceFrameElement& e) {
+        return Frame3dStiffness(SectionOf(spec, e.member), e.end1, e.end2, e.reference,
+                                theory);
+      },
+      true, &k_groups);
+  SparseMatrix m = AssembleGroups(
+      n, elements, by_level,
+      [&](const SpaceFrameElement& e) {
+        return Frame3dConsistentMass(SectionOf(spec, e.member), e.end1, e.end2,
+                                     e.reference, theory);
+      },
+      true, &m_levels);
+  AssembleGroups(
+      n, elements, wet_by_group,
+      [&](const SpaceFrameElement& e) {
+        const FrameSection3d& s = SectionOf(spec, e.member);
+        return Frame3dTransverseMass(s.rho * s.A, e.end1, e.end2, e.reference);
+      },
+      false, &w_groups);
+
+  ParametrisedModel model(std::move(k), std::move(m), std::move(labels));
+  auto add = [&](std::string name, ParameterKind kind, BasisMatrix* basis,
+                 const Grouping& grouping, int group, std::vector<std::string> tags) {
+    Parameter p;
+    p.name = std::move(name);
+    p.kind = kind;
+    p.basis.swap(*basis);
+    p.elements.assign(grouping.order.begin() + grouping.offset[group],
+                      grouping.order.begin() + grouping.offset[group + 1]);
+    p.tags = std::move(tags);
+    model.AddParameter(std::move(p));
+  };
+  // Parameter order: mass, stiffness, added mass (as BuildPlaneFrame orders them).
+  for (int level = 1; level <= spec.levels; ++level) {
+    bool wet = false;
+    for (int j = by_level.offset[level - 1]; j < by_level.offset[level]; ++j) {
+      wet = wet || elements[by_level.order[j]].wet;
+    }
+    add("mass[l" + std::to_string(level) + "]", ParameterKind::kMass,
+        &m_levels[level - 1], by_level, level - 1, {wet ? "wet" : "dry"});
+  }
+  auto name_of = [&](int group) {
+    const int kind = group % kMemberKinds, block = (group / kMemberKinds) % blocks;
+    const int level = group / (kMemberKinds * blocks);
+    return "[l" + std::to_string(level + 1) + ":" + kMemberNames[kind] +
+           std::to_string(block + 1) + "]";
+  };
+  for (int q = 0; q < groups; ++q) {
+    if (by_group.offset[q + 1] == by_group.offset[q]) continue;
+    add("stiffness" + name_of(q), ParameterKind::kStiffness, &k_groups[q], by_group, q,
+        {kMemberNames[q % kMemberKinds]});
+  }
+  for (int q = 0; q < groups; ++q) {
+    if (wet_by_group.offset[q + 1] == wet_by_group.offset[q]) continue;
+    add("added_mass" + name_of(q), ParameterKind::kAddedMass, &w_groups[q], wet_by_group,
+        q, {"wet", kMemberNames[q % kMemberKinds]});
+  }
+  return model;
+}
+
+Structure BuildSpaceFrameStructure(const SpaceFrameSpec& spec) {
+  const SpaceFrameGeometryData g = SpaceFrameGeometry(spec);
+  const std::vector<SpaceFrameElement>& elements = g.elements;
+  const int n = 6 * static_cast<int>(g.nodes.size());
+  const int blocks = spec.blocks_per_level;
+  const int groups = spec.levels * blocks * kMemberKinds;
+  const BeamTheory theory = spec.theory;
+
+  // The stiffness factors' grouping for stiffness and mass alike; the added-mass
+  // factors' grouping (wet elements only) for the added-mass bases.
+  const Grouping by_group = GroupElements(
+      elements, groups, [&](const SpaceFrameElement& e) { return GroupOf(e, blocks); });
+  const Grouping wet_by_group = GroupElements(
+      elements, groups,
+      [&](const SpaceFrameElement& e) { return e.wet ? GroupOf(e, blocks) : -1; });
+  std::vector<BasisMatrix> k_groups, m_groups, w_groups;
+  Structure s;
+  s.stiffness = AssembleGroups(
+      n, elements, by_group,
+      [&](const SpaceFrameElement& e) {
+        return Frame3dStiffness(SectionOf(spec, e.member), e.end1, e.end2, e.reference,
+                                theory);
+      },
+      true, &k_groups);
+  s.mass = AssembleGroups(
+      n, elements, by_group,
+      [&](const SpaceFrameElement& e) {
+        return Frame3dConsistentMass(SectionOf(spec, e.member), e.end1, e.end2,
+                                     e.reference, theory);
+      },
+      true, &m_groups);
+  AssembleGroups(
+      n, elements, wet_by_group,
+      [&](const SpaceFrameElement& e) {
+        const FrameSection3d& sec = SectionOf(spec, e.member);
+        return Frame3dTransverseMass(sec.rho * sec.A, e.end1, e.end2, e.reference);
+      },
+      false, &w_groups);
+  // An Euler-Bernoulli frame's form variant: its members with shear
+  // deformation through their sections' shear areas (where every section has
+  // them).
+  const bool shear_areas = spec.legs.Validate(BeamTheory::kTimoshenko).ok() &&
+                           spec.braces.Validate(BeamTheory::kTimoshenko).ok() &&
+                           spec.horizontals.Validate(BeamTheory::kTimoshenko).ok();
+  if (theory == BeamTheory::kEulerBernoulli && shear_areas) {
+    std::vector<BasisMatrix> unused;
+    FormVariant v;
+    v.name = "shear deformation (Timoshenko members, the sections' shear areas)";
+    v.stiffness = AssembleGroups(
+        n, elements, by_group,
+        [&](const SpaceFrameElement& e) {
+          return Frame3dStiffness(SectionOf(spec, e.member), e.end1, e.end2, e.reference,
+                                  BeamTheory::kTimoshenko);
+        },
+        true, &unused);
+    v.mass = AssembleGroups(
+        n, elements, by_group,
+        [&](const SpaceFrameElement& e) {
+          return Frame3dConsistentMass(SectionOf(spec, e.member), e.end1, e.end2,
+                                       e.reference, BeamTheory::kTimoshenko);
+        },
+        true, &unused);
+    s.form_variants.push_back(std::move(v));
+  }
+
+  std::ostringstream d;
+  d << "space frame, " << spec.bays_x << " x " << spec.bays_y << " bays, " << spec.levels
+    << " levels of " << spec.level_height << " m, " << ToString(spec.bracing)
+    << " bracing, water " << spec.water_depth << " m";
+  s.type = "space_frame";
+  s.description = d.str();
+  s.length = spec.levels * spec.level_height;
+  s.dof_labels.reserve(n);
+  s.dof_positions.reserve(n);
+  for (std::size_t k = 0; k < g.nodes.size(); ++k) {
+    const std::string node = "n" + std::to_string(k + 1);
+    for (const char* c : {":ux", ":uy", ":uz", ":rx", ":ry", ":rz"}) {
+      s.dof_labels.push_back(node + c);
+      s.dof_positions.push_back(g.nodes[k].z());
+    }
+    s.nodes.push_back({node, g.nodes[k]});
+  }
+  s.segments.reserve(g.elements.size());
+  for (const SpaceFrameElement& el : g.elements)
+    s.segments.push_back({el.node1, el.node2, el.end1, el.end2});
+  // Shape plots: the sway (ux) of the corner leg at X = Y = 0, bottom to top.
+  std::vector<std::pair<double, int>> leg;
+  for (std::size_t k = 0; k < g.nodes.size(); ++k) {
+    const Eigen::Vector3d& p = g.nodes[k];
+    if (std::abs(p.x()) < 1e-9 && std::abs(p.y()) < 1e-9)
+      leg.emplace_back(p.z(), static_cast<int>(6 * k));
+  }
+  std::sort(leg.begin(), leg.end());
+  for (const auto& [z, dof] : leg) s.plot_dofs.push_back(dof);
+  // Attached-mass candidates: the joints of the top level (the first nodes of
+  // the top level's block in the node order), where decks and equipment sit.
+  const int per_level = (spec.bays_x + 1) * (spec.bays_y + 1);
+  for (int k = (spec.levels - 1) * per_level; k < spec.levels * per_level; ++k)
+    s.attached_mass_nodes.push_back("n" + std::to_string(k + 1));
+
+  const double h = spec.level_height;
+  std::vector<int> element_of_group(static_cast<std::size_t>(groups), -1);
+  for (int q = 0; q < groups; ++q) {
+    if (by_group.offset[q + 1] == by_group.offset[q]) continue;
+    element_of_group[static_cast<std::size_t>(q)] = static_cast<int>(s.elements.size());
+    const int kind = q % kMemberKinds, block = (q / kMemberKinds) % blocks;
+    const int level = q / (kMemberKinds * blocks) + 1;
+    ElementMatrices e;
+    e.id = static_cast<int>(s.elements.size()) + 1;
+    e.label = "l" + std::to_string(level) + ":" + kMemberNames[kind] +
+              std::to_string(block + 1);
+    e.stiffness = k_groups[q].ToSparse();
+    e.mass = m_groups[q].ToSparse();
+    e.wet = wet_by_group.offset[q + 1] > wet_by_group.offset[q];
+    e.added_mass_basis = e.wet ? w_groups[q].ToSparse() : SparseMatrix(n, n);
+    e.x0 = (level - 1) * h;
+    e.x1 = level * h;
+    k_groups[q] = BasisMatrix();
+    m_groups[q] = BasisMatrix();
+    w_groups[q] = BasisMatrix();
+    s.elements.push_back(std::move(e));
+  }
+  for (std::size_t k = 0; k < s.segments.size(); ++k) {
+    s.segments[k].element =
+        element_of_group[static_cast<std::size_t>(GroupOf(g.elements[k], blocks))];
+  }
+  return s;
+}
+
+}  // namespace femup

@@ -1,0 +1,205 @@
+#include "femup/core/linalg/modal.h"
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "femup/core/errors.h"
+#include "linalg/sparse_eigen.h"
+
+namespace femup {
+namespace {
+
+void FixSigns(Eigen::MatrixXd* shapes) {
+  for (Eigen::Index j = 0; j < shapes->cols(); ++j) {
+    Eigen::Index imax = 0;
+    shapes->col(j).cwiseAbs().maxCoeff(&imax);
+    if ((*shapes)(imax, j) < 0) shapes->col(j) *= -1.0;
+  }
+}
+
+Modes SolveDense(const SparseMatrix& k, const SparseMatrix& m, int num_modes) {
+  const Eigen::MatrixXd kd(k), md(m);
+  Eigen::LLT<Eigen::MatrixXd> llt(md);
+  if (llt.info() != Eigen::Success) {
+    throw InputError(
+        "modal analysis",
+        "mass matrix is not positive definite (Cholesky factorisation failed)");
+  }
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(
+      kd, md, Eigen::ComputeEigenvectors | Eigen::Ax_lBx);
+  if (es.info() != Eigen::Success) {
+    throw InputError("modal analysis", "dense generalised eigensolver did not converge");
+  }
+  const int n = static_cast<int>(kd.rows());
+  const int count = num_modes < 0 ? n : num_modes;
+  Modes modes;
+  modes.eigenvalues = es.eigenvalues().head(count);
+  modes.shapes = es.eigenvectors().leftCols(count);
+  MassNormalise(m, &modes.shapes);
+  FixSigns(&modes.shapes);
+  return modes;
+}
+
+}  // namespace
+
+Eigen::VectorXd Modes::FrequenciesHz() const {
+  Eigen::VectorXd f(eigenvalues.size());
+  for (Eigen::Index i = 0; i < eigenvalues.size(); ++i) {
+    f[i] = eigenvalues[i] > 0 ? std::sqrt(eigenvalues[i]) / (2 * M_PI) : 0.0;
+  }
+  return f;
+}
+
+Invalid EigenOptions::Validate() const {
+  if (num_modes == 0 || num_modes < -1)
+    return {"num_modes", "num_modes must be -1 (all) or >= 1"};
+  if (dense_limit < 1) return {"dense_limit", "dense_limit must be >= 1"};
+  if (!std::isfinite(shift)) return {"shift", "shift must be finite"};
+  if (!(tolerance > 0)) return {"tolerance", "tolerance must be positive"};
+  if (max_iterations < 1) return {"max_iterations", "max_iterations must be >= 1"};
+  return {};
+}
+
+Modes SolveModes(const SparseMatrix& stiffness, const SparseMatrix& mass,
+                 const EigenOptions& options) {
+  if (const Invalid bad = options.Validate())
+    throw InputError("eigen options", bad.message);
+  const Eigen::Index n = stiffness.rows();
+  if (stiffness.cols() != n || mass.rows() != n || mass.cols() != n) {
+    std::ostringstream msg;
+    msg << "K is " << stiffness.rows() << " x " << stiffness.cols() << " and M is "
+        << mass.rows() << " x " << mass.cols() << ": they must be square and equal";
+    throw InputError("modal analysis", msg.str());
+  }
+  if (n == 0) throw InputError("modal analysis", "the model has no free DOF");
+  if (options.num_modes > n) {
+    std::ostringstream msg;
+    msg << options.num_modes << " modes asked of a model with " << n << " DOFs";
+    throw InputError("modal analysis", msg.str());
+  }
+  using Method = EigenOptions::Method;
+  Method method = options.method;
+  if (method == Method::kAuto) {
+    method =
+        (n <= options.dense_limit || options.num_modes < 0 || options.num_modes >= n - 1)
+            ? Method::kDense
+            : Method::kSparseShiftInvert;
+  }
+  if (method == Method::kDense) {
+    if (options.shift != 0.0) {
+      // Dense solves all modes; keep the ones nearest above the shift.
+      Modes all = SolveDense(stiffness, mass, -1);
+      int first = 0;
+      while (first < all.size() && all.eigenvalues[first] < options.shift) ++first;
+      const int count = options.num_modes < 0
+                            ? all.size() - first
+                            : std::min(options.num_modes, all.size() - first);
+      Modes out;
+      out.eigenvalues = all.eigenvalues.segment(first, count);
+      out.shapes = all.shapes.middleCols(first, count);
+      return out;
+    }
+    return SolveDense(stiffness, mass, options.num_modes);
+  }
+  if (options.num_modes < 0) {
+    throw InputError("modal analysis",
+                     "the sparse eigensolver needs a number of modes (num_modes >= 1)");
+  }
+  return internal::SolveModesSparse(stiffness, mass, options);
+}
+
+void MassNormalise(const SparseMatrix& mass, Eigen::MatrixXd* shapes) {
+  for (Eigen::Index j = 0; j < shapes->cols(); ++j) {
+    const double mm = shapes->col(j).dot(mass * shapes->col(j));
+    if (!(mm > 0)) {
+      throw InputError("mass normalisation",
+                       "mode " + std::to_string(j + 1) + " has phi' M phi <= 0");
+    }
+    shapes->col(j) /= std::sqrt(mm);
+  }
+}
+
+double Mac(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  if (a.size() != b.size()) {
+    throw InputError("MAC", "vectors of sizes " + std::to_string(a.size()) + " and " +
+                                std::to_string(b.size()));
+  }
+  const double aa = a.squaredNorm(), bb = b.squaredNorm();
+  if (aa == 0 || bb == 0) return 0.0;
+  const double ab = a.dot(b);
+  return ab * ab / (aa * bb);
+}
+
+Eigen::MatrixXd MacMatrix(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+  Eigen::MatrixXd out(a.cols(), b.cols());
+  for (Eigen::Index i = 0; i < a.cols(); ++i) {
+    for (Eigen::Index j = 0; j < b.cols(); ++j) out(i, j) = Mac(a.col(i), b.col(j));
+  }
+  return out;
+}
+
+std::vector<ModePair> PairModesByMac(const Eigen::MatrixXd& reference,
+                                     const Eigen::MatrixXd& candidate, double min_mac) {
+  Eigen::MatrixXd mac = MacMatrix(reference, candidate);
+  std::vector<ModePair> pairs(reference.cols());
+  for (Eigen::Index i = 0; i < reference.cols(); ++i)
+    pairs[i].reference = static_cast<int>(i);
+  const Eigen::Index rounds = std::min(reference.cols(), candidate.cols());
+  for (Eigen::Index r = 0; r < rounds; ++r) {
+    Eigen::Index i = 0, j = 0;
+    const double best = mac.maxCoeff(&i, &j);
+    if (best < min_mac || best < 0) break;
+    pairs[i].candidate = static_cast<int>(j);
+    pairs[i].mac = best;
+    mac.row(i).setConstant(-1.0);
+    mac.col(j).setConstant(-1.0);
+  }
+  return pairs;
+}
+
+std::vector<ModePair> PairModesInOrder(const Eigen::MatrixXd& reference,
+                                       const Eigen::MatrixXd& candidate) {
+  const Eigen::MatrixXd mac = MacMatrix(reference, candidate);
+  const Eigen::Index m = reference.cols(), c = candidate.cols();
+  // best(i, j): the best pairing of the first i references with the first j
+  // candidates, ordered by (pairs made, sum of MACs).
+  struct Score {
+    Eigen::Index pairs = 0;
+    double sum = 0;
+    bool operator<(const Score& o) const {
+      return pairs != o.pairs ? pairs < o.pairs : sum < o.sum;
+    }
+    bool operator==(const Score& o) const { return pairs == o.pairs && sum == o.sum; }
+  };
+  std::vector<std::vector<Score>> best(m + 1, std::vector<Score>(c + 1));
+  for (Eigen::Index i = 1; i <= m; ++i) {
+    for (Eigen::Index j = 1; j <= c; ++j) {
+      Score s = std::max(best[i - 1][j], best[i][j - 1]);
+      const Score paired{best[i - 1][j - 1].pairs + 1,
+                         best[i - 1][j - 1].sum + mac(i - 1, j - 1)};
+      best[i][j] = s < paired ? paired : s;
+    }
+  }
+  std::vector<ModePair> pairs(m);
+  for (Eigen::Index i = 0; i < m; ++i) pairs[i].reference = static_cast<int>(i);
+  for (Eigen::Index i = m, j = c; i > 0 && j > 0;) {
+    const Score paired{best[i - 1][j - 1].pairs + 1,
+                       best[i - 1][j - 1].sum + mac(i - 1, j - 1)};
+    if (best[i][j] == paired) {
+      pairs[i - 1].candidate = static_cast<int>(j - 1);
+      pairs[i - 1].mac = mac(i - 1, j - 1);
+      --i;
+      --j;
+    } else if (best[i][j] == best[i][j - 1]) {
+      --j;
+    } else {
+      --i;
+    }
+  }
+  return pairs;
+}
+
+}  // namespace femup

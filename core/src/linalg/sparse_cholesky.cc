@@ -1,0 +1,277 @@
+#include "femup/core/linalg/sparse_cholesky.h"
+
+#include <cholmod.h>
+#include <cs.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+
+#include "femup/core/errors.h"
+
+namespace femup {
+namespace {
+
+double Since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// A CHOLMOD view (no copy) of the lower triangle held in `lower`.
+cholmod_sparse ViewLower(SparseMatrix& lower) {
+  cholmod_sparse a{};
+  a.nrow = static_cast<std::size_t>(lower.rows());
+  a.ncol = static_cast<std::size_t>(lower.cols());
+  a.nzmax = static_cast<std::size_t>(lower.nonZeros());
+  a.p = lower.outerIndexPtr();
+  a.i = lower.innerIndexPtr();
+  a.x = lower.valuePtr();
+  a.stype = -1;
+  a.itype = CHOLMOD_INT;
+  a.xtype = CHOLMOD_REAL;
+  a.dtype = CHOLMOD_DOUBLE;
+  a.sorted = 1;
+  a.packed = 1;
+  return a;
+}
+
+// A CXSparse view (no copy) of compressed columns: rows x cols, column
+// pointers p (cols + 1), row indices i, values x (may be null for a pattern).
+cs_di CsView(int rows, int cols, int* p, int* i, double* x) {
+  cs_di a{};
+  a.nzmax = p[cols];
+  a.m = rows;
+  a.n = cols;
+  a.p = p;
+  a.i = i;
+  a.x = x;
+  a.nz = -1;  // compressed columns
+  return a;
+}
+
+}  // namespace
+
+struct SparseCholesky::Impl {
+  cholmod_common common{};
+  cholmod_factor* factor = nullptr;  // simplicial LL', packed, monotonic
+  std::vector<int> perm;             // row i of P A P' is row perm[i] of A
+  std::vector<int> inverse;          // inverse[perm[i]] = i
+  SparseCholeskyInfo info;
+  // Work space of the sparse half-solve.
+  mutable std::vector<int> xi;
+
+  ~Impl() {
+    if (factor != nullptr) cholmod_free_factor(&factor, &common);
+    cholmod_finish(&common);
+  }
+
+  int n() const { return static_cast<int>(info.n); }
+  int* lp() const { return static_cast<int*>(factor->p); }
+  int* li() const { return static_cast<int*>(factor->i); }
+  double* lx() const { return static_cast<double*>(factor->x); }
+
+  Eigen::Map<const SparseMatrix> L() const {
+    return Eigen::Map<const SparseMatrix>(n(), n(), lp()[n()], lp(), li(), lx());
+  }
+};
+
+SparseCholesky::SparseCholesky(const SparseMatrix& a,
+                               const SparseCholeskyOptions& options)
+    : impl_(std::make_unique<Impl>()) {
+  const std::string& name = options.name;
+  if (a.rows() != a.cols()) {
+    throw InputError(name, "must be square, got " + std::to_string(a.rows()) + " x " +
+                               std::to_string(a.cols()));
+  }
+  SparseMatrix lower = a.triangularView<Eigen::Lower>();
+  lower.makeCompressed();
+  for (Eigen::Index k = 0; k < lower.nonZeros(); ++k) {
+    if (!std::isfinite(lower.valuePtr()[k])) {
+      throw InputError(name, "holds a non-finite entry");
+    }
+  }
+  Impl& m = *impl_;
+  m.info.n = a.rows();
+  m.info.nnz_a = lower.nonZeros();
+  cholmod_start(&m.common);
+  m.common.print = 0;
+  m.common.error_handler = nullptr;
+  m.common.final_ll = 1;
+  switch (options.ordering) {
+    case SparseCholeskyOptions::Ordering::kAuto:
+      break;
+    case SparseCholeskyOptions::Ordering::kAmd:
+      m.common.nmethods = 1;
+      m.common.method[0].ordering = CHOLMOD_AMD;
+      break;
+    case SparseCholeskyOptions::Ordering::kNestedDissection:
+      m.common.nmethods = 1;
+      m.common.method[0].ordering = CHOLMOD_METIS;
+      break;
+  }
+  if (a.rows() == 0) return;
+  cholmod_sparse view = ViewLower(lower);
+  auto t0 = std::chrono::steady_clock::now();
+  m.factor = cholmod_analyze(&view, &m.common);
+  if (m.factor == nullptr && m.common.status == CHOLMOD_NOT_INSTALLED) {
+    // A CHOLMOD built without METIS: minimum degree instead.
+    m.common.nmethods = 1;
+    m.common.method[0].ordering = CHOLMOD_AMD;
+    m.factor = cholmod_analyze(&view, &m.common);
+  }
+  if (m.factor == nullptr) {
+    throw InputError(name, "the sparse Cholesky analysis failed (CHOLMOD status " +
+                               std::to_string(m.common.status) + ")");
+  }
+  m.info.seconds_analyse = Since(t0);
+  m.info.flops = m.common.method[m.common.selected].fl;
+  t0 = std::chrono::steady_clock::now();
+  cholmod_factorize(&view, m.factor, &m.common);
+  const int* perm = static_cast<const int*>(m.factor->Perm);
+  if (m.common.status == CHOLMOD_NOT_POSDEF || m.factor->minor < m.factor->n) {
+    const std::size_t pivot = m.factor->minor;
+    const int dof =
+        perm != nullptr && pivot < m.factor->n ? perm[pivot] : static_cast<int>(pivot);
+    throw InputError(name,
+                     "is not positive definite (the Cholesky factorisation breaks "
+                     "down at DOF index " +
+                         std::to_string(dof) + ")");
+  }
+  if (m.common.status < CHOLMOD_OK) {
+    throw InputError(name, "the sparse Cholesky factorisation failed (CHOLMOD status " +
+                               std::to_string(m.common.status) + ")");
+  }
+  // Simplicial, packed, columns in order: L is a plain compressed-column matrix.
+  if (!cholmod_change_factor(CHOLMOD_REAL, 1, 0, 1, 1, m.factor, &m.common)) {
+    throw InputError(name, "could not convert the Cholesky factor (CHOLMOD status " +
+                               std::to_string(m.common.status) + ")");
+  }
+  m.info.seconds_factorise = Since(t0);
+  perm = static_cast<const int*>(m.factor->Perm);
+  const int n = m.n();
+  m.perm.resize(n);
+  m.inverse.resize(n);
+  for (int i = 0; i < n; ++i) {
+    m.perm[i] = perm != nullptr ? perm[i] : i;
+    m.inverse[m.perm[i]] = i;
+  }
+  m.info.nnz_l = m.lp()[n];
+  m.xi.assign(2 * static_cast<std::size_t>(n), 0);
+}
+
+SparseCholesky::~SparseCholesky() = default;
+
+Eigen::Index SparseCholesky::size() const { return impl_->info.n; }
+
+const SparseCholeskyInfo& SparseCholesky::info() const { return impl_->info; }
+
+Eigen::MatrixXd SparseCholesky::HalfSolve(const Eigen::MatrixXd& b) const {
+  const Impl& m = *impl_;
+  if (b.rows() != size()) {
+    throw InputError("SparseCholesky::HalfSolve",
+                     "the right-hand side has " + std::to_string(b.rows()) +
+                         " rows, expected " + std::to_string(size()));
+  }
+  Eigen::MatrixXd y(b.rows(), b.cols());
+  for (int i = 0; i < m.n(); ++i) y.row(i) = b.row(m.perm[i]);
+  if (m.n() > 0) m.L().triangularView<Eigen::Lower>().solveInPlace(y);
+  return y;
+}
+
+Eigen::MatrixXd SparseCholesky::Solve(const Eigen::MatrixXd& b) const {
+  const Impl& m = *impl_;
+  Eigen::MatrixXd y = HalfSolve(b);
+  if (m.n() > 0) m.L().transpose().triangularView<Eigen::Upper>().solveInPlace(y);
+  Eigen::MatrixXd x(b.rows(), b.cols());
+  for (int i = 0; i < m.n(); ++i) x.row(m.perm[i]) = y.row(i);
+  return x;
+}
+
+std::vector<SparseMatrix> SparseCholesky::HalfSolve(
+    const std::vector<SparseMatrix>& b) const {
+  const Impl& m = *impl_;
+  const int n = m.n();
+  const std::size_t count = b.size();
+  if (count == 0) return {};
+  const SparseMatrix& first = b.front();
+  const auto same_pattern = [&first](const SparseMatrix& a) {
+    return a.rows() == first.rows() && a.cols() == first.cols() && a.isCompressed() &&
+           std::equal(a.outerIndexPtr(), a.outerIndexPtr() + a.cols() + 1,
+                      first.outerIndexPtr()) &&
+           std::equal(a.innerIndexPtr(), a.innerIndexPtr() + a.nonZeros(),
+                      first.innerIndexPtr());
+  };
+  for (const SparseMatrix& a : b) {
+    if (a.rows() != size() || !same_pattern(a)) {
+      throw InputError("SparseCholesky::HalfSolve",
+                       "the right-hand sides must be compressed, have " +
+                           std::to_string(size()) + " rows and share one pattern");
+    }
+  }
+  std::vector<SparseMatrix> out(count, SparseMatrix(n, first.cols()));
+  if (n == 0 || first.cols() == 0) return out;
+  // The common pattern, rows permuted (P B).
+  std::vector<int> rows(first.innerIndexPtr(), first.innerIndexPtr() + first.nonZeros());
+  for (int& r : rows) r = m.inverse[r];
+  std::vector<int> outer(first.outerIndexPtr(), first.outerIndexPtr() + first.cols() + 1);
+  cs_di l = CsView(n, n, m.lp(), m.li(), m.lx());
+  cs_di pattern =
+      CsView(n, static_cast<int>(first.cols()), outer.data(), rows.data(), nullptr);
+
+  // x: n x count, row-major, so that the count values of one row sit together.
+  std::vector<double> x(static_cast<std::size_t>(n) * count, 0.0);
+  std::vector<int> out_outer(first.cols() + 1, 0);
+  std::vector<int> out_inner;
+  std::vector<std::vector<double>> out_values(count);
+  std::vector<int> column;
+  const int* lp = m.lp();
+  const int* li = m.li();
+  const double* lx = m.lx();
+  for (int k = 0; k < pattern.n; ++k) {
+    const int top = cs_di_reach(&l, &pattern, k, m.xi.data(), nullptr);
+    for (int p = top; p < n; ++p) {
+      std::fill_n(x.data() + static_cast<std::size_t>(m.xi[p]) * count, count, 0.0);
+    }
+    for (int p = outer[k]; p < outer[k + 1]; ++p) {
+      double* row = x.data() + static_cast<std::size_t>(rows[p]) * count;
+      for (std::size_t j = 0; j < count; ++j) row[j] = b[j].valuePtr()[p];
+    }
+    // Forward substitution in the reach's topological order (L's diagonal
+    // entry first in each column).
+    for (int p = top; p < n; ++p) {
+      const int c = m.xi[p];
+      double* xc = x.data() + static_cast<std::size_t>(c) * count;
+      const double diagonal = lx[lp[c]];
+      for (std::size_t j = 0; j < count; ++j) xc[j] /= diagonal;
+      for (int q = lp[c] + 1; q < lp[c + 1]; ++q) {
+        double* xr = x.data() + static_cast<std::size_t>(li[q]) * count;
+        const double v = lx[q];
+        for (std::size_t j = 0; j < count; ++j) xr[j] -= v * xc[j];
+      }
+    }
+    column.assign(m.xi.begin() + top, m.xi.begin() + n);
+    std::sort(column.begin(), column.end());
+    for (int r : column) {
+      out_inner.push_back(r);
+      const double* xr = x.data() + static_cast<std::size_t>(r) * count;
+      for (std::size_t j = 0; j < count; ++j) out_values[j].push_back(xr[j]);
+    }
+    out_outer[k + 1] = static_cast<int>(out_inner.size());
+  }
+  for (std::size_t j = 0; j < count; ++j) {
+    SparseMatrix& w = out[j];
+    w.resizeNonZeros(static_cast<Eigen::Index>(out_inner.size()));
+    std::copy(out_outer.begin(), out_outer.end(), w.outerIndexPtr());
+    std::copy(out_inner.begin(), out_inner.end(), w.innerIndexPtr());
+    std::copy(out_values[j].begin(), out_values[j].end(), w.valuePtr());
+  }
+  return out;
+}
+
+SparseMatrix SparseCholesky::HalfSolve(const SparseMatrix& b) const {
+  SparseMatrix compressed = b;
+  compressed.makeCompressed();
+  return HalfSolve(std::vector<SparseMatrix>{compressed}).front();
+}
+
+}  // namespace femup
