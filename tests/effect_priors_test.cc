@@ -12,16 +12,12 @@
 #include "femup/builders.h"
 #include "femup/errors.h"
 #include "femup/plane_frame.h"
+#include "structure_specs.h"
 
 namespace femup {
 namespace {
 
-ChainSpec Chain() {
-  ChainSpec spec;
-  spec.masses.assign(4, 1e4);
-  spec.springs.assign(4, 5e7);
-  return spec;
-}
+ChainSpec Chain() { return fixtures::UniformChain(4, 1e4, 5e7); }
 
 FamilyPrior Prior(const std::string& kind, std::vector<QuantityPrior> quantities,
                   std::vector<std::string> regions = {}) {

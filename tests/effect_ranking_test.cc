@@ -25,16 +25,12 @@
 #include "femup/space_frame.h"
 #include "femup/studies/structure_diagnosis.h"
 #include "scratch_dir.h"
+#include "structure_specs.h"
 
 namespace femup {
 namespace {
 
-ChainSpec ShearBuilding() {
-  ChainSpec spec;
-  spec.masses.assign(6, 1e5);
-  spec.springs.assign(6, 2e8);
-  return spec;
-}
+ChainSpec ShearBuilding() { return fixtures::UniformChain(6, 1e5, 2e8); }
 
 // The lowest four modes with shapes at every floor, noise 0.2 % on frequencies
 // and 2 % of the largest entry on shapes.
@@ -138,12 +134,7 @@ TEST(EffectRanking, NamesAnAttachedMassOnTheRoof) {
 
 // A two-storey portal frame of steel sections (HE-like columns).
 PlaneFrameSpec TwoStoreyPortal() {
-  PlaneFrameSpec spec;
-  spec.storeys = 2;
-  spec.bays = 1;
-  spec.storey_height = 3.5;
-  spec.bay_width = 6.0;
-  spec.elements_per_member = 2;
+  PlaneFrameSpec spec = fixtures::PlaneFrame(2, 1, 2, 3.5, 6.0);
   spec.column = {210e9, 7.8e-3, 8.4e-5, 7850};
   spec.beam = {210e9, 5.4e-3, 1.9e-4, 5.6e5};
   return spec;
@@ -555,14 +546,7 @@ TEST(StructureDiagnosis, RefusesAFamilyThatDoesNotApplyBeforeAnyFit) {
 // one group lowered through the generator's own factor. Sensors: ux and uy at
 // the 12 leg joints (the same node names in both meshes); noise 0.2 % / 2 %.
 SpaceFrameSpec SmallJacket() {
-  SpaceFrameSpec spec;
-  spec.levels = 3;
-  spec.bays_x = 1;
-  spec.bays_y = 1;
-  spec.level_height = 10;
-  spec.bay_width_x = 12;
-  spec.bay_width_y = 12;
-  spec.elements_per_member = 2;
+  SpaceFrameSpec spec = fixtures::SpaceFrame(3, 1, 1, 2, 10, 12, 12);
   spec.blocks_per_level = 1;
   spec.bracing = FaceBracing::kX;
   return spec;
