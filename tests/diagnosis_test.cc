@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "expect_error.h"
 #include "femup/errors.h"
 #include "femup/output_dir.h"
 #include "femup/problems/effect_fit.h"
@@ -334,18 +335,7 @@ std::string WriteStudy(const testing::ScratchDir& dir, const std::string& text) 
   return path;
 }
 
-// Expects `run` to throw an InputError whose message contains every needle.
-template <typename F>
-void ExpectInputError(F run, const std::vector<std::string>& needles) {
-  try {
-    run();
-    ADD_FAILURE() << "no InputError";
-  } catch (const InputError& e) {
-    const std::string msg = e.what();
-    for (const auto& n : needles)
-      EXPECT_NE(msg.find(n), std::string::npos) << "'" << n << "' in: " << msg;
-  }
-}
+using testing::ExpectInputError;
 
 // Stated priors on the cantilever (effect_priors.h): the engineer knows the
 // mass is 1 to 2 kg somewhere between 1.4 and 1.9 m. The fit stays inside and
@@ -410,20 +400,23 @@ TEST(Diagnosis, RejectsThreeEffectsAtOnce) {
   ExpectInputError([&] { LoadStudy(path); }, {path, "diagnosis.max_effects"});
 }
 
-TEST(Diagnosis, RejectsAHeldOutModeOfAMissingState) {
+// Writes kStudy with `extra` appended to its diagnosis section, loads it and
+// expects RunDiagnosis to refuse it, naming every needle.
+void ExpectDiagnosisRefuses(const std::string& extra,
+                            const std::vector<std::string>& needles) {
   testing::ScratchDir dir;
-  const std::string path =
-      WriteStudy(dir, std::string(kStudy) + "  held_out: [{state: water, mode: 4}]\n");
-  const Study study = LoadStudy(path);
-  ExpectInputError([&] { RunDiagnosis(study); }, {"diagnosis.held_out", "water"});
+  const Study study = LoadStudy(WriteStudy(dir, std::string(kStudy) + extra));
+  ExpectInputError([&] { RunDiagnosis(study); }, needles);
+}
+
+TEST(Diagnosis, RejectsAHeldOutModeOfAMissingState) {
+  ExpectDiagnosisRefuses("  held_out: [{state: water, mode: 4}]\n",
+                         {"diagnosis.held_out", "water"});
 }
 
 TEST(Diagnosis, RejectsAHeldOutModeNumberOutOfRange) {
-  testing::ScratchDir dir;
-  const std::string path =
-      WriteStudy(dir, std::string(kStudy) + "  held_out: [{state: test, mode: 5}]\n");
-  const Study study = LoadStudy(path);
-  ExpectInputError([&] { RunDiagnosis(study); }, {"diagnosis.held_out", "test"});
+  ExpectDiagnosisRefuses("  held_out: [{state: test, mode: 5}]\n",
+                         {"diagnosis.held_out", "test"});
 }
 
 TEST(Diagnosis, RejectsAnUnknownEvidenceMethodAndTooFewDraws) {

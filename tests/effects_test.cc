@@ -19,6 +19,8 @@
 #include <string>
 #include <vector>
 
+#include "beam_dofs.h"
+#include "expect_error.h"
 #include "femup/builders.h"
 #include "femup/errors.h"
 #include "femup/fe.h"
@@ -31,15 +33,10 @@ namespace {
 using fixtures::PaperSection;
 
 const double kPi = std::acos(-1.0);
-const double kLength = 2.0;
-const int kElements = 20;
+const double kLength = fixtures::kEffectBeamLength;
+const int kElements = fixtures::kEffectBeamElements;
 
-CantileverSpec Nominal() {
-  CantileverSpec spec;
-  spec.node_heights = UniformHeights(kLength, kElements);
-  spec.section = PaperSection();
-  return spec;
-}
+CantileverSpec Nominal() { return fixtures::EffectBeam(); }
 
 double Ei() { return PaperSection().E * PaperSection().I; }
 double RhoA() { return PaperSection().rho * PaperSection().A; }
@@ -62,20 +59,7 @@ Eigen::VectorXd BendingFrequencies(const Eigen::MatrixXd& k, const Eigen::Matrix
   for (std::size_t i = 0; i < labels.size(); ++i) {
     if (IsBendingLabel(labels[i])) keep.push_back(static_cast<int>(i));
   }
-  const int n = static_cast<int>(keep.size());
-  Eigen::MatrixXd kb(n, n), mb(n, n);
-  for (int i = 0; i < n; ++i) {
-    for (int j = 0; j < n; ++j) {
-      kb(i, j) = k(keep[i], keep[j]);
-      mb(i, j) = m(keep[i], keep[j]);
-    }
-  }
-  // M phi = mu K phi, mu = 1 / omega^2: the lowest frequencies come out as the
-  // largest mu, to full relative precision (K phi = lambda M phi would give them
-  // only to eps * lambda_max / lambda).
-  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(mb, kb);
-  EXPECT_EQ(eig.info(), Eigen::Success);
-  return eig.eigenvalues().reverse().cwiseInverse().cwiseSqrt() / (2 * kPi);
+  return fixtures::SolveReducedModes(k, m, keep).hz;
 }
 
 Eigen::VectorXd BendingFrequencies(const CantileverSpec& spec) {
