@@ -15,6 +15,7 @@
 #include "femup/builders.h"
 #include "femup/errors.h"
 #include "paper_beam.h"
+#include "solver_problems.h"
 
 namespace femup {
 namespace {
@@ -246,11 +247,7 @@ TEST(Mac, Properties) {
 }
 
 Eigen::MatrixXd RandomOrthonormal(int rows, int cols, unsigned seed) {
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> g(0.0, 1.0);
-  Eigen::MatrixXd a(rows, cols);
-  for (int i = 0; i < a.size(); ++i) a.data()[i] = g(rng);
-  Eigen::HouseholderQR<Eigen::MatrixXd> qr(a);
+  Eigen::HouseholderQR<Eigen::MatrixXd> qr(fixtures::RandomGaussian(rows, cols, seed));
   return qr.householderQ() * Eigen::MatrixXd::Identity(rows, cols);
 }
 
