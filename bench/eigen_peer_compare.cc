@@ -54,17 +54,14 @@
 namespace {
 
 namespace fs = std::filesystem;
+using femup_bench::Clock;
 using femup_bench::Format;
 using femup_bench::PeerResult;
 using femup_bench::ResetPeakRss;
 using femup_bench::RunInChild;
 using femup_bench::RunPeerScript;
+using femup_bench::Seconds;
 using femup_bench::StatusMb;
-using Clock = std::chrono::steady_clock;
-
-double Seconds(Clock::time_point since) {
-  return std::chrono::duration<double>(Clock::now() - since).count();
-}
 
 // One size: a name for the table and the frame it builds.
 struct Size {
@@ -308,13 +305,11 @@ int main(int argc, char** argv) {
                  "relative convergence tolerance, both sides (femup EigenOptions, "
                  "eigsh tol)")
       ->check(CLI::PositiveNumber);
-  app.add_option("--python", python, "python interpreter that has scipy");
-  app.add_option("--script", script, "the peer script (eigsh_peer.py)");
+  femup_bench::AddPeerOptions(app, python, script, markdown, "scipy", "eigsh_peer.py");
   app.add_option("--peers", peers_text,
                  "scipy configurations, comma-separated: default (eigsh factorises "
                  "with SuperLU's defaults), symmetric (splu with a symmetric ordering "
                  "and no pivoting, as OPinv)");
-  app.add_option("--markdown", markdown, "also write the tables to this file");
   app.add_option("--keep", keep,
                  "write K.mtx and M.mtx under this directory (one subdirectory per "
                  "size) and keep them, instead of a temporary directory");
@@ -336,12 +331,8 @@ int main(int argc, char** argv) {
     return app.exit(e);
   }
 
-  std::string pattern = (fs::temp_directory_path() / "femup-eigsh-XXXXXX").string();
-  if (keep.empty() && ::mkdtemp(pattern.data()) == nullptr) {
-    std::cerr << "cannot create a temporary directory from " << pattern << "\n";
-    return 1;
-  }
-  const fs::path tmp = keep.empty() ? fs::path(pattern) : fs::path(keep);
+  const fs::path tmp = femup_bench::WorkDirectory(keep, "eigsh");
+  if (tmp.empty()) return 1;
   if (!keep.empty()) fs::create_directories(tmp);
 
   femup::EigenOptions options;
@@ -424,15 +415,7 @@ int main(int argc, char** argv) {
                     "the solve.")
       << "\n\n"
       << Tables(rows, configs, notes);
-  std::cout << out.str();
-  if (!markdown.empty()) {
-    std::ofstream file(markdown);
-    file << out.str();
-    if (!file) {
-      std::cerr << "cannot write " << markdown << "\n";
-      return 1;
-    }
-  }
+  if (!femup_bench::PrintTables(out.str(), markdown)) return 1;
   const bool all_solved = std::all_of(rows.begin(), rows.end(),
                                       [](const Row& r) { return r.femup.error.empty(); });
   return all_solved ? 0 : 1;
