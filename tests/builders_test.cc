@@ -37,10 +37,7 @@ Eigen::VectorXd LowestFrequenciesHz(const Structure& s, int count) {
 }
 
 CantileverSpec Uniform(double length, int elements) {
-  CantileverSpec spec;
-  spec.node_heights = UniformHeights(length, elements);
-  spec.section = PaperSection();
-  return spec;
+  return fixtures::PaperCantilever(UniformHeights(length, elements));
 }
 
 Eigen::MatrixXd Dense(const SparseMatrix& a) { return Eigen::MatrixXd(a); }

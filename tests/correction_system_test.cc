@@ -251,9 +251,7 @@ TEST(CorrectionSystem, PaperPresetSatisfiesBothForms) {
 }
 
 TEST(CorrectionSystem, CantileverExactFactorsSatisfyBothForms) {
-  CantileverSpec spec;
-  spec.node_heights = UniformHeights(1.9, 10);
-  spec.section = fixtures::PaperSection();
+  CantileverSpec spec = fixtures::PaperCantilever(UniformHeights(1.9, 10));
   spec.water_depth = 1.5;
   for (AddedMassBasis basis :
        {AddedMassBasis::kElementMass, AddedMassBasis::kTransverse}) {

@@ -436,9 +436,7 @@ TEST(SolveModes, SparseShiftAndAutoOnLongChainMatchAnalytic) {
 }
 
 TEST(SolveModes, SparseMatchesDenseOn300DofCantilever) {
-  CantileverSpec spec;
-  spec.node_heights = UniformHeights(1.9, 100);
-  spec.section = fixtures::PaperSection();
+  CantileverSpec spec = fixtures::PaperCantilever(UniformHeights(1.9, 100));
   const Structure s = BuildCantilever(spec);
   ASSERT_EQ(s.stiffness.rows(), 300);
   EigenOptions dense_options;

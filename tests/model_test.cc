@@ -338,9 +338,7 @@ TEST(BuildModel, NoneScopeAndEmptySelection) {
 }
 
 CantileverSpec PaperCantilever() {
-  CantileverSpec spec;
-  spec.node_heights = UniformHeights(1.9, 10);
-  spec.section = fixtures::PaperSection();
+  CantileverSpec spec = fixtures::PaperCantilever(UniformHeights(1.9, 10));
   spec.water_depth = 1.5;  // elements 1..8 wet
   return spec;
 }

@@ -202,9 +202,7 @@ TEST(WetTransverseAddedMass, FullyWetEqualsScatteredTransverseMass) {
     }
     // The builder's transverse added-mass basis (mass per length rho A),
     // rescaled, is the same matrix.
-    CantileverSpec spec;
-    spec.node_heights = kHeights;
-    spec.section = PaperSection();
+    CantileverSpec spec = fixtures::PaperCantilever(kHeights);
     spec.added_mass_basis = AddedMassBasis::kTransverse;
     if (free_base) spec.support_transverse = spec.support_rotation = 1e5;
     const Structure t = BuildCantilever(spec);
