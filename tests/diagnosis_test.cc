@@ -23,6 +23,7 @@
 #include "femup/problems/effect_fit.h"
 #include "femup/studies/diagnose_study.h"
 #include "femup/studies/study.h"
+#include "prior_builders.h"
 #include "scratch_dir.h"
 
 namespace femup {
@@ -346,24 +347,11 @@ TEST(Diagnosis, StatedPriorsNarrowTheCantileverFamilies) {
   const DiagnosisResult plain = RunDiagnosis(study);
   ASSERT_EQ(Top(plain).label, "attached_mass") << plain.verdict;
   DiagnosisSpec d = *study.diagnosis;
-  FamilyPrior mass;
-  mass.kind = "attached_mass";
-  QuantityPrior kg, x;
-  kg.quantity = "mass_kg";
-  kg.lower = 1.0;
-  kg.upper = 2.0;
-  x.quantity = "x_m";
-  x.lower = 1.4;
-  x.upper = 1.9;
-  mass.quantities = {kg, x};
-  FamilyPrior e;
-  e.kind = "material_scaling";
-  QuantityPrior factor;
-  factor.quantity = "factor";
-  factor.normal = true;
-  factor.mean = 1.0;
-  factor.sigma = 1e-4;
-  e.quantities = {factor};
+  FamilyPrior mass = fixtures::Prior(
+      "attached_mass",
+      {fixtures::Range("mass_kg", 1.0, 2.0), fixtures::Range("x_m", 1.4, 1.9)});
+  const FamilyPrior e =
+      fixtures::Prior("material_scaling", {fixtures::Normal("factor", 1.0, 1e-4)});
   d.priors.families = {mass, e};
   study.diagnosis = d;
   const DiagnosisResult stated = RunDiagnosis(study);

@@ -24,6 +24,7 @@
 #include "femup/plane_frame.h"
 #include "femup/space_frame.h"
 #include "femup/studies/structure_diagnosis.h"
+#include "prior_builders.h"
 #include "scratch_dir.h"
 #include "structure_specs.h"
 
@@ -312,14 +313,8 @@ TEST(EffectRanking, AStatedRangeThatExcludesTheWrongExplanationChangesTheVerdict
   const std::vector<ModalData> data = {Measured(truth, 5)};
   const EffectRanking by_default = RankModelEffects(nominal, data, o);
   ASSERT_EQ(by_default.classes[0].kind, "support_flexibility");
-  FamilyPrior stiff;
-  stiff.kind = "support_flexibility";
-  QuantityPrior range;
-  range.quantity = "compliance_ratio";
-  range.lower = 1e-3;
-  range.upper = 0.05;
-  stiff.quantities = {range};
-  o.priors.families = {stiff};
+  o.priors.families = {fixtures::Prior(
+      "support_flexibility", {fixtures::Range("compliance_ratio", 1e-3, 0.05)})};
   const EffectRanking stated = RankModelEffects(nominal, data, o);
   EXPECT_EQ(stated.classes[0].kind, "stiffness_loss");
   EXPECT_EQ(stated.classes[0].region, "element 1");
@@ -345,15 +340,8 @@ TEST(EffectRanking, ANormalPriorCentredOnTheTruthNarrowsTheFit) {
   EffectRankingOptions o = Options();
   o.kinds = {"stiffness_loss"};
   const EffectRanking plain = RankModelEffects(nominal, data, o);
-  FamilyPrior known;
-  known.kind = "stiffness_loss";
-  QuantityPrior normal;
-  normal.quantity = "loss";
-  normal.normal = true;
-  normal.mean = 0.2;
-  normal.sigma = 0.01;
-  known.quantities = {normal};
-  o.priors.families = {known};
+  o.priors.families = {
+      fixtures::Prior("stiffness_loss", {fixtures::Normal("loss", 0.2, 0.01)})};
   const EffectRanking stated = RankModelEffects(nominal, data, o);
   const RankedClass& a = plain.classes[0];
   const RankedClass& b = stated.classes[0];
@@ -436,11 +424,7 @@ TEST(EffectRanking, RefusesStatedPriorsThatDoNotFitTheFamilies) {
       std::string::npos)
       << where(o);
   f.regions.clear();
-  QuantityPrior q;
-  q.quantity = "loss";
-  q.lower = 0.6;
-  q.upper = 0.05;
-  f.quantities = {q};
+  f.quantities = {fixtures::Range("loss", 0.6, 0.05)};
   o.priors.families = {f};
   EXPECT_NE(where(o).find("diagnosis.priors.stiffness_loss.loss: lower 0.6 > upper 0.05"),
             std::string::npos)

@@ -1,5 +1,5 @@
 // Test helpers: expect a call to throw an InputError whose message holds every
-// one of a list of needles.
+// one of a list of needles, or get the message of the one it throws.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -26,7 +26,18 @@ void ExpectInputError(F f, const std::vector<std::string>& needles,
   }
 }
 
-// The same, saying which needle it expected when nothing is thrown.
+// The message of the InputError `f` throws, or "" when it throws nothing.
+template <typename F>
+std::string InputErrorMessage(F f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// ExpectInputError, saying which needle it expected when nothing is thrown.
 template <typename F>
 void ExpectError(F f, const std::vector<std::string>& needles) {
   ExpectInputError(f, needles, "no error; expected " + needles[0]);
