@@ -72,26 +72,28 @@ struct Size {
 // "1e5", "1e6" (docs/space_frame.md), "1e4" (a small one for a quick run) or
 // "BXxBYxLEVELS"; throws CLI::ValidationError otherwise.
 Size ParseSize(const std::string& item) {
+  // The named frames: bays in x and in y, levels, blocks per level, water depth.
+  struct Preset {
+    const char* name;
+    int bays, levels, blocks;
+    double water_depth;
+  };
+  static const Preset kPresets[] = {
+      {"1e4", 2, 10, 1, 30},     // 10,560 DOF
+      {"1e5", 4, 39, 2, 100},    // 100,152 DOF
+      {"1e6", 10, 100, 1, 300},  // 998,400 DOF
+  };
   Size s;
   s.name = item;
-  if (item == "1e4") {  // 10,560 DOF
-    s.spec.bays_x = 2;
-    s.spec.bays_y = 2;
-    s.spec.levels = 10;
-    s.spec.blocks_per_level = 1;
-    s.spec.water_depth = 30;
-  } else if (item == "1e5") {  // 100,152 DOF
-    s.spec.bays_x = 4;
-    s.spec.bays_y = 4;
-    s.spec.levels = 39;
-    s.spec.blocks_per_level = 2;
-    s.spec.water_depth = 100;
-  } else if (item == "1e6") {  // 998,400 DOF
-    s.spec.bays_x = 10;
-    s.spec.bays_y = 10;
-    s.spec.levels = 100;
-    s.spec.blocks_per_level = 1;
-    s.spec.water_depth = 300;
+  const Preset* preset = nullptr;
+  for (const Preset& p : kPresets) {
+    if (item == p.name) preset = &p;
+  }
+  if (preset != nullptr) {
+    s.spec.bays_x = s.spec.bays_y = preset->bays;
+    s.spec.levels = preset->levels;
+    s.spec.blocks_per_level = preset->blocks;
+    s.spec.water_depth = preset->water_depth;
   } else {
     char x1 = 0, x2 = 0;
     std::stringstream in(item);
