@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "enum_names.h"
 #include "femup/errors.h"
 #include "femup/modal.h"
 #include "paper_beam.h"
@@ -256,14 +257,13 @@ TEST(BuildCantilever, TransverseAddedMassBasis) {
 }
 
 TEST(BuildCantilever, AddedMassBasisNames) {
-  EXPECT_STREQ(ToString(AddedMassBasis::kElementMass), "element_mass");
-  EXPECT_STREQ(ToString(AddedMassBasis::kTransverse), "transverse");
-  AddedMassBasis b = AddedMassBasis::kElementMass;
-  EXPECT_TRUE(AddedMassBasisFromString("transverse", &b));
-  EXPECT_EQ(b, AddedMassBasis::kTransverse);
-  EXPECT_TRUE(AddedMassBasisFromString("element_mass", &b));
-  EXPECT_EQ(b, AddedMassBasis::kElementMass);
-  EXPECT_FALSE(AddedMassBasisFromString("lumped", &b));
+  testing::ExpectEnumNames<AddedMassBasis>(
+      {{AddedMassBasis::kElementMass, "element_mass"},
+       {AddedMassBasis::kTransverse, "transverse"}},
+      AddedMassBasisFromString, AddedMassBasis::kElementMass,
+      {{"transverse", AddedMassBasis::kTransverse},
+       {"element_mass", AddedMassBasis::kElementMass}},
+      "lumped");
 }
 
 TEST(BuildCantilever, VeryStiffSupportSpringsReproduceClampedBase) {
