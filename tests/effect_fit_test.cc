@@ -28,6 +28,7 @@
 #include "femup/solvers/nonlinear_solver.h"
 #include "femup/structure.h"
 #include "paper_beam.h"
+#include "vector_of.h"
 
 namespace femup {
 namespace {
@@ -104,12 +105,7 @@ ObservedState StateFrom(const Modes& modes, const std::vector<std::string>& sens
   return st;
 }
 
-Eigen::VectorXd Vec(std::initializer_list<double> v) {
-  Eigen::VectorXd out(static_cast<Eigen::Index>(v.size()));
-  Eigen::Index i = 0;
-  for (double x : v) out[i++] = x;
-  return out;
-}
+Eigen::VectorXd Vec(std::initializer_list<double> v) { return fixtures::VectorOf(v); }
 
 // The spec with one effect applied (dry state).
 CantileverSpec Applied(const Effect& e, const Eigen::VectorXd& theta) {

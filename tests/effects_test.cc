@@ -26,6 +26,7 @@
 #include "femup/fe.h"
 #include "femup/structure.h"
 #include "paper_beam.h"
+#include "vector_of.h"
 
 namespace femup {
 namespace {
@@ -76,12 +77,7 @@ CantileverSpec Applied(const Effect& effect, const Eigen::VectorXd& theta,
   return spec;
 }
 
-Eigen::VectorXd Theta(std::initializer_list<double> v) {
-  Eigen::VectorXd out(static_cast<Eigen::Index>(v.size()));
-  Eigen::Index i = 0;
-  for (double x : v) out[i++] = x;
-  return out;
-}
+Eigen::VectorXd Theta(std::initializer_list<double> v) { return fixtures::VectorOf(v); }
 
 const EffectMagnitude* FindMagnitude(const std::vector<EffectMagnitude>& m,
                                      const std::string& name) {

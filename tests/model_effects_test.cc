@@ -16,18 +16,14 @@
 #include "femup/errors.h"
 #include "femup/modal.h"
 #include "paper_beam.h"
+#include "vector_of.h"
 
 namespace femup {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-Eigen::VectorXd Theta(std::initializer_list<double> v) {
-  Eigen::VectorXd out(static_cast<Eigen::Index>(v.size()));
-  Eigen::Index i = 0;
-  for (double x : v) out[i++] = x;
-  return out;
-}
+Eigen::VectorXd Theta(std::initializer_list<double> v) { return fixtures::VectorOf(v); }
 
 Eigen::VectorXd Eigenvalues(const SparseMatrix& k, const SparseMatrix& m) {
   return SolveModes(k, m).eigenvalues;
