@@ -54,17 +54,14 @@
 namespace {
 
 namespace fs = std::filesystem;
+using femup_bench::Clock;
 using femup_bench::Format;
 using femup_bench::PeerResult;
 using femup_bench::ResetPeakRss;
 using femup_bench::RunInChild;
 using femup_bench::RunPeerScript;
+using femup_bench::Seconds;
 using femup_bench::StatusMb;
-using Clock = std::chrono::steady_clock;
-
-double Seconds(Clock::time_point since) {
-  return std::chrono::duration<double>(Clock::now() - since).count();
-}
 
 // One size: a name for the table and the frame it builds.
 struct Size {
@@ -75,26 +72,28 @@ struct Size {
 // "1e5", "1e6" (docs/space_frame.md), "1e4" (a small one for a quick run) or
 // "BXxBYxLEVELS"; throws CLI::ValidationError otherwise.
 Size ParseSize(const std::string& item) {
+  // The named frames: bays in x and in y, levels, blocks per level, water depth.
+  struct Preset {
+    const char* name;
+    int bays, levels, blocks;
+    double water_depth;
+  };
+  static const Preset kPresets[] = {
+      {"1e4", 2, 10, 1, 30},     // 10,560 DOF
+      {"1e5", 4, 39, 2, 100},    // 100,152 DOF
+      {"1e6", 10, 100, 1, 300},  // 998,400 DOF
+  };
   Size s;
   s.name = item;
-  if (item == "1e4") {  // 10,560 DOF
-    s.spec.bays_x = 2;
-    s.spec.bays_y = 2;
-    s.spec.levels = 10;
-    s.spec.blocks_per_level = 1;
-    s.spec.water_depth = 30;
-  } else if (item == "1e5") {  // 100,152 DOF
-    s.spec.bays_x = 4;
-    s.spec.bays_y = 4;
-    s.spec.levels = 39;
-    s.spec.blocks_per_level = 2;
-    s.spec.water_depth = 100;
-  } else if (item == "1e6") {  // 998,400 DOF
-    s.spec.bays_x = 10;
-    s.spec.bays_y = 10;
-    s.spec.levels = 100;
-    s.spec.blocks_per_level = 1;
-    s.spec.water_depth = 300;
+  const Preset* preset = nullptr;
+  for (const Preset& p : kPresets) {
+    if (item == p.name) preset = &p;
+  }
+  if (preset != nullptr) {
+    s.spec.bays_x = s.spec.bays_y = preset->bays;
+    s.spec.levels = preset->levels;
+    s.spec.blocks_per_level = preset->blocks;
+    s.spec.water_depth = preset->water_depth;
   } else {
     char x1 = 0, x2 = 0;
     std::stringstream in(item);
@@ -308,13 +307,11 @@ int main(int argc, char** argv) {
                  "relative convergence tolerance, both sides (femup EigenOptions, "
                  "eigsh tol)")
       ->check(CLI::PositiveNumber);
-  app.add_option("--python", python, "python interpreter that has scipy");
-  app.add_option("--script", script, "the peer script (eigsh_peer.py)");
+  femup_bench::AddPeerOptions(app, python, script, markdown, "scipy", "eigsh_peer.py");
   app.add_option("--peers", peers_text,
                  "scipy configurations, comma-separated: default (eigsh factorises "
                  "with SuperLU's defaults), symmetric (splu with a symmetric ordering "
                  "and no pivoting, as OPinv)");
-  app.add_option("--markdown", markdown, "also write the tables to this file");
   app.add_option("--keep", keep,
                  "write K.mtx and M.mtx under this directory (one subdirectory per "
                  "size) and keep them, instead of a temporary directory");
@@ -336,12 +333,8 @@ int main(int argc, char** argv) {
     return app.exit(e);
   }
 
-  std::string pattern = (fs::temp_directory_path() / "femup-eigsh-XXXXXX").string();
-  if (keep.empty() && ::mkdtemp(pattern.data()) == nullptr) {
-    std::cerr << "cannot create a temporary directory from " << pattern << "\n";
-    return 1;
-  }
-  const fs::path tmp = keep.empty() ? fs::path(pattern) : fs::path(keep);
+  const fs::path tmp = femup_bench::WorkDirectory(keep, "eigsh");
+  if (tmp.empty()) return 1;
   if (!keep.empty()) fs::create_directories(tmp);
 
   femup::EigenOptions options;
@@ -424,15 +417,7 @@ int main(int argc, char** argv) {
                     "the solve.")
       << "\n\n"
       << Tables(rows, configs, notes);
-  std::cout << out.str();
-  if (!markdown.empty()) {
-    std::ofstream file(markdown);
-    file << out.str();
-    if (!file) {
-      std::cerr << "cannot write " << markdown << "\n";
-      return 1;
-    }
-  }
+  if (!femup_bench::PrintTables(out.str(), markdown)) return 1;
   const bool all_solved = std::all_of(rows.begin(), rows.end(),
                                       [](const Row& r) { return r.femup.error.empty(); });
   return all_solved ? 0 : 1;

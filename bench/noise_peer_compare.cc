@@ -43,14 +43,11 @@
 namespace {
 
 namespace fs = std::filesystem;
+using femup_bench::Clock;
 using femup_bench::Format;
 using femup_bench::PeerResult;
 using femup_bench::RunPeerScript;
-using Clock = std::chrono::steady_clock;
-
-double Seconds(Clock::time_point since) {
-  return std::chrono::duration<double>(Clock::now() - since).count();
-}
+using femup_bench::Seconds;
 
 // Writes the study's model, modes and noise settings for the script; throws
 // femup::InputError when the study is not one the script implements (summed
@@ -164,19 +161,14 @@ int main(int argc, char** argv) {
   app.add_option("--rounds", rounds,
                  "rounds of all four runs, interleaved (default 1); ratios per round")
       ->check(CLI::PositiveNumber);
-  app.add_option("--python", python, "python interpreter that has numpy and scipy");
-  app.add_option("--script", script, "the peer script (noise_study_peer.py)");
-  app.add_option("--markdown", markdown, "also write the tables to this file");
+  femup_bench::AddPeerOptions(app, python, script, markdown, "numpy and scipy",
+                              "noise_study_peer.py");
   app.add_option("--keep", keep, "write the peer's input files here and keep them");
   CLI11_PARSE(app, argc, argv);
 
   femup::Study study;
-  std::string pattern = (fs::temp_directory_path() / "femup-noise-XXXXXX").string();
-  if (keep.empty() && ::mkdtemp(pattern.data()) == nullptr) {
-    std::cerr << "cannot create a temporary directory from " << pattern << "\n";
-    return 1;
-  }
-  const fs::path dir = keep.empty() ? fs::path(pattern) : fs::path(keep);
+  const fs::path dir = femup_bench::WorkDirectory(keep, "noise");
+  if (dir.empty()) return 1;
   try {
     study = femup::LoadStudy(study_path);
     if (!study.noise_study || !study.truth)
@@ -298,14 +290,6 @@ int main(int argc, char** argv) {
                               : std::string("n/a"))
        << " |\n";
   }
-  std::cout << md.str();
-  if (!markdown.empty()) {
-    std::ofstream file(markdown);
-    file << md.str();
-    if (!file) {
-      std::cerr << "cannot write " << markdown << "\n";
-      return 1;
-    }
-  }
+  if (!femup_bench::PrintTables(md.str(), markdown)) return 1;
   return identical ? 0 : 1;
 }

@@ -197,9 +197,8 @@ int main(int argc, char** argv) {
   app.add_option("--budget", budget,
                  "seconds after which no further run of a solver starts")
       ->check(CLI::NonNegativeNumber);
-  app.add_option("--python", python, "python interpreter that has scipy");
-  app.add_option("--script", script, "the peer script (lsq_linear_peer.py)");
-  app.add_option("--markdown", markdown, "also write the tables to this file");
+  femup_bench::AddPeerOptions(app, python, script, markdown, "scipy",
+                              "lsq_linear_peer.py");
   CLI11_PARSE(app, argc, argv);
   std::vector<Size> sizes;
   try {
@@ -208,12 +207,8 @@ int main(int argc, char** argv) {
     return app.exit(e);
   }
 
-  std::string pattern = (fs::temp_directory_path() / "femup-peer-XXXXXX").string();
-  if (::mkdtemp(pattern.data()) == nullptr) {
-    std::cerr << "cannot create a temporary directory from " << pattern << "\n";
-    return 1;
-  }
-  const fs::path tmp = pattern;
+  const fs::path tmp = femup_bench::WorkDirectory("", "peer");
+  if (tmp.empty()) return 1;
 
   std::vector<Row> rows;
   std::string peer_note, versions;
@@ -256,14 +251,6 @@ int main(int argc, char** argv) {
                             : "Peer: not run.")
       << "\n\n"
       << Tables(rows, peer_note);
-  std::cout << out.str();
-  if (!markdown.empty()) {
-    std::ofstream file(markdown);
-    file << out.str();
-    if (!file) {
-      std::cerr << "cannot write " << markdown << "\n";
-      return 1;
-    }
-  }
+  if (!femup_bench::PrintTables(out.str(), markdown)) return 1;
   return 0;
 }

@@ -1,14 +1,17 @@
 // What every peer comparison program (bench/*_peer_compare.cc) shares: running
 // a Python peer script and reading the JSON it prints, running femup's side in
 // a fork()ed child so that its peak resident set is its own, and reading and
-// resetting the peak resident set of the calling process.
+// resetting the peak resident set of the calling process; and the command-line
+// options, the working directory and the clock they have in common.
 #pragma once
 
 #include <malloc.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <CLI/CLI.hpp>
 #include <cerrno>
+#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <exception>
@@ -21,6 +24,52 @@
 #include <string>
 
 namespace femup_bench {
+
+using Clock = std::chrono::steady_clock;
+
+// Seconds from `since` to now.
+inline double Seconds(Clock::time_point since) {
+  return std::chrono::duration<double>(Clock::now() - since).count();
+}
+
+// The options every peer program has: --python (an interpreter that has
+// `needs`), --script (the peer script, `script_name`) and --markdown.
+inline void AddPeerOptions(CLI::App& app, std::string& python, std::string& script,
+                           std::string& markdown, const std::string& needs,
+                           const std::string& script_name) {
+  app.add_option("--python", python, "python interpreter that has " + needs);
+  app.add_option("--script", script, "the peer script (" + script_name + ")");
+  app.add_option("--markdown", markdown, "also write the tables to this file");
+}
+
+// Prints `tables` to stdout and, when `markdown` is not empty, writes them to
+// that file; false, with a message on stderr, when the file cannot be written.
+inline bool PrintTables(const std::string& tables, const std::string& markdown) {
+  std::cout << tables;
+  if (markdown.empty()) return true;
+  std::ofstream file(markdown);
+  file << tables;
+  if (!file) {
+    std::cerr << "cannot write " << markdown << "\n";
+    return false;
+  }
+  return true;
+}
+
+// `keep` when it is not empty; otherwise a fresh temporary directory
+// (femup-`name`-XXXXXX in the system's temporary directory). Empty, with a
+// message on stderr, when that cannot be created.
+inline std::filesystem::path WorkDirectory(const std::string& keep,
+                                           const std::string& name) {
+  if (!keep.empty()) return keep;
+  std::string pattern =
+      (std::filesystem::temp_directory_path() / ("femup-" + name + "-XXXXXX")).string();
+  if (::mkdtemp(pattern.data()) == nullptr) {
+    std::cerr << "cannot create a temporary directory from " << pattern << "\n";
+    return {};
+  }
+  return pattern;
+}
 
 // What one side returned; `error` says why not when it is not empty.
 struct PeerResult {

@@ -20,7 +20,7 @@
 //                     fixed.
 //   frame_large/*     the large sparse correction-factor problem: a 2D plane
 //                     frame of 100 storeys x 50 bays, 4 elements per member
-//                     (lib/include/femup/plane_frame.h: 106,200 DOF), 1,200
+//                     (core/include/femup/core/fe/plane_frame.h: 106,200 DOF), 1,200
 //                     factors (100 storey masses, 1,000 column/beam stiffness
 //                     blocks, 100 added-mass blocks in the 20 wet storeys),
 //                     preset factors drawn with seed kNoiseSeed, 5 air + 5 water

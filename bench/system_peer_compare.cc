@@ -58,15 +58,13 @@
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
+using femup_bench::Clock;
 using femup_bench::Format;
 using femup_bench::PeerResult;
 
 constexpr std::uint64_t kSeed = 20261124;
 
-double Seconds(Clock::time_point since) {
-  return std::chrono::duration<double>(Clock::now() - since).count();
-}
+using femup_bench::Seconds;
 
 femup::SpaceFrameSpec ParseSize(const std::string& item) {
   femup::SpaceFrameSpec spec;
@@ -240,9 +238,8 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   app.add_option("--water-modes", water_modes, "measured modes in water")
       ->check(CLI::NonNegativeNumber);
-  app.add_option("--python", python, "python interpreter that has scipy");
-  app.add_option("--script", script, "the peer script (normal_system_peer.py)");
-  app.add_option("--markdown", markdown, "also write the tables to this file");
+  femup_bench::AddPeerOptions(app, python, script, markdown, "scipy",
+                              "normal_system_peer.py");
   app.add_option("--keep", keep, "write the files under this directory and keep them");
   CLI11_PARSE(app, argc, argv);
   femup::SpaceFrameSpec spec;
@@ -254,12 +251,8 @@ int main(int argc, char** argv) {
     return app.exit(e);
   }
 
-  std::string pattern = (fs::temp_directory_path() / "femup-system-XXXXXX").string();
-  if (keep.empty() && ::mkdtemp(pattern.data()) == nullptr) {
-    std::cerr << "cannot create a temporary directory from " << pattern << "\n";
-    return 1;
-  }
-  const fs::path dir = keep.empty() ? fs::path(pattern) : fs::path(keep);
+  const fs::path dir = femup_bench::WorkDirectory(keep, "system");
+  if (dir.empty()) return 1;
   fs::create_directories(dir);
 
   std::cerr << size << ": building the frame\n";

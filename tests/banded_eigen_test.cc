@@ -1,4 +1,4 @@
-// The banded eigensolver (lib/include/femup/banded_eigen.h), checked against
+// The banded eigensolver (core/include/femup/core/linalg/banded_eigen.h), checked against
 // the analytic spectrum of a clamped Euler-Bernoulli beam, the analytic
 // spectrum of a fixed-free spring chain, and the dense generalised solver on a
 // random banded pencil.

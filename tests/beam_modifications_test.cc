@@ -1,4 +1,4 @@
-// Local modifications along a cantilever (lib/include/femup/beam_modifications.h
+// Local modifications along a cantilever (core/include/femup/core/fe/beam_modifications.h
 // and CantileverSpec's lists in builders.h), checked against independent
 // references: the element stiffness of fe.h, closed-form integrals of polynomial
 // fields, exact frequency ratios, rigid-body kinetic energy, the Euler-Bernoulli
@@ -16,6 +16,8 @@
 #include <string>
 #include <vector>
 
+#include "beam_dofs.h"
+#include "expect_error.h"
 #include "femup/core/errors.h"
 #include "femup/core/fe/builders.h"
 #include "femup/core/fe/fe.h"
@@ -31,19 +33,7 @@ using fixtures::PaperSection;
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
 const double kInf = std::numeric_limits<double>::infinity();
 
-// Expects `f` to throw InputError whose message contains every one of `parts`.
-void ExpectInputError(const std::function<void()>& f,
-                      const std::vector<std::string>& parts) {
-  try {
-    f();
-    ADD_FAILURE() << "no exception";
-  } catch (const InputError& e) {
-    const std::string what = e.what();
-    for (const std::string& p : parts) {
-      EXPECT_NE(what.find(p), std::string::npos) << "'" << p << "' not in: " << what;
-    }
-  }
-}
+using testing::ExpectInputError;
 
 // Non-uniform mesh of 5 elements, 0.9 m.
 const std::vector<double>& kHeights = fixtures::kNonUniformHeights;
@@ -56,29 +46,11 @@ Structure Cantilever(const std::vector<double>& heights, bool free_base) {
   return BuildCantilever(Spec(heights, free_base));
 }
 
-int Dof(const Structure& s, const std::string& label) {
-  for (std::size_t i = 0; i < s.dof_labels.size(); ++i) {
-    if (s.dof_labels[i] == label) return static_cast<int>(i);
-  }
-  return -1;
-}
+using fixtures::Dof;
 
 double MaxAbs(const Eigen::MatrixXd& m) { return m.cwiseAbs().maxCoeff(); }
 
-// Transverse field ux(z) = z^k (rz = -dux/dz) on the nodes that have DOFs;
-// axial DOFs 0.
-Eigen::VectorXd MonomialField(const Structure& s, const std::vector<double>& heights,
-                              int k) {
-  Eigen::VectorXd u = Eigen::VectorXd::Zero(s.dof_labels.size());
-  for (std::size_t node = 0; node < heights.size(); ++node) {
-    const double z = heights[node];
-    const int ux = Dof(s, "n" + std::to_string(node) + ":ux");
-    const int rz = Dof(s, "n" + std::to_string(node) + ":rz");
-    if (ux >= 0) u(ux) = std::pow(z, k);
-    if (rz >= 0) u(rz) = k == 0 ? 0.0 : -k * std::pow(z, k - 1);
-  }
-  return u;
-}
+using fixtures::MonomialField;
 
 // Unit axial translation uy = 1 on every node that has the DOF.
 Eigen::VectorXd AxialTranslation(const Structure& s) {

@@ -1,4 +1,4 @@
-// Built-in structures (lib/include/femup/builders.h): the spring-mass chain
+// Built-in structures (core/include/femup/core/fe/builders.h): the spring-mass chain
 // against hand-written matrices, the frame cantilever against Euler-Bernoulli
 // beam theory, Rayleigh and Dunkerley bounds and the paper's values.
 #include "femup/core/fe/builders.h"
@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "enum_names.h"
 #include "femup/core/errors.h"
 #include "femup/core/linalg/modal.h"
 #include "paper_beam.h"
@@ -37,10 +38,7 @@ Eigen::VectorXd LowestFrequenciesHz(const Structure& s, int count) {
 }
 
 CantileverSpec Uniform(double length, int elements) {
-  CantileverSpec spec;
-  spec.node_heights = UniformHeights(length, elements);
-  spec.section = PaperSection();
-  return spec;
+  return fixtures::PaperCantilever(UniformHeights(length, elements));
 }
 
 Eigen::MatrixXd Dense(const SparseMatrix& a) { return Eigen::MatrixXd(a); }
@@ -259,14 +257,13 @@ TEST(BuildCantilever, TransverseAddedMassBasis) {
 }
 
 TEST(BuildCantilever, AddedMassBasisNames) {
-  EXPECT_STREQ(ToString(AddedMassBasis::kElementMass), "element_mass");
-  EXPECT_STREQ(ToString(AddedMassBasis::kTransverse), "transverse");
-  AddedMassBasis b = AddedMassBasis::kElementMass;
-  EXPECT_TRUE(AddedMassBasisFromString("transverse", &b));
-  EXPECT_EQ(b, AddedMassBasis::kTransverse);
-  EXPECT_TRUE(AddedMassBasisFromString("element_mass", &b));
-  EXPECT_EQ(b, AddedMassBasis::kElementMass);
-  EXPECT_FALSE(AddedMassBasisFromString("lumped", &b));
+  testing::ExpectEnumNames<AddedMassBasis>(
+      {{AddedMassBasis::kElementMass, "element_mass"},
+       {AddedMassBasis::kTransverse, "transverse"}},
+      AddedMassBasisFromString, AddedMassBasis::kElementMass,
+      {{"transverse", AddedMassBasis::kTransverse},
+       {"element_mass", AddedMassBasis::kElementMass}},
+      "lumped");
 }
 
 TEST(BuildCantilever, VeryStiffSupportSpringsReproduceClampedBase) {

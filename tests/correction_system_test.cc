@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "enum_names.h"
 #include "femup/core/errors.h"
 #include "femup/core/fe/builders.h"
 #include "femup/core/fe/structure.h"
@@ -61,6 +62,24 @@ void ExpectedRow(const ParametrisedModel& model, const Eigen::VectorXd& fem_i,
   *f = -(fem_i.dot(k * phi) - lambda * fem_i.dot(m * phi));
 }
 
+// For each row r = j * 5 + i of the stacked system of `state` alone (its modes
+// j = 0, 1 against FEM modes i = 0..4), calls check(r, i, j, z, f) with
+// ExpectedRow's row z and right-hand side f.
+template <typename Check>
+void ForEachExpectedRow(const PaperSetup& ps, const ModalData& state, bool wet,
+                        Check check) {
+  const Eigen::VectorXd lambdas = state.Eigenvalues();
+  for (int j = 0; j < 2; ++j) {
+    for (int i = 0; i < 5; ++i) {
+      Eigen::RowVectorXd z;
+      double f = 0;
+      ExpectedRow(ps.s.model, ps.fem.shapes.col(i), lambdas[j], state.shapes.col(j), wet,
+                  &z, &f);
+      check(j * 5 + i, i, j, z, f);
+    }
+  }
+}
+
 double RelativeResidual(const LinearProblem& p, const Eigen::VectorXd& d) {
   return (p.A * d - p.b).norm() / p.b.norm();
 }
@@ -79,25 +98,18 @@ TEST(CorrectionSystem, StackedAirOnly) {
   EXPECT_EQ(p.groups[5], "stiffness");
   EXPECT_EQ(p.groups[10], "added_mass");
   EXPECT_EQ(p.A.rightCols(3).cwiseAbs().maxCoeff(), 0.0) << "no added mass in air";
-  const Eigen::VectorXd lambdas = ps.air.Eigenvalues();
-  for (int j = 0; j < 2; ++j) {
-    for (int i = 0; i < 5; ++i) {
-      Eigen::RowVectorXd z;
-      double f = 0;
-      ExpectedRow(ps.s.model, ps.fem.shapes.col(i), lambdas[j], ps.air.shapes.col(j),
-                  false, &z, &f);
-      const int r = j * 5 + i;
-      EXPECT_LE((p.A.row(r) - z).cwiseAbs().maxCoeff(), 1e-12 * z.cwiseAbs().maxCoeff())
-          << p.row_labels[r];
-      EXPECT_NEAR(p.b[r], f, 1e-9 * z.cwiseAbs().maxCoeff()) << p.row_labels[r];
-      EXPECT_NE(p.row_labels[r].find("air mode " + std::to_string(j + 1)),
-                std::string::npos)
-          << p.row_labels[r];
-      EXPECT_NE(p.row_labels[r].find("FEM mode " + std::to_string(i + 1)),
-                std::string::npos)
-          << p.row_labels[r];
-    }
-  }
+  ForEachExpectedRow(
+      ps, ps.air, false, [&](int r, int i, int j, const Eigen::RowVectorXd& z, double f) {
+        EXPECT_LE((p.A.row(r) - z).cwiseAbs().maxCoeff(), 1e-12 * z.cwiseAbs().maxCoeff())
+            << p.row_labels[r];
+        EXPECT_NEAR(p.b[r], f, 1e-9 * z.cwiseAbs().maxCoeff()) << p.row_labels[r];
+        EXPECT_NE(p.row_labels[r].find("air mode " + std::to_string(j + 1)),
+                  std::string::npos)
+            << p.row_labels[r];
+        EXPECT_NE(p.row_labels[r].find("FEM mode " + std::to_string(i + 1)),
+                  std::string::npos)
+            << p.row_labels[r];
+      });
 }
 
 TEST(CorrectionSystem, StackedWaterOnly) {
@@ -107,18 +119,12 @@ TEST(CorrectionSystem, StackedWaterOnly) {
   for (int c = 10; c < 13; ++c) {
     EXPECT_GT(p.A.col(c).cwiseAbs().maxCoeff(), 0.0) << p.names[c];
   }
-  const Eigen::VectorXd lambdas = ps.water.Eigenvalues();
-  for (int j = 0; j < 2; ++j) {
-    for (int i = 0; i < 5; ++i) {
-      Eigen::RowVectorXd z;
-      double f = 0;
-      ExpectedRow(ps.s.model, ps.fem.shapes.col(i), lambdas[j], ps.water.shapes.col(j),
-                  true, &z, &f);
-      const int r = j * 5 + i;
-      EXPECT_LE((p.A.row(r) - z).cwiseAbs().maxCoeff(), 1e-12 * z.cwiseAbs().maxCoeff());
-      EXPECT_NEAR(p.b[r], f, 1e-9 * z.cwiseAbs().maxCoeff());
-    }
-  }
+  ForEachExpectedRow(ps, ps.water, true,
+                     [&](int r, int, int, const Eigen::RowVectorXd& z, double f) {
+                       EXPECT_LE((p.A.row(r) - z).cwiseAbs().maxCoeff(),
+                                 1e-12 * z.cwiseAbs().maxCoeff());
+                       EXPECT_NEAR(p.b[r], f, 1e-9 * z.cwiseAbs().maxCoeff());
+                     });
 }
 
 TEST(CorrectionSystem, SummedIsAirRowPlusWaterRow) {
@@ -251,9 +257,7 @@ TEST(CorrectionSystem, PaperPresetSatisfiesBothForms) {
 }
 
 TEST(CorrectionSystem, CantileverExactFactorsSatisfyBothForms) {
-  CantileverSpec spec;
-  spec.node_heights = UniformHeights(1.9, 10);
-  spec.section = fixtures::PaperSection();
+  CantileverSpec spec = fixtures::PaperCantilever(UniformHeights(1.9, 10));
   spec.water_depth = 1.5;
   for (AddedMassBasis basis :
        {AddedMassBasis::kElementMass, AddedMassBasis::kTransverse}) {
@@ -367,12 +371,10 @@ TEST(PreparedCorrectionSystem, RejectsWhatBuildRejects) {
 }
 
 TEST(SystemForm, Names) {
-  EXPECT_STREQ(ToString(SystemForm::kStacked), "stacked");
-  EXPECT_STREQ(ToString(SystemForm::kSummed), "summed");
-  SystemForm form = SystemForm::kStacked;
-  EXPECT_TRUE(SystemFormFromString("summed", &form));
-  EXPECT_EQ(form, SystemForm::kSummed);
-  EXPECT_FALSE(SystemFormFromString("paper", &form));
+  testing::ExpectEnumNames<SystemForm>(
+      {{SystemForm::kStacked, "stacked"}, {SystemForm::kSummed, "summed"}},
+      SystemFormFromString, SystemForm::kStacked, {{"summed", SystemForm::kSummed}},
+      "paper");
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-// CounterRng (lib/include/femup/counter_rng.h): Random123's published
+// CounterRng (core/include/femup/core/counter_rng.h): Random123's published
 // known-answer vectors for Philox4x64-10, streams that depend only on
 // (seed, stream, substream), and the moments of its normal and uniform draws.
 #include "femup/core/counter_rng.h"

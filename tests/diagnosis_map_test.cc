@@ -13,19 +13,12 @@
 #include "femup/core/fe/plane_frame.h"
 #include "femup/reporting/diagnosis_map_figure.h"
 #include "scratch_dir.h"
+#include "structure_specs.h"
 
 namespace femup {
 namespace {
 
-PlaneFrameSpec Portal() {
-  PlaneFrameSpec spec;
-  spec.storeys = 1;
-  spec.bays = 1;
-  spec.storey_height = 3.0;
-  spec.bay_width = 5.0;
-  spec.elements_per_member = 2;
-  return spec;
-}
+PlaneFrameSpec Portal() { return fixtures::PlaneFrame(1, 1, 2, 3.0, 5.0); }
 
 const DiagnosisMap::Element& ElementOf(const DiagnosisMap& map,
                                        const std::string& region) {

@@ -17,12 +17,14 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "expect_error.h"
 #include "femup/core/errors.h"
 #include "femup/problems/effect_fit.h"
 #include "femup/reporting/diagnose_outputs.h"
 #include "femup/reporting/output_dir.h"
 #include "femup/studies/diagnose_study.h"
 #include "femup/studies/study.h"
+#include "prior_builders.h"
 #include "scratch_dir.h"
 
 namespace femup {
@@ -335,18 +337,7 @@ std::string WriteStudy(const testing::ScratchDir& dir, const std::string& text) 
   return path;
 }
 
-// Expects `run` to throw an InputError whose message contains every needle.
-template <typename F>
-void ExpectInputError(F run, const std::vector<std::string>& needles) {
-  try {
-    run();
-    ADD_FAILURE() << "no InputError";
-  } catch (const InputError& e) {
-    const std::string msg = e.what();
-    for (const auto& n : needles)
-      EXPECT_NE(msg.find(n), std::string::npos) << "'" << n << "' in: " << msg;
-  }
-}
+using testing::ExpectInputError;
 
 // Stated priors on the cantilever (effect_priors.h): the engineer knows the
 // mass is 1 to 2 kg somewhere between 1.4 and 1.9 m. The fit stays inside and
@@ -357,24 +348,11 @@ TEST(Diagnosis, StatedPriorsNarrowTheCantileverFamilies) {
   const DiagnosisResult plain = RunDiagnosis(study);
   ASSERT_EQ(Top(plain).label, "attached_mass") << plain.verdict;
   DiagnosisSpec d = *study.diagnosis;
-  FamilyPrior mass;
-  mass.kind = "attached_mass";
-  QuantityPrior kg, x;
-  kg.quantity = "mass_kg";
-  kg.lower = 1.0;
-  kg.upper = 2.0;
-  x.quantity = "x_m";
-  x.lower = 1.4;
-  x.upper = 1.9;
-  mass.quantities = {kg, x};
-  FamilyPrior e;
-  e.kind = "material_scaling";
-  QuantityPrior factor;
-  factor.quantity = "factor";
-  factor.normal = true;
-  factor.mean = 1.0;
-  factor.sigma = 1e-4;
-  e.quantities = {factor};
+  FamilyPrior mass = fixtures::Prior(
+      "attached_mass",
+      {fixtures::Range("mass_kg", 1.0, 2.0), fixtures::Range("x_m", 1.4, 1.9)});
+  const FamilyPrior e =
+      fixtures::Prior("material_scaling", {fixtures::Normal("factor", 1.0, 1e-4)});
   d.priors.families = {mass, e};
   study.diagnosis = d;
   const DiagnosisResult stated = RunDiagnosis(study);
@@ -411,20 +389,23 @@ TEST(Diagnosis, RejectsThreeEffectsAtOnce) {
   ExpectInputError([&] { LoadStudy(path); }, {path, "diagnosis.max_effects"});
 }
 
-TEST(Diagnosis, RejectsAHeldOutModeOfAMissingState) {
+// Writes kStudy with `extra` appended to its diagnosis section, loads it and
+// expects RunDiagnosis to refuse it, naming every needle.
+void ExpectDiagnosisRefuses(const std::string& extra,
+                            const std::vector<std::string>& needles) {
   testing::ScratchDir dir;
-  const std::string path =
-      WriteStudy(dir, std::string(kStudy) + "  held_out: [{state: water, mode: 4}]\n");
-  const Study study = LoadStudy(path);
-  ExpectInputError([&] { RunDiagnosis(study); }, {"diagnosis.held_out", "water"});
+  const Study study = LoadStudy(WriteStudy(dir, std::string(kStudy) + extra));
+  ExpectInputError([&] { RunDiagnosis(study); }, needles);
+}
+
+TEST(Diagnosis, RejectsAHeldOutModeOfAMissingState) {
+  ExpectDiagnosisRefuses("  held_out: [{state: water, mode: 4}]\n",
+                         {"diagnosis.held_out", "water"});
 }
 
 TEST(Diagnosis, RejectsAHeldOutModeNumberOutOfRange) {
-  testing::ScratchDir dir;
-  const std::string path =
-      WriteStudy(dir, std::string(kStudy) + "  held_out: [{state: test, mode: 5}]\n");
-  const Study study = LoadStudy(path);
-  ExpectInputError([&] { RunDiagnosis(study); }, {"diagnosis.held_out", "test"});
+  ExpectDiagnosisRefuses("  held_out: [{state: test, mode: 5}]\n",
+                         {"diagnosis.held_out", "test"});
 }
 
 TEST(Diagnosis, RejectsAnUnknownEvidenceMethodAndTooFewDraws) {

@@ -19,6 +19,8 @@
 #include <string>
 #include <vector>
 
+#include "beam_dofs.h"
+#include "expect_error.h"
 #include "femup/core/errors.h"
 #include "femup/core/fe/builders.h"
 #include "femup/core/fe/structure.h"
@@ -26,22 +28,16 @@
 #include "femup/problems/effects.h"
 #include "femup/solvers/nonlinear_solver.h"
 #include "paper_beam.h"
+#include "vector_of.h"
 
 namespace femup {
 namespace {
 
-using fixtures::PaperSection;
-
 const double kPi = std::acos(-1.0);
-const double kLength = 2.0;
-const int kElements = 20;
+const double kLength = fixtures::kEffectBeamLength;
+const int kElements = fixtures::kEffectBeamElements;
 
-CantileverSpec Nominal() {
-  CantileverSpec spec;
-  spec.node_heights = UniformHeights(kLength, kElements);
-  spec.section = PaperSection();
-  return spec;
-}
+CantileverSpec Nominal() { return fixtures::EffectBeam(); }
 
 // Ten transverse sensors: n2:ux, n4:ux, ..., n20:ux.
 std::vector<std::string> TenSensors() {
@@ -77,20 +73,12 @@ Modes ReferenceModes(const CantileverSpec& spec,
     }
   }
   const int n = static_cast<int>(keep.size());
-  Eigen::MatrixXd kb(n, n), mb(n, n);
-  for (int i = 0; i < n; ++i) {
-    for (int j = 0; j < n; ++j) {
-      kb(i, j) = k(keep[i], keep[j]);
-      mb(i, j) = m(keep[i], keep[j]);
-    }
-  }
   // M phi = mu K phi, mu = 1 / omega^2 (the low modes to full relative
-  // precision), reversed into ascending frequency.
-  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(mb, kb);
-  EXPECT_EQ(eig.info(), Eigen::Success);
+  // precision), in ascending frequency.
+  const fixtures::ReducedModes reduced = fixtures::SolveReducedModes(k, m, keep);
   Modes out;
-  out.hz = eig.eigenvalues().reverse().cwiseInverse().cwiseSqrt() / (2 * kPi);
-  const Eigen::MatrixXd vectors = eig.eigenvectors().rowwise().reverse();
+  out.hz = reduced.hz;
+  const Eigen::MatrixXd& vectors = reduced.shapes;
   out.at_sensors.resize(static_cast<Eigen::Index>(sensors.size()), n);
   for (std::size_t i = 0; i < sensors.size(); ++i) {
     EXPECT_EQ(row.count(sensors[i]), 1u) << sensors[i];
@@ -117,12 +105,7 @@ ObservedState StateFrom(const Modes& modes, const std::vector<std::string>& sens
   return st;
 }
 
-Eigen::VectorXd Vec(std::initializer_list<double> v) {
-  Eigen::VectorXd out(static_cast<Eigen::Index>(v.size()));
-  Eigen::Index i = 0;
-  for (double x : v) out[i++] = x;
-  return out;
-}
+Eigen::VectorXd Vec(std::initializer_list<double> v) { return fixtures::VectorOf(v); }
 
 // The spec with one effect applied (dry state).
 CantileverSpec Applied(const Effect& e, const Eigen::VectorXd& theta) {
@@ -143,17 +126,7 @@ std::map<std::string, Eigen::VectorXd> Truths() {
   };
 }
 
-void ExpectInputError(const std::function<void()>& f,
-                      const std::vector<std::string>& parts) {
-  try {
-    f();
-    ADD_FAILURE() << "no exception";
-  } catch (const InputError& e) {
-    const std::string what = e.what();
-    for (const std::string& p : parts)
-      EXPECT_NE(what.find(p), std::string::npos) << "'" << p << "' not in: " << what;
-  }
-}
+using testing::ExpectInputError;
 
 // ----------------------------------------------------------------------------
 
@@ -184,7 +157,7 @@ std::vector<PredictedMode> UniformCantileverModes(int elements) {
 const double kBetaL[4] = {1.87510407, 4.69409113, 7.85475744, 10.99554073};
 
 double EulerBernoulliHz(int k) {
-  const BeamSection s = PaperSection();
+  const BeamSection s = fixtures::PaperSection();
   return kBetaL[k] * kBetaL[k] / (2 * kPi * kLength * kLength) *
          std::sqrt(s.E * s.I / (s.rho * s.A));
 }

@@ -12,42 +12,17 @@
 #include "femup/core/errors.h"
 #include "femup/core/fe/builders.h"
 #include "femup/core/fe/plane_frame.h"
+#include "prior_builders.h"
+#include "structure_specs.h"
 
 namespace femup {
 namespace {
 
-ChainSpec Chain() {
-  ChainSpec spec;
-  spec.masses.assign(4, 1e4);
-  spec.springs.assign(4, 5e7);
-  return spec;
-}
+ChainSpec Chain() { return fixtures::UniformChain(4, 1e4, 5e7); }
 
-FamilyPrior Prior(const std::string& kind, std::vector<QuantityPrior> quantities,
-                  std::vector<std::string> regions = {}) {
-  FamilyPrior f;
-  f.kind = kind;
-  f.quantities = std::move(quantities);
-  f.regions = std::move(regions);
-  return f;
-}
-
-QuantityPrior Range(const std::string& q, double lower, double upper) {
-  QuantityPrior p;
-  p.quantity = q;
-  p.lower = lower;
-  p.upper = upper;
-  return p;
-}
-
-QuantityPrior Normal(const std::string& q, double mean, double sigma) {
-  QuantityPrior p;
-  p.quantity = q;
-  p.normal = true;
-  p.mean = mean;
-  p.sigma = sigma;
-  return p;
-}
+using fixtures::Normal;
+using fixtures::Prior;
+using fixtures::Range;
 
 // The message of the InputError `f` throws, with its where() in *where.
 template <typename F>

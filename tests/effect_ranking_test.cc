@@ -25,17 +25,14 @@
 #include "femup/core/linalg/modal.h"
 #include "femup/reporting/structure_diagnosis_outputs.h"
 #include "femup/studies/structure_diagnosis.h"
+#include "prior_builders.h"
 #include "scratch_dir.h"
+#include "structure_specs.h"
 
 namespace femup {
 namespace {
 
-ChainSpec ShearBuilding() {
-  ChainSpec spec;
-  spec.masses.assign(6, 1e5);
-  spec.springs.assign(6, 2e8);
-  return spec;
-}
+ChainSpec ShearBuilding() { return fixtures::UniformChain(6, 1e5, 2e8); }
 
 // The lowest four modes with shapes at every floor, noise 0.2 % on frequencies
 // and 2 % of the largest entry on shapes.
@@ -139,12 +136,7 @@ TEST(EffectRanking, NamesAnAttachedMassOnTheRoof) {
 
 // A two-storey portal frame of steel sections (HE-like columns).
 PlaneFrameSpec TwoStoreyPortal() {
-  PlaneFrameSpec spec;
-  spec.storeys = 2;
-  spec.bays = 1;
-  spec.storey_height = 3.5;
-  spec.bay_width = 6.0;
-  spec.elements_per_member = 2;
+  PlaneFrameSpec spec = fixtures::PlaneFrame(2, 1, 2, 3.5, 6.0);
   spec.column = {210e9, 7.8e-3, 8.4e-5, 7850};
   spec.beam = {210e9, 5.4e-3, 1.9e-4, 5.6e5};
   return spec;
@@ -322,14 +314,8 @@ TEST(EffectRanking, AStatedRangeThatExcludesTheWrongExplanationChangesTheVerdict
   const std::vector<ModalData> data = {Measured(truth, 5)};
   const EffectRanking by_default = RankModelEffects(nominal, data, o);
   ASSERT_EQ(by_default.classes[0].kind, "support_flexibility");
-  FamilyPrior stiff;
-  stiff.kind = "support_flexibility";
-  QuantityPrior range;
-  range.quantity = "compliance_ratio";
-  range.lower = 1e-3;
-  range.upper = 0.05;
-  stiff.quantities = {range};
-  o.priors.families = {stiff};
+  o.priors.families = {fixtures::Prior(
+      "support_flexibility", {fixtures::Range("compliance_ratio", 1e-3, 0.05)})};
   const EffectRanking stated = RankModelEffects(nominal, data, o);
   EXPECT_EQ(stated.classes[0].kind, "stiffness_loss");
   EXPECT_EQ(stated.classes[0].region, "element 1");
@@ -355,15 +341,8 @@ TEST(EffectRanking, ANormalPriorCentredOnTheTruthNarrowsTheFit) {
   EffectRankingOptions o = Options();
   o.kinds = {"stiffness_loss"};
   const EffectRanking plain = RankModelEffects(nominal, data, o);
-  FamilyPrior known;
-  known.kind = "stiffness_loss";
-  QuantityPrior normal;
-  normal.quantity = "loss";
-  normal.normal = true;
-  normal.mean = 0.2;
-  normal.sigma = 0.01;
-  known.quantities = {normal};
-  o.priors.families = {known};
+  o.priors.families = {
+      fixtures::Prior("stiffness_loss", {fixtures::Normal("loss", 0.2, 0.01)})};
   const EffectRanking stated = RankModelEffects(nominal, data, o);
   const RankedClass& a = plain.classes[0];
   const RankedClass& b = stated.classes[0];
@@ -446,11 +425,7 @@ TEST(EffectRanking, RefusesStatedPriorsThatDoNotFitTheFamilies) {
       std::string::npos)
       << where(o);
   f.regions.clear();
-  QuantityPrior q;
-  q.quantity = "loss";
-  q.lower = 0.6;
-  q.upper = 0.05;
-  f.quantities = {q};
+  f.quantities = {fixtures::Range("loss", 0.6, 0.05)};
   o.priors.families = {f};
   EXPECT_NE(where(o).find("diagnosis.priors.stiffness_loss.loss: lower 0.6 > upper 0.05"),
             std::string::npos)
@@ -556,14 +531,7 @@ TEST(StructureDiagnosis, RefusesAFamilyThatDoesNotApplyBeforeAnyFit) {
 // one group lowered through the generator's own factor. Sensors: ux and uy at
 // the 12 leg joints (the same node names in both meshes); noise 0.2 % / 2 %.
 SpaceFrameSpec SmallJacket() {
-  SpaceFrameSpec spec;
-  spec.levels = 3;
-  spec.bays_x = 1;
-  spec.bays_y = 1;
-  spec.level_height = 10;
-  spec.bay_width_x = 12;
-  spec.bay_width_y = 12;
-  spec.elements_per_member = 2;
+  SpaceFrameSpec spec = fixtures::SpaceFrame(3, 1, 1, 2, 10, 12, 12);
   spec.blocks_per_level = 1;
   spec.bracing = FaceBracing::kX;
   return spec;

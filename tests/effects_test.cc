@@ -19,11 +19,14 @@
 #include <string>
 #include <vector>
 
+#include "beam_dofs.h"
+#include "expect_error.h"
 #include "femup/core/errors.h"
 #include "femup/core/fe/builders.h"
 #include "femup/core/fe/fe.h"
 #include "femup/core/fe/structure.h"
 #include "paper_beam.h"
+#include "vector_of.h"
 
 namespace femup {
 namespace {
@@ -31,15 +34,10 @@ namespace {
 using fixtures::PaperSection;
 
 const double kPi = std::acos(-1.0);
-const double kLength = 2.0;
-const int kElements = 20;
+const double kLength = fixtures::kEffectBeamLength;
+const int kElements = fixtures::kEffectBeamElements;
 
-CantileverSpec Nominal() {
-  CantileverSpec spec;
-  spec.node_heights = UniformHeights(kLength, kElements);
-  spec.section = PaperSection();
-  return spec;
-}
+CantileverSpec Nominal() { return fixtures::EffectBeam(); }
 
 double Ei() { return PaperSection().E * PaperSection().I; }
 double RhoA() { return PaperSection().rho * PaperSection().A; }
@@ -62,20 +60,7 @@ Eigen::VectorXd BendingFrequencies(const Eigen::MatrixXd& k, const Eigen::Matrix
   for (std::size_t i = 0; i < labels.size(); ++i) {
     if (IsBendingLabel(labels[i])) keep.push_back(static_cast<int>(i));
   }
-  const int n = static_cast<int>(keep.size());
-  Eigen::MatrixXd kb(n, n), mb(n, n);
-  for (int i = 0; i < n; ++i) {
-    for (int j = 0; j < n; ++j) {
-      kb(i, j) = k(keep[i], keep[j]);
-      mb(i, j) = m(keep[i], keep[j]);
-    }
-  }
-  // M phi = mu K phi, mu = 1 / omega^2: the lowest frequencies come out as the
-  // largest mu, to full relative precision (K phi = lambda M phi would give them
-  // only to eps * lambda_max / lambda).
-  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(mb, kb);
-  EXPECT_EQ(eig.info(), Eigen::Success);
-  return eig.eigenvalues().reverse().cwiseInverse().cwiseSqrt() / (2 * kPi);
+  return fixtures::SolveReducedModes(k, m, keep).hz;
 }
 
 Eigen::VectorXd BendingFrequencies(const CantileverSpec& spec) {
@@ -92,12 +77,7 @@ CantileverSpec Applied(const Effect& effect, const Eigen::VectorXd& theta,
   return spec;
 }
 
-Eigen::VectorXd Theta(std::initializer_list<double> v) {
-  Eigen::VectorXd out(static_cast<Eigen::Index>(v.size()));
-  Eigen::Index i = 0;
-  for (double x : v) out[i++] = x;
-  return out;
-}
+Eigen::VectorXd Theta(std::initializer_list<double> v) { return fixtures::VectorOf(v); }
 
 const EffectMagnitude* FindMagnitude(const std::vector<EffectMagnitude>& m,
                                      const std::string& name) {

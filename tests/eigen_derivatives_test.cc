@@ -1,7 +1,7 @@
-// Eigenvalue and eigenvector derivatives (lib/include/femup/eigen_derivatives.h),
-// checked against closed-form derivatives of a 2-dof system and a mass scaling,
-// and against central finite differences of SolveModes on a chain and a
-// cantilever.
+// Eigenvalue and eigenvector derivatives
+// (core/include/femup/core/linalg/eigen_derivatives.h), checked against closed-form
+// derivatives of a 2-dof system and a mass scaling, and against central finite
+// differences of SolveModes on a chain and a cantilever.
 #include "femup/core/linalg/eigen_derivatives.h"
 
 #include <gtest/gtest.h>
@@ -214,9 +214,7 @@ TEST(EigenDerivatives, ChainMatchesFiniteDifferences) {
 }
 
 TEST(EigenDerivatives, CantileverMatchesFiniteDifferences) {
-  CantileverSpec spec;
-  spec.node_heights = UniformHeights(1.9, 10);
-  spec.section = fixtures::PaperSection();
+  CantileverSpec spec = fixtures::PaperCantilever(UniformHeights(1.9, 10));
   spec.water_depth = 1.5;
   spec.added_mass_basis = AddedMassBasis::kTransverse;
   const ParametrisedModel model = BuildModel(BuildCantilever(spec), PaperParameterPlan());
@@ -248,9 +246,7 @@ TEST(EigenDerivatives, RepeatedEigenvalueIsReportedNotFactorised) {
 // accurate: on a cantilever it is, and the derivative agrees with an LU solve
 // of the same reduced system.
 TEST(EigenDerivatives, SymmetricFactorIsUsedWhereItIsAccurate) {
-  CantileverSpec spec;
-  spec.node_heights = UniformHeights(1.9, 10);
-  spec.section = fixtures::PaperSection();
+  CantileverSpec spec = fixtures::PaperCantilever(UniformHeights(1.9, 10));
   spec.water_depth = 1.5;
   const ParametrisedModel model = BuildModel(BuildCantilever(spec), PaperParameterPlan());
   const SparseMatrix k = model.stiffness(), m = model.mass();

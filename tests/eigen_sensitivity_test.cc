@@ -21,6 +21,7 @@
 #include "femup/core/linalg/modal.h"
 #include "femup/problems/noise.h"
 #include "femup/problems/paper_chain.h"
+#include "structure_specs.h"
 
 namespace femup {
 namespace {
@@ -97,11 +98,7 @@ double JacobianError(const NonlinearProblem& p, const Eigen::VectorXd& x, double
 // The Jacobian's modes computed in parallel give the same bits as one thread,
 // on a model large enough for the sparse eigen-solver (a small space frame).
 TEST(EigenSensitivity, JacobianDoesNotDependOnTheThreadCount) {
-  SpaceFrameSpec spec;
-  spec.bays_x = 1;
-  spec.bays_y = 1;
-  spec.levels = 6;
-  spec.elements_per_member = 3;
+  SpaceFrameSpec spec = fixtures::SpaceFrame(6, 1, 1, 3);
   spec.water_depth = 25;
   const ParametrisedModel model = BuildSpaceFrame(spec);
   ASSERT_GT(model.num_dofs(), 1500);  // the sparse path of SolveModes
@@ -137,11 +134,7 @@ TEST(EigenSensitivity, JacobianDoesNotDependOnTheThreadCount) {
 // a parameter that keeps the symmetry (a level's mass) is close to its finite
 // difference.
 TEST(EigenSensitivity, RepeatedEigenvaluesAreRotatedToTheMeasuredShapes) {
-  SpaceFrameSpec spec;
-  spec.bays_x = 1;
-  spec.bays_y = 1;
-  spec.levels = 3;
-  spec.elements_per_member = 2;
+  SpaceFrameSpec spec = fixtures::SpaceFrame(3, 1, 1, 2);
   const ParametrisedModel model = BuildSpaceFrame(spec);
   const Eigen::VectorXd truth = Eigen::VectorXd::Zero(model.num_parameters());
   const ModalData exact = PredictModes(model, truth, Immersion::kDry, 4, "air");
@@ -460,17 +453,11 @@ TEST(EigenSensitivity, RitzBasisOfTheWholeSpaceGivesTheFullProblem) {
 // stiffness loss of one brace group: the reduced residuals at the damaged
 // state are those of the full model to a small part of a standard deviation.
 TEST(EigenSensitivity, RitzBasisFollowsALargeChangeOfOneGroup) {
-  SpaceFrameSpec spec;
-  spec.bays_x = 1;
-  spec.bays_y = 1;
-  spec.levels = 3;
-  spec.level_height = 10;
-  spec.bay_width_x = 12;
-  // Not square in plan: the x and y sways of a square frame are a double
-  // eigenvalue, whose shapes any rotation within the pair represents (round-off
-  // decides which, and the reduced and full models need not agree on it).
-  spec.bay_width_y = 11;
-  spec.elements_per_member = 3;
+  // Not square in plan (12 m x 11 m): the x and y sways of a square frame are a
+  // double eigenvalue, whose shapes any rotation within the pair represents
+  // (round-off decides which, and the reduced and full models need not agree on
+  // it).
+  SpaceFrameSpec spec = fixtures::SpaceFrame(3, 1, 1, 3, 10, 12, 11);
   spec.blocks_per_level = 1;
   spec.bracing = FaceBracing::kX;
   const ParametrisedModel model = BuildSpaceFrame(spec);

@@ -1,5 +1,5 @@
-// The Eigensystem Realization Algorithm (lib/include/femup/era.h) and impulse
-// responses from FRFs (lib/include/femup/frf_impulse.h), checked against a
+// The Eigensystem Realization Algorithm (core/include/femup/core/sysid/era.h) and impulse
+// responses from FRFs (core/include/femup/core/sysid/frf_impulse.h), checked against a
 // fixed-free spring-mass chain whose modes are known in closed form:
 // n equal masses m and springs k give w_j = 2 sqrt(k/m) sin(theta_j / 2) and
 // shapes phi_i = sin(i theta_j), theta_j = (2j - 1) pi / (2n + 1).

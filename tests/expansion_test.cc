@@ -1,8 +1,7 @@
-// Mode-shape expansion (lib/include/femup/expansion.h) against full-DOF truth:
-// a cantilever's own modes seen at a few sensors must expand back to the full
-// mode (exactly, for serep/lsq when the mode is in the basis, and for dynamic
-// expansion with the mode's eigenvalue); a shape outside the basis shows in the
-// sensor MAC.
+// Mode-shape expansion (core/include/femup/core/sysid/expansion.h) against full-DOF
+// truth: a cantilever's own modes seen at a few sensors must expand back to the full mode
+// (exactly, for serep/lsq when the mode is in the basis, and for dynamic expansion with
+// the mode's eigenvalue); a shape outside the basis shows in the sensor MAC.
 #include "femup/core/sysid/expansion.h"
 
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// 2D frame element matrices (lib/include/femup/fe.h), checked against textbook
+// 2D frame element matrices (core/include/femup/core/fe/fe.h), checked against textbook
 // entries, rigid-body kinematics and mass totals computed by hand.
 #include "femup/core/fe/fe.h"
 

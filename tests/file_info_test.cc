@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "expect_error.h"
 #include "femup/core/errors.h"
 #include "scratch_dir.h"
 
@@ -23,17 +24,7 @@ void WriteText(const std::string& path, const std::string& text) {
   std::ofstream(path, std::ios::binary) << text;
 }
 
-template <typename F>
-void ExpectError(F f, const std::vector<std::string>& needles) {
-  try {
-    f();
-    ADD_FAILURE() << "no error; expected " << needles[0];
-  } catch (const InputError& e) {
-    const std::string msg = e.what();
-    for (const auto& n : needles)
-      EXPECT_NE(msg.find(n), std::string::npos) << "'" << n << "' in: " << msg;
-  }
-}
+using testing::ExpectError;
 
 void ExpectHas(const std::string& text, const std::string& needle) {
   EXPECT_NE(text.find(needle), std::string::npos) << "'" << needle << "' in:\n" << text;

@@ -1,4 +1,4 @@
-// What is wrong with an input (lib/include/femup/invalid.h): ok and its bool,
+// What is wrong with an input (core/include/femup/core/invalid.h): ok and its bool,
 // putting a field under a prefix, the one rendering, and the InputError that
 // ThrowIfInvalid makes of it.
 #include "femup/core/invalid.h"

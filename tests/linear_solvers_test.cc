@@ -18,6 +18,7 @@
 #include "femup/problems/correction_system.h"
 #include "femup/problems/paper_chain.h"
 #include "femup/solvers/linear_solver.h"
+#include "solver_problems.h"
 
 namespace femup {
 namespace {
@@ -27,11 +28,17 @@ using VectorLd = Eigen::Matrix<long double, Eigen::Dynamic, 1>;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 Eigen::MatrixXd Random(int rows, int cols, unsigned seed) {
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> g(0.0, 1.0);
-  Eigen::MatrixXd a(rows, cols);
-  for (int i = 0; i < a.size(); ++i) a.data()[i] = g(rng);
-  return a;
+  return fixtures::RandomGaussian(rows, cols, seed);
+}
+
+// The correction system of the paper's chain from the modes 1-2 of its preset
+// factors in air and in water; no factor fixed.
+LinearProblem PaperChainSystem(const PaperChainScenario& sc) {
+  const Modes fem = SolveModes(sc.model.stiffness(), sc.model.mass());
+  const std::vector<ModalData> states = {
+      PredictModes(sc.model, sc.preset, Immersion::kDry, 2, "air"),
+      PredictModes(sc.model, sc.preset, Immersion::kWet, 2, "water")};
+  return BuildCorrectionSystem(sc.model, fem, states, {});
 }
 
 // min ||A x - b|| s.t. C x = d by the KKT system in long double.
@@ -98,11 +105,7 @@ Eigen::VectorXd BruteForceBounded(const Eigen::MatrixXd& a, const Eigen::VectorX
 }
 
 LinearProblem Make(const Eigen::MatrixXd& a, const Eigen::VectorXd& b) {
-  LinearProblem p;
-  p.A = a;
-  p.b = b;
-  for (int j = 0; j < a.cols(); ++j) p.names.push_back("x" + std::to_string(j + 1));
-  return p;
+  return fixtures::NamedProblem(a, b);
 }
 
 LinearSolverOptions Unregularised(const std::string& name) {
@@ -175,11 +178,7 @@ TEST_P(EverySolver, FixedValueAndEquality) {
 
 TEST_P(EverySolver, PaperChainWithMass4FixedRecoversThePresetFactors) {
   const PaperChainScenario sc = PaperChain(3);
-  const Modes fem = SolveModes(sc.model.stiffness(), sc.model.mass());
-  const std::vector<ModalData> states = {
-      PredictModes(sc.model, sc.preset, Immersion::kDry, 2, "air"),
-      PredictModes(sc.model, sc.preset, Immersion::kWet, 2, "water")};
-  LinearProblem p = BuildCorrectionSystem(sc.model, fem, states, {});
+  LinearProblem p = PaperChainSystem(sc);
   p.Fix(sc.fixed_parameter, sc.preset[sc.model.FindParameter(sc.fixed_parameter)]);
   const LinearSolution s = Solver()->Solve(p);
   ASSERT_EQ(s.summary.status, SolverStatus::kSolved) << s.summary.message;
@@ -257,12 +256,18 @@ TEST_P(BoundedSolver, BoundsWithEqualityMatchEnumerationOnTheNullSpace) {
   EXPECT_NEAR(s.x[2], 0.4, 1e-8);
 }
 
-TEST_P(BoundedSolver, InfeasibleBoxAndEqualityIsAStatus) {
+// x in the unit box [0, 1]^2 with x1 + x2 = 5: no x satisfies both.
+LinearProblem InfeasibleBoxAndEquality() {
   LinearProblem p = Make(Eigen::MatrixXd::Identity(2, 2), Eigen::Vector2d(1.0, 1.0));
   p.equality_matrix = Eigen::RowVector2d(1, 1);
   p.equality_rhs = Eigen::VectorXd::Constant(1, 5.0);
   p.lower = Eigen::Vector2d::Zero();
   p.upper = Eigen::Vector2d::Ones();
+  return p;
+}
+
+TEST_P(BoundedSolver, InfeasibleBoxAndEqualityIsAStatus) {
+  const LinearProblem p = InfeasibleBoxAndEquality();
   const LinearSolution s = CreateLinearSolver(GetParam())->Solve(p);
   EXPECT_FALSE(s.summary.status == SolverStatus::kSolved) << s.summary.message;
 }
@@ -271,11 +276,7 @@ INSTANTIATE_TEST_SUITE_P(Linear, BoundedSolver,
                          ::testing::Values("bvls", "ceres", "ipopt"));
 
 TEST(Bvls, InfeasibleIsReportedAsInfeasible) {
-  LinearProblem p = Make(Eigen::MatrixXd::Identity(2, 2), Eigen::Vector2d(1.0, 1.0));
-  p.equality_matrix = Eigen::RowVector2d(1, 1);
-  p.equality_rhs = Eigen::VectorXd::Constant(1, 5.0);
-  p.lower = Eigen::Vector2d::Zero();
-  p.upper = Eigen::Vector2d::Ones();
+  const LinearProblem p = InfeasibleBoxAndEquality();
   const LinearSolution s = CreateLinearSolver("bvls")->Solve(p);
   EXPECT_EQ(s.summary.status, SolverStatus::kInfeasible);
   EXPECT_NE(s.summary.message.find("no x within the bounds"), std::string::npos);
@@ -313,11 +314,7 @@ TEST(Bvls, StartsFromTheClippedLeastSquaresAnswer) {
 
 TEST(Lstsq, RankDeficientPaperChainNamesTheMissingConstraint) {
   const PaperChainScenario sc = PaperChain(3);
-  const Modes fem = SolveModes(sc.model.stiffness(), sc.model.mass());
-  const std::vector<ModalData> states = {
-      PredictModes(sc.model, sc.preset, Immersion::kDry, 2, "air"),
-      PredictModes(sc.model, sc.preset, Immersion::kWet, 2, "water")};
-  const LinearProblem p = BuildCorrectionSystem(sc.model, fem, states, {});
+  const LinearProblem p = PaperChainSystem(sc);
   for (const std::string name : {"lstsq", "tsvd"}) {
     const LinearSolution s = CreateLinearSolver(name, Unregularised(name))->Solve(p);
     EXPECT_EQ(s.identifiability.rank, 12) << name;
@@ -398,11 +395,7 @@ TEST(BackendLinearSolvers, TooFewCorrectDigitsAreNotSolved) {
 // direction the data cannot see.
 TEST(BackendLinearSolvers, RankDeficiencyIsReported) {
   const PaperChainScenario sc = PaperChain(3);
-  const Modes fem = SolveModes(sc.model.stiffness(), sc.model.mass());
-  const std::vector<ModalData> states = {
-      PredictModes(sc.model, sc.preset, Immersion::kDry, 2, "air"),
-      PredictModes(sc.model, sc.preset, Immersion::kWet, 2, "water")};
-  const LinearProblem p = BuildCorrectionSystem(sc.model, fem, states, {});
+  const LinearProblem p = PaperChainSystem(sc);
   for (const char* solver : {"ceres", "ipopt"}) {
     const LinearSolution s = CreateLinearSolver(solver)->Solve(p);
     bool reported = false;

@@ -21,6 +21,7 @@
 #include "femup/problems/linear_problem.h"
 #include "femup/solvers/identifiability.h"
 #include "femup/solvers/linear_solver.h"
+#include "solver_problems.h"
 
 namespace femup {
 namespace {
@@ -29,11 +30,7 @@ using MatrixLd = Eigen::Matrix<long double, Eigen::Dynamic, Eigen::Dynamic>;
 using VectorLd = Eigen::Matrix<long double, Eigen::Dynamic, 1>;
 
 Eigen::MatrixXd RandomMatrix(int rows, int cols, unsigned seed) {
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> g(0.0, 1.0);
-  Eigen::MatrixXd a(rows, cols);
-  for (int i = 0; i < a.size(); ++i) a.data()[i] = g(rng);
-  return a;
+  return fixtures::RandomGaussian(rows, cols, seed);
 }
 
 // Least-squares solution by the normal equations in long double.
@@ -46,11 +43,7 @@ Eigen::VectorXd NormalEquations(const Eigen::MatrixXd& a, const Eigen::VectorXd&
 }
 
 LinearProblem Problem(const Eigen::MatrixXd& a, const Eigen::VectorXd& b) {
-  LinearProblem p;
-  p.A = a;
-  p.b = b;
-  for (int j = 0; j < a.cols(); ++j) p.names.push_back("x" + std::to_string(j + 1));
-  return p;
+  return fixtures::NamedProblem(a, b);
 }
 
 double MaxRelativeError(const Eigen::VectorXd& x, const Eigen::VectorXd& ref) {

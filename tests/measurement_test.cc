@@ -1,4 +1,4 @@
-// Measured modal data (lib/include/femup/measurement.h): validation messages,
+// Measured modal data (core/include/femup/core/sysid/measurement.h): validation messages,
 // reordering of sensor rows, and the modes predicted for the paper's chain
 // (values from method.md, section 4).
 #include "femup/core/sysid/measurement.h"

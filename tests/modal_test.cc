@@ -1,5 +1,5 @@
-// Modal analysis (lib/include/femup/modal.h), checked against eigen residuals,
-// the analytic spectrum of a fixed-free chain and hand-built MAC examples.
+// Modal analysis (core/include/femup/core/linalg/modal.h), checked against eigen
+// residuals, the analytic spectrum of a fixed-free chain and hand-built MAC examples.
 #include "femup/core/linalg/modal.h"
 
 #include <gtest/gtest.h>
@@ -15,6 +15,7 @@
 #include "femup/core/errors.h"
 #include "femup/core/fe/builders.h"
 #include "paper_beam.h"
+#include "solver_problems.h"
 
 namespace femup {
 namespace {
@@ -246,11 +247,7 @@ TEST(Mac, Properties) {
 }
 
 Eigen::MatrixXd RandomOrthonormal(int rows, int cols, unsigned seed) {
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> g(0.0, 1.0);
-  Eigen::MatrixXd a(rows, cols);
-  for (int i = 0; i < a.size(); ++i) a.data()[i] = g(rng);
-  Eigen::HouseholderQR<Eigen::MatrixXd> qr(a);
+  Eigen::HouseholderQR<Eigen::MatrixXd> qr(fixtures::RandomGaussian(rows, cols, seed));
   return qr.householderQ() * Eigen::MatrixXd::Identity(rows, cols);
 }
 
@@ -439,9 +436,7 @@ TEST(SolveModes, SparseShiftAndAutoOnLongChainMatchAnalytic) {
 }
 
 TEST(SolveModes, SparseMatchesDenseOn300DofCantilever) {
-  CantileverSpec spec;
-  spec.node_heights = UniformHeights(1.9, 100);
-  spec.section = fixtures::PaperSection();
+  CantileverSpec spec = fixtures::PaperCantilever(UniformHeights(1.9, 100));
   const Structure s = BuildCantilever(spec);
   ASSERT_EQ(s.stiffness.rows(), 300);
   EigenOptions dense_options;

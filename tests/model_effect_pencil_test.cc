@@ -13,17 +13,13 @@
 #include "femup/core/fe/builders.h"
 #include "femup/core/linalg/modal.h"
 #include "femup/solvers/nonlinear_solver.h"
+#include "structure_specs.h"
 
 namespace femup {
 namespace {
 
 // Six storeys of 1e5 kg and 2e8 N/m, storey 1 at the ground.
-ChainSpec ShearBuilding() {
-  ChainSpec spec;
-  spec.masses.assign(6, 1e5);
-  spec.springs.assign(6, 2e8);
-  return spec;
-}
+ChainSpec ShearBuilding() { return fixtures::UniformChain(6, 1e5, 2e8); }
 
 // The lowest `count` modes of `structure`, shapes at `sensors`.
 ModalData Measure(const Structure& structure, int count, const std::vector<int>& sensors,

@@ -16,18 +16,14 @@
 #include "femup/core/fe/builders.h"
 #include "femup/core/linalg/modal.h"
 #include "paper_beam.h"
+#include "vector_of.h"
 
 namespace femup {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-Eigen::VectorXd Theta(std::initializer_list<double> v) {
-  Eigen::VectorXd out(static_cast<Eigen::Index>(v.size()));
-  Eigen::Index i = 0;
-  for (double x : v) out[i++] = x;
-  return out;
-}
+Eigen::VectorXd Theta(std::initializer_list<double> v) { return fixtures::VectorOf(v); }
 
 Eigen::VectorXd Eigenvalues(const SparseMatrix& k, const SparseMatrix& m) {
   return SolveModes(k, m).eigenvalues;
@@ -84,9 +80,7 @@ TEST(ModelEffects, SupportFlexibilityOfAChainSoftensTheGroundSpring) {
 }
 
 TEST(ModelEffects, MaterialScalingScalesEveryEigenvalue) {
-  CantileverSpec spec;
-  spec.node_heights = UniformHeights(2.0, 12);
-  spec.section = fixtures::PaperSection();
+  CantileverSpec spec = fixtures::PaperCantilever(UniformHeights(2.0, 12));
   const Structure s = BuildCantilever(spec);
   auto e = One("material_scaling", s);
   ASSERT_TRUE(e);
@@ -97,13 +91,9 @@ TEST(ModelEffects, MaterialScalingScalesEveryEigenvalue) {
   for (int i = 0; i < 6; ++i) EXPECT_NEAR(after[i] / before[i], 0.9, 1e-9) << i;
 }
 
-// The continuous Euler-Bernoulli cantilever with a tip mass mu rho A L: the
-// roots of 1 + cos b cosh b + mu b (cos b sinh b - sin b cosh b) = 0, b = beta L.
-double TipMassRoot(double mu, double lo, double hi) {
-  auto f = [mu](double b) {
-    return 1 + std::cos(b) * std::cosh(b) +
-           mu * b * (std::cos(b) * std::sinh(b) - std::sin(b) * std::cosh(b));
-  };
+// The root of f in [lo, hi] (a sign change), by 200 bisections.
+template <typename F>
+double Bisect(F f, double lo, double hi) {
   for (int i = 0; i < 200; ++i) {
     const double mid = 0.5 * (lo + hi);
     (f(lo) * f(mid) <= 0 ? hi : lo) = mid;
@@ -111,11 +101,33 @@ double TipMassRoot(double mu, double lo, double hi) {
   return 0.5 * (lo + hi);
 }
 
+// The continuous Euler-Bernoulli cantilever with a tip mass mu rho A L: the
+// roots of 1 + cos b cosh b + mu b (cos b sinh b - sin b cosh b) = 0, b = beta L.
+double TipMassRoot(double mu, double lo, double hi) {
+  auto f = [mu](double b) {
+    return 1 + std::cos(b) * std::cosh(b) +
+           mu * b * (std::cos(b) * std::sinh(b) - std::sin(b) * std::cosh(b));
+  };
+  return Bisect(f, lo, hi);
+}
+
+// Expects the lowest eigenvalues of (k, m), in order, to be those of the
+// continuous beam of `section`, `length` long, whose roots in beta L are `roots`
+// (relative 2e-4).
+void ExpectContinuousBeamEigenvalues(const SparseMatrix& k, const SparseMatrix& m,
+                                     const BeamSection& section, double length,
+                                     const std::vector<double>& roots) {
+  const Eigen::VectorXd lambda = Eigenvalues(k, m);
+  const double ei = section.E * section.I, rho_a = section.rho * section.A;
+  for (std::size_t i = 0; i < roots.size(); ++i) {
+    const double exact = std::pow(roots[i] / length, 4) * ei / rho_a;
+    EXPECT_NEAR(lambda[i] / exact, 1.0, 2e-4) << "mode " << i + 1;
+  }
+}
+
 TEST(ModelEffects, AttachedMassAtTheTipMatchesTheContinuousBeam) {
-  CantileverSpec spec;
   const double length = 1.9;
-  spec.node_heights = UniformHeights(length, 40);
-  spec.section = fixtures::PaperSection();
+  CantileverSpec spec = fixtures::PaperCantilever(UniformHeights(length, 40));
   const Structure s = BuildCantilever(spec);
   auto tip = One("attached_mass", s, "node n40");
   ASSERT_TRUE(tip);
@@ -127,14 +139,9 @@ TEST(ModelEffects, AttachedMassAtTheTipMatchesTheContinuousBeam) {
   EXPECT_NEAR(tip->Magnitudes(theta)[0].value, mu * rho_a * length, 1e-12);
   SparseMatrix k, m;
   ApplyModelEffects(s, {tip.get()}, {theta}, Immersion::kDry, &k, &m);
-  const Eigen::VectorXd lambda = Eigenvalues(k, m);
-  const double ei = spec.section.E * spec.section.I;
   // The two lowest modes are bending (the axial ones are far higher).
-  const double b1 = TipMassRoot(mu, 0.5, 1.8), b2 = TipMassRoot(mu, 3.0, 4.7);
-  for (auto [i, b] : {std::pair<int, double>{0, b1}, {1, b2}}) {
-    const double exact = std::pow(b / length, 4) * ei / rho_a;
-    EXPECT_NEAR(lambda[i] / exact, 1.0, 2e-4) << "mode " << i + 1;
-  }
+  ExpectContinuousBeamEigenvalues(k, m, spec.section, length,
+                                  {TipMassRoot(mu, 0.5, 1.8), TipMassRoot(mu, 3.0, 4.7)});
 }
 
 // The continuous Euler-Bernoulli cantilever with a point mass mu rho A L at
@@ -171,22 +178,15 @@ double PointMassDeterminant(double mu, double a, double b) {
 }
 
 double PointMassRoot(double mu, double a, double lo, double hi) {
-  for (int i = 0; i < 200; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (PointMassDeterminant(mu, a, lo) * PointMassDeterminant(mu, a, mid) <= 0 ? hi : lo) =
-        mid;
-  }
-  return 0.5 * (lo + hi);
+  return Bisect([mu, a](double b) { return PointMassDeterminant(mu, a, b); }, lo, hi);
 }
 
 // A point mass between two nodes (the segment instance, its position fitted):
 // 0.3 rho A L at 0.37 L, between nodes 14 and 15 of 40 (xi = 0.8), against the
 // continuous beam's two lowest frequencies; and dM/dxi against differences.
 TEST(ModelEffects, AttachedMassBetweenNodesMatchesTheContinuousBeam) {
-  CantileverSpec spec;
   const double length = 1.9;
-  spec.node_heights = UniformHeights(length, 40);
-  spec.section = fixtures::PaperSection();
+  CantileverSpec spec = fixtures::PaperCantilever(UniformHeights(length, 40));
   const Structure s = BuildCantilever(spec);
   auto mass = One("attached_mass", s, "n14-n15");
   ASSERT_TRUE(mass);
@@ -199,15 +199,11 @@ TEST(ModelEffects, AttachedMassBetweenNodesMatchesTheContinuousBeam) {
   EXPECT_NEAR(mass->Magnitudes(theta)[0].value, mu * rho_a * length, 1e-12);
   SparseMatrix k, m;
   ApplyModelEffects(s, {mass.get()}, {theta}, Immersion::kDry, &k, &m);
-  const Eigen::VectorXd lambda = Eigenvalues(k, m);
-  const double ei = spec.section.E * spec.section.I;
   // Without the mass, the cantilever's own root (1.8751); the mass lowers them.
   EXPECT_NEAR(PointMassRoot(0.0, a, 1.0, 2.5), 1.8751040687, 1e-8);
-  const double b1 = PointMassRoot(mu, a, 1.0, 1.87), b2 = PointMassRoot(mu, a, 3.0, 4.69);
-  for (auto [i, b] : {std::pair<int, double>{0, b1}, {1, b2}}) {
-    const double exact = std::pow(b / length, 4) * ei / rho_a;
-    EXPECT_NEAR(lambda[i] / exact, 1.0, 2e-4) << "mode " << i + 1;
-  }
+  ExpectContinuousBeamEigenvalues(
+      k, m, spec.section, length,
+      {PointMassRoot(mu, a, 1.0, 1.87), PointMassRoot(mu, a, 3.0, 4.69)});
   const double h = 1e-6;
   const SparseMatrix dm = mass->Derivative(theta, 1, Immersion::kDry).mass;
   const SparseMatrix plus = mass->Change(Theta({theta[0], theta[1] + h}), {}).mass;
@@ -218,9 +214,7 @@ TEST(ModelEffects, AttachedMassBetweenNodesMatchesTheContinuousBeam) {
 }
 
 TEST(ModelEffects, AddedMassOverTheWholeBeamScalesBendingModes) {
-  CantileverSpec spec;
-  spec.node_heights = UniformHeights(2.0, 10);
-  spec.section = fixtures::PaperSection();
+  CantileverSpec spec = fixtures::PaperCantilever(UniformHeights(2.0, 10));
   spec.added_mass_basis = AddedMassBasis::kTransverse;
   const Structure s = BuildCantilever(spec);
   auto water = One("added_mass", s);
@@ -237,9 +231,7 @@ TEST(ModelEffects, AddedMassOverTheWholeBeamScalesBendingModes) {
 }
 
 TEST(ModelEffects, AddedMassBelowALevelAtANodeIsTheExactIntervalIntegral) {
-  CantileverSpec spec;
-  spec.node_heights = UniformHeights(2.0, 10);
-  spec.section = fixtures::PaperSection();
+  CantileverSpec spec = fixtures::PaperCantilever(UniformHeights(2.0, 10));
   spec.added_mass_basis = AddedMassBasis::kTransverse;
   const Structure s = BuildCantilever(spec);
   auto water = One("added_mass", s);
@@ -269,9 +261,7 @@ TEST(ModelEffects, AddedMassActsInWetStatesOnlyWhenAsked) {
 }
 
 TEST(ModelEffects, ElasticBaseMatchesTheBuilderWithTheSoftenedSpring) {
-  CantileverSpec spec;
-  spec.node_heights = UniformHeights(2.0, 8);
-  spec.section = fixtures::PaperSection();
+  CantileverSpec spec = fixtures::PaperCantilever(UniformHeights(2.0, 8));
   spec.support_rotation = 4e5;
   spec.support_transverse = 5e7;
   const Structure s = BuildCantilever(spec);
@@ -292,9 +282,7 @@ TEST(ModelEffects, ElasticBaseMatchesTheBuilderWithTheSoftenedSpring) {
 
 // Every family's derivative against central differences of its change.
 TEST(ModelEffects, DerivativesMatchCentralDifferences) {
-  CantileverSpec spec;
-  spec.node_heights = UniformHeights(2.0, 10);
-  spec.section = fixtures::PaperSection();
+  CantileverSpec spec = fixtures::PaperCantilever(UniformHeights(2.0, 10));
   spec.support_rotation = 4e5;
   spec.added_mass_basis = AddedMassBasis::kTransverse;
   const Structure s = BuildCantilever(spec);
@@ -331,9 +319,7 @@ TEST(ModelEffects, DerivativesMatchCentralDifferences) {
 }
 
 TEST(ModelEffects, SaysWhichFamiliesApplyAndWhyNot) {
-  CantileverSpec spec;
-  spec.node_heights = UniformHeights(2.0, 4);
-  spec.section = fixtures::PaperSection();
+  CantileverSpec spec = fixtures::PaperCantilever(UniformHeights(2.0, 4));
   const Structure clamped = BuildCantilever(spec);
   for (const FamilyApplicability& a : ApplicableModelEffects(clamped)) {
     if (a.kind == "support_flexibility") {
@@ -364,9 +350,7 @@ TEST(ModelEffects, SaysWhichFamiliesApplyAndWhyNot) {
 
 TEST(ModelEffects, ReferenceMassIsTheRigidTranslationsMass) {
   EXPECT_DOUBLE_EQ(ReferenceMass(TwoMassChain()), 3.0);
-  CantileverSpec spec;
-  spec.node_heights = UniformHeights(2.0, 4);
-  spec.section = fixtures::PaperSection();
+  CantileverSpec spec = fixtures::PaperCantilever(UniformHeights(2.0, 4));
   spec.support_transverse = 1e9;  // the base node moves too: the whole beam's mass
   const Structure s = BuildCantilever(spec);
   EXPECT_NEAR(ReferenceMass(s), 7850 * 8.8e-4 * 2.0, 1e-9);

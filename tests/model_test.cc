@@ -1,5 +1,5 @@
-// ParametrisedModel (lib/include/femup/model.h) and the parameter plans that
-// build it from a Structure (lib/include/femup/structure.h), checked against
+// ParametrisedModel (core/include/femup/core/fe/model.h) and the parameter plans that
+// build it from a Structure (core/include/femup/core/fe/structure.h), checked against
 // hand-assembled matrices.
 #include "femup/core/fe/model.h"
 
@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "enum_names.h"
 #include "femup/core/errors.h"
 #include "femup/core/fe/builders.h"
 #include "femup/core/fe/structure.h"
@@ -199,14 +200,13 @@ TEST(ParametrisedModel, IsSymmetricFindsAMissingMirrorCompressedOrNot) {
 }
 
 TEST(ParametrisedModel, KindNamesAndMatrixPredicates) {
-  EXPECT_STREQ(ToString(ParameterKind::kMass), "mass");
-  EXPECT_STREQ(ToString(ParameterKind::kStiffness), "stiffness");
-  EXPECT_STREQ(ToString(ParameterKind::kAddedMass), "added_mass");
-  ParameterKind kind = ParameterKind::kMass;
-  EXPECT_TRUE(ParameterKindFromString("added_mass", &kind));
-  EXPECT_EQ(kind, ParameterKind::kAddedMass);
-  EXPECT_FALSE(ParameterKindFromString("damping", &kind));
-  EXPECT_EQ(kind, ParameterKind::kAddedMass);
+  const ParameterKind kind = testing::ExpectEnumNames<ParameterKind>(
+      {{ParameterKind::kMass, "mass"},
+       {ParameterKind::kStiffness, "stiffness"},
+       {ParameterKind::kAddedMass, "added_mass"}},
+      ParameterKindFromString, ParameterKind::kMass,
+      {{"added_mass", ParameterKind::kAddedMass}}, "damping");
+  EXPECT_EQ(kind, ParameterKind::kAddedMass);  // the refusal leaves it as it was
 
   Eigen::Matrix2d a;
   a << 1, 2, 2 + 1e-12, 3;
@@ -338,9 +338,7 @@ TEST(BuildModel, NoneScopeAndEmptySelection) {
 }
 
 CantileverSpec PaperCantilever() {
-  CantileverSpec spec;
-  spec.node_heights = UniformHeights(1.9, 10);
-  spec.section = fixtures::PaperSection();
+  CantileverSpec spec = fixtures::PaperCantilever(UniformHeights(1.9, 10));
   spec.water_depth = 1.5;  // elements 1..8 wet
   return spec;
 }

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "expect_error.h"
 #include "femup/core/errors.h"
 
 namespace femup {
@@ -77,12 +78,7 @@ std::vector<std::string> ReadLines(const std::string& path) {
 // The InputError message from `read`, or "" when it does not throw.
 template <typename Read>
 std::string ErrorOf(Read read) {
-  try {
-    read();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  return testing::InputErrorMessage(read);
 }
 
 // ---------------------------------------------------------------------------

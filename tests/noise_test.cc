@@ -7,10 +7,12 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <random>
 #include <vector>
 
+#include "enum_names.h"
 #include "femup/core/errors.h"
 
 namespace femup {
@@ -55,15 +57,22 @@ void MeanAndStd(const std::vector<double>& x, double* mean, double* std_dev) {
   *std_dev = std::sqrt(ss / (x.size() - 1));
 }
 
+// `clean` corrupted by noise of `level` drawn from `distribution`, the draws
+// from a std::mt19937_64 seeded with `seed`.
+ModalData Corrupted(const ModalData& clean, double level, NoiseDistribution distribution,
+                    std::uint64_t seed) {
+  NoiseModel noise;
+  noise.level = level;
+  noise.distribution = distribution;
+  std::mt19937_64 rng(seed);
+  return Corrupt(clean, noise, &rng);
+}
+
 TEST(Corrupt, LevelZeroLeavesDataUnchanged) {
   const ModalData clean = Synthetic(4, 6);
   for (NoiseDistribution dist :
        {NoiseDistribution::kGaussian, NoiseDistribution::kUniform}) {
-    NoiseModel noise;
-    noise.level = 0;
-    noise.distribution = dist;
-    std::mt19937_64 rng(1);
-    const ModalData out = Corrupt(clean, noise, &rng);
+    const ModalData out = Corrupted(clean, 0, dist, 1);
     EXPECT_EQ(out.frequencies_hz, clean.frequencies_hz);
     EXPECT_EQ(out.shapes, clean.shapes);
     EXPECT_EQ(out.state, clean.state);
@@ -133,11 +142,7 @@ TEST(Corrupt, PeakScaledShapeNoiseIsAdditive) {
 TEST(Corrupt, GaussianStatistics) {
   const double level = 0.05;
   const ModalData clean = Synthetic(20000, 2);
-  NoiseModel noise;
-  noise.level = level;
-  noise.distribution = NoiseDistribution::kGaussian;
-  std::mt19937_64 rng(2014);
-  const ModalData out = Corrupt(clean, noise, &rng);
+  const ModalData out = Corrupted(clean, level, NoiseDistribution::kGaussian, 2014);
   double mean = 0, std_dev = 0;
   // Eigenvalues: r ~ N(0, 1). With 20000 draws the standard error of the mean
   // is 0.007 and of the standard deviation 0.005.
@@ -153,11 +158,7 @@ TEST(Corrupt, GaussianStatistics) {
 TEST(Corrupt, UniformStatisticsAndBound) {
   const double level = 0.08;
   const ModalData clean = Synthetic(20000, 2);
-  NoiseModel noise;
-  noise.level = level;
-  noise.distribution = NoiseDistribution::kUniform;
-  std::mt19937_64 rng(5);
-  const ModalData out = Corrupt(clean, noise, &rng);
+  const ModalData out = Corrupted(clean, level, NoiseDistribution::kUniform, 5);
   for (const auto& draws :
        {EigenvalueDraws(clean, out, level), ShapeDraws(clean, out, level)}) {
     double worst = 0;
@@ -259,12 +260,11 @@ TEST(Corrupt, CounterGeneratorStatisticsAndInPlace) {
 }
 
 TEST(NoiseDistribution, Names) {
-  EXPECT_STREQ(ToString(NoiseDistribution::kGaussian), "gaussian");
-  EXPECT_STREQ(ToString(NoiseDistribution::kUniform), "uniform");
-  NoiseDistribution d = NoiseDistribution::kGaussian;
-  EXPECT_TRUE(NoiseDistributionFromString("uniform", &d));
-  EXPECT_EQ(d, NoiseDistribution::kUniform);
-  EXPECT_FALSE(NoiseDistributionFromString("laplace", &d));
+  testing::ExpectEnumNames<NoiseDistribution>(
+      {{NoiseDistribution::kGaussian, "gaussian"},
+       {NoiseDistribution::kUniform, "uniform"}},
+      NoiseDistributionFromString, NoiseDistribution::kGaussian,
+      {{"uniform", NoiseDistribution::kUniform}}, "laplace");
 }
 
 }  // namespace

@@ -18,6 +18,7 @@
 #include "femup/problems/correction_system.h"
 #include "femup/problems/paper_chain.h"
 #include "femup/solvers/linear_solver.h"
+#include "structure_specs.h"
 
 namespace femup {
 namespace {
@@ -29,10 +30,7 @@ struct Case {
 };
 
 Case Frame() {
-  PlaneFrameSpec spec;
-  spec.storeys = 3;
-  spec.bays = 2;
-  spec.elements_per_member = 2;
+  PlaneFrameSpec spec = fixtures::PlaneFrame(3, 2, 2);
   spec.blocks_per_storey = 2;
   spec.wet_storeys = 1;
   Case c{BuildPlaneFrame(spec), {}, {}};
@@ -92,11 +90,7 @@ TEST(NormalCorrectionSystem, SameLeastSquaresProblemAsTheStackedFormWithEveryFem
 // solves of the Cholesky factor against the dense stacked form with every FEM
 // mode.
 TEST(NormalCorrectionSystem, SpaceFrameMatchesTheDenseStackedForm) {
-  SpaceFrameSpec spec;
-  spec.bays_x = 1;
-  spec.bays_y = 1;
-  spec.levels = 3;
-  spec.elements_per_member = 2;
+  SpaceFrameSpec spec = fixtures::SpaceFrame(3, 1, 1, 2);
   spec.water_depth = 15;
   const ParametrisedModel model = BuildSpaceFrame(spec);
   ASSERT_LT(model.num_dofs(), 1000);

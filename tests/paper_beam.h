@@ -32,5 +32,13 @@ inline CantileverSpec PaperCantilever(const std::vector<double>& heights,
   return spec;
 }
 
+// The nominal beam of the effect tests: the paper's section, clamped, 2 m in 20
+// uniform elements.
+inline constexpr double kEffectBeamLength = 2.0;
+inline constexpr int kEffectBeamElements = 20;
+inline CantileverSpec EffectBeam() {
+  return PaperCantilever(UniformHeights(kEffectBeamLength, kEffectBeamElements));
+}
+
 }  // namespace fixtures
 }  // namespace femup

@@ -13,17 +13,13 @@
 #include "femup/problems/model_effect_pencil.h"
 #include "femup/solvers/nonlinear_solver.h"
 #include "femup/studies/study.h"
+#include "structure_specs.h"
 
 namespace femup {
 namespace {
 
 PlaneFrameSpec Portal() {
-  PlaneFrameSpec spec;
-  spec.storeys = 1;
-  spec.bays = 1;
-  spec.storey_height = 3.0;
-  spec.bay_width = 5.0;
-  spec.elements_per_member = 4;
+  PlaneFrameSpec spec = fixtures::PlaneFrame(1, 1, 4, 3.0, 5.0);
   // Nearly massless columns, axially rigid (A large: no rocking of the beam,
   // which the closed form leaves out; with A = 0.01 it costs 0.46 %).
   spec.column = {210e9, 1.0, 8e-5, 1e-5};
@@ -46,10 +42,7 @@ TEST(PlaneFrameStructure, PortalSwayMatchesTheClosedForm) {
 }
 
 TEST(PlaneFrameStructure, MembersSumToTheWholeAndMatchTheFactorModel) {
-  PlaneFrameSpec spec;
-  spec.storeys = 3;
-  spec.bays = 2;
-  spec.elements_per_member = 2;
+  PlaneFrameSpec spec = fixtures::PlaneFrame(3, 2, 2);
   spec.wet_storeys = 1;
   const Structure s = BuildPlaneFrameStructure(spec);
   ASSERT_EQ(s.elements.size(), 3u * 3 + 3 * 2);
@@ -73,10 +66,7 @@ TEST(PlaneFrameStructure, MembersSumToTheWholeAndMatchTheFactorModel) {
 }
 
 TEST(PlaneFrameStructure, FindsAWeakerColumn) {
-  PlaneFrameSpec spec;
-  spec.storeys = 2;
-  spec.bays = 2;
-  spec.elements_per_member = 3;
+  PlaneFrameSpec spec = fixtures::PlaneFrame(2, 2, 3);
   auto nominal = std::make_shared<const Structure>(BuildPlaneFrameStructure(spec));
   // The truth: column line 2 of storey 1 with 30 % less E I (its own section).
   Structure truth = *nominal;
@@ -214,10 +204,7 @@ TEST(PlaneFrameStructure, TimoshenkoPortalSwayHasTheShearTerm) {
 // variant: the matrices of the same frame built with Timoshenko members of
 // half the area as shear area, base springs included.
 TEST(PlaneFrameStructure, FormVariantIsTheFrameWithShearDeformation) {
-  PlaneFrameSpec spec;
-  spec.storeys = 2;
-  spec.bays = 2;
-  spec.elements_per_member = 2;
+  PlaneFrameSpec spec = fixtures::PlaneFrame(2, 2, 2);
   spec.base.rotation = 5e7;
   const Structure s = BuildPlaneFrameStructure(spec);
   ASSERT_EQ(s.form_variants.size(), 1u);

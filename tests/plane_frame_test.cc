@@ -1,4 +1,4 @@
-// The large plane frame builder (lib/include/femup/plane_frame.h), checked
+// The large plane frame builder (core/include/femup/core/fe/plane_frame.h), checked
 // against counts from its definition, the sums of its substructure matrices,
 // the total mass, and the sway stiffness of a portal frame with a rigid beam
 // (two fixed-guided columns: 24 E I / h^3).
@@ -10,15 +10,13 @@
 #include <string>
 
 #include "femup/core/errors.h"
+#include "structure_specs.h"
 
 namespace femup {
 namespace {
 
 TEST(PlaneFrame, CountsFollowTheSpec) {
-  PlaneFrameSpec spec;
-  spec.storeys = 4;
-  spec.bays = 3;
-  spec.elements_per_member = 2;
+  PlaneFrameSpec spec = fixtures::PlaneFrame(4, 3, 2);
   spec.blocks_per_storey = 3;
   spec.wet_storeys = 2;
   const ParametrisedModel m = BuildPlaneFrame(spec);
@@ -55,11 +53,8 @@ TEST(PlaneFrame, CountsFollowTheSpec) {
 }
 
 TEST(PlaneFrame, PortalSwayStiffnessWithARigidBeam) {
-  PlaneFrameSpec spec;
-  spec.storeys = 1;
-  spec.bays = 1;
+  PlaneFrameSpec spec = fixtures::PlaneFrame(1, 1, 3);
   spec.storey_height = 3.0;
-  spec.elements_per_member = 3;
   spec.column = {210e9, 100.0, 1e-4, 7850};  // axially rigid
   spec.beam = {210e9, 1.0, 100.0, 7850};     // rigid in bending too
   const ParametrisedModel m = BuildPlaneFrame(spec);

@@ -1,4 +1,4 @@
-// The progress bar (lib/include/femup/progress.h): its line, its silence when
+// The progress bar (core/include/femup/core/progress.h): its line, its silence when
 // the output is not a terminal, and updates from several threads.
 #include "femup/core/progress.h"
 

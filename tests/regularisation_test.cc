@@ -13,16 +13,13 @@
 #include "femup/core/errors.h"
 #include "femup/evaluation/ill_posed.h"
 #include "femup/solvers/linear_solver.h"
+#include "solver_problems.h"
 
 namespace femup {
 namespace {
 
 Eigen::MatrixXd Random(int rows, int cols, unsigned seed) {
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> g(0.0, 1.0);
-  Eigen::MatrixXd a(rows, cols);
-  for (int i = 0; i < a.size(); ++i) a.data()[i] = g(rng);
-  return a;
+  return fixtures::RandomGaussian(rows, cols, seed);
 }
 
 // (A'A + lambda^2 L'L) x = A'b + lambda^2 L'L x0, in long double.

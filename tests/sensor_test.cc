@@ -12,6 +12,7 @@
 #include "femup/core/fe/plane_frame.h"
 #include "femup/core/fe/space_frame.h"
 #include "paper_beam.h"
+#include "structure_specs.h"
 
 namespace femup {
 namespace {
@@ -79,14 +80,7 @@ TEST(Sensor, CantileverTipLoadDeflectionBetweenNodesIsTheClosedForm) {
 // shape functions: the interpolation must give it back exactly at every point
 // of every member of a 3D frame (the slope term's sign and the axial part).
 TEST(Sensor, RigidMotionOfASpaceFrameIsInterpolatedExactly) {
-  SpaceFrameSpec spec;
-  spec.levels = 2;
-  spec.bays_x = 1;
-  spec.bays_y = 1;
-  spec.elements_per_member = 2;
-  spec.level_height = 8;
-  spec.bay_width_x = 12;
-  spec.bay_width_y = 10;
+  SpaceFrameSpec spec = fixtures::SpaceFrame(2, 1, 1, 2, 8, 12, 10);
   const Structure s = BuildSpaceFrameStructure(spec);
   const Eigen::Vector3d t(0.3, -0.2, 0.1), w(0.02, -0.05, 0.03), p0(1, 2, 3);
   Eigen::VectorXd u =
@@ -125,10 +119,7 @@ TEST(Sensor, RigidMotionOfASpaceFrameIsInterpolatedExactly) {
 }
 
 TEST(Sensor, OnANodeItReadsThatDof) {
-  PlaneFrameSpec spec;
-  spec.storeys = 2;
-  spec.bays = 1;
-  spec.elements_per_member = 2;
+  PlaneFrameSpec spec = fixtures::PlaneFrame(2, 1, 2);
   const Structure s = BuildPlaneFrameStructure(spec);
   SensorSpec by_node;
   by_node.node = "n2";
@@ -152,12 +143,7 @@ TEST(Sensor, OnANodeItReadsThatDof) {
 }
 
 TEST(Sensor, BadPlacementsNameTheFieldAndWhatIsWrong) {
-  PlaneFrameSpec spec;
-  spec.storeys = 1;
-  spec.bays = 1;
-  spec.elements_per_member = 2;
-  spec.storey_height = 3;
-  spec.bay_width = 6;
+  PlaneFrameSpec spec = fixtures::PlaneFrame(1, 1, 2, 3, 6);
   const Structure frame = BuildPlaneFrameStructure(spec);
   SensorRow row;
   SensorSpec off;

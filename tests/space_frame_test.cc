@@ -1,5 +1,5 @@
-// The 3D frame element (lib/include/femup/frame3d.h) and the jacket-like space
-// frame builder (lib/include/femup/space_frame.h), checked against closed-form
+// The 3D frame element (core/include/femup/core/fe/frame3d.h) and the jacket-like space
+// frame builder (core/include/femup/core/fe/space_frame.h), checked against closed-form
 // beam theory (cantilever tip deflections P L^3 / 3 E I, P L / E A, T L / G J,
 // the Timoshenko shear term P L / G As, Euler-Bernoulli and torsional
 // cantilever frequencies), rigid-body properties (six zero-energy modes, mass
@@ -22,6 +22,7 @@
 #include "femup/core/errors.h"
 #include "femup/core/fe/frame3d.h"
 #include "femup/core/linalg/modal.h"
+#include "structure_specs.h"
 
 namespace femup {
 namespace {
@@ -394,12 +395,8 @@ bool SameMatrix(const SparseMatrix& a, const SparseMatrix& b, double relative) {
 }
 
 TEST(SpaceFrameBuild, CountsNamesAndSubstructures) {
-  SpaceFrameSpec spec;
-  spec.levels = 3;
-  spec.bays_x = 2;
-  spec.bays_y = 1;
+  SpaceFrameSpec spec = fixtures::SpaceFrame(3, 2, 1, 2);
   spec.bay_width_y = 12.0;
-  spec.elements_per_member = 2;
   spec.blocks_per_level = 2;
   spec.bracing = FaceBracing::kX;
   spec.water_depth = 15.0;  // 1.5 levels
@@ -482,11 +479,7 @@ TEST(SpaceFrameBuild, CountsNamesAndSubstructures) {
 }
 
 TEST(SpaceFrameBuild, DiagonalBracingAndTimoshenkoBuild) {
-  SpaceFrameSpec spec;
-  spec.levels = 2;
-  spec.bays_x = 3;
-  spec.bays_y = 2;
-  spec.elements_per_member = 3;
+  SpaceFrameSpec spec = fixtures::SpaceFrame(2, 3, 2, 3);
   spec.blocks_per_level = 3;
   spec.bracing = FaceBracing::kDiagonal;
   spec.theory = BeamTheory::kTimoshenko;
@@ -524,14 +517,7 @@ Eigen::VectorXd Translation(int n, int direction) {
 }
 
 TEST(SpaceFrameBuild, TotalMassIsTheSumOfMemberMasses) {
-  SpaceFrameSpec spec;
-  spec.levels = 4;
-  spec.bays_x = 2;
-  spec.bays_y = 1;
-  spec.level_height = 10.0;
-  spec.bay_width_x = 15.0;
-  spec.bay_width_y = 12.0;
-  spec.elements_per_member = 3;
+  SpaceFrameSpec spec = fixtures::SpaceFrame(4, 2, 1, 3, 10.0, 15.0, 12.0);
   spec.bracing = FaceBracing::kDiagonal;
   const ParametrisedModel m = BuildSpaceFrame(spec);
   const double h = 10, wx = 15, wy = 12, e = 3;
@@ -560,13 +546,9 @@ TEST(SpaceFrameBuild, TotalMassIsTheSumOfMemberMasses) {
 }
 
 TEST(SpaceFrameBuild, AddedMassActsOnWetMembersTransversely) {
-  SpaceFrameSpec spec;
-  spec.levels = 3;
-  spec.bays_x = 2;
-  spec.bays_y = 1;
+  SpaceFrameSpec spec = fixtures::SpaceFrame(3, 2, 1, 2);
   spec.level_height = 10.0;
   spec.bay_width_y = 12.0;
-  spec.elements_per_member = 2;
   spec.bracing = FaceBracing::kNone;
   spec.water_depth = 15.0;
   const ParametrisedModel m = BuildSpaceFrame(spec);
@@ -595,12 +577,8 @@ TEST(SpaceFrameBuild, AddedMassActsOnWetMembersTransversely) {
 // masses sum to that level's mass basis and the wet ones carry their added-mass
 // factor's basis.
 TEST(SpaceFrameStructure, ElementsSumToTheModelAndMatchItsFactors) {
-  SpaceFrameSpec spec;
-  spec.levels = 3;
-  spec.bays_x = 2;
-  spec.bays_y = 1;
+  SpaceFrameSpec spec = fixtures::SpaceFrame(3, 2, 1, 2);
   spec.bay_width_y = 12.0;
-  spec.elements_per_member = 2;
   spec.blocks_per_level = 2;
   spec.water_depth = 15.0;
   const ParametrisedModel m = BuildSpaceFrame(spec);
@@ -682,12 +660,8 @@ TEST(SpaceFrameStructure, ElementsSumToTheModelAndMatchItsFactors) {
 }
 
 TEST(SpaceFrameModes, SparseShiftInvertMatchesDense) {
-  SpaceFrameSpec spec;
-  spec.levels = 2;
-  spec.bays_x = 2;
-  spec.bays_y = 1;
+  SpaceFrameSpec spec = fixtures::SpaceFrame(2, 2, 1, 2);
   spec.bay_width_y = 11.0;
-  spec.elements_per_member = 2;
   spec.water_depth = 8.0;
   const ParametrisedModel m = BuildSpaceFrame(spec);
   ASSERT_EQ(m.num_dofs(), 6 * 2 * 49);
@@ -709,11 +683,7 @@ TEST(SpaceFrameModes, SparseShiftInvertMatchesDense) {
 }
 
 TEST(SpaceFrameModes, SquareFrameSwaysEquallyInXAndY) {
-  SpaceFrameSpec spec;
-  spec.levels = 4;
-  spec.bays_x = 2;
-  spec.bays_y = 2;
-  spec.elements_per_member = 2;
+  SpaceFrameSpec spec = fixtures::SpaceFrame(4, 2, 2, 2);
   const ParametrisedModel m = BuildSpaceFrame(spec);
   EigenOptions options;
   options.method = EigenOptions::Method::kSparseShiftInvert;

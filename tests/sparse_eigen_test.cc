@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "expect_error.h"
 #include "femup/core/errors.h"
 
 namespace femup {
@@ -109,16 +110,7 @@ void ExpectValidModes(const SparseMatrix& K, const SparseMatrix& M, const Modes&
   }
 }
 
-// Runs `solve` and returns the InputError's message ("" when nothing is thrown).
-template <typename F>
-std::string InputErrorMessage(F solve) {
-  try {
-    solve();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using testing::InputErrorMessage;
 
 TEST(SparseEigenTest, FixedFreeChainMatchesAnalyticEigenvalues) {
   const int n = 200;

@@ -1,4 +1,4 @@
-// Strip-theory added mass (lib/include/femup/strip_theory.h): the rectangle
+// Strip-theory added mass (core/include/femup/core/fe/strip_theory.h): the rectangle
 // coefficient against DNV-RP-C205 Table A-1, the strip mass per length against
 // the displaced fluid of a circle, and the wet added-mass matrix against the
 // element transverse mass (fe.h) and closed-form integrals of cubic fields.
@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "beam_dofs.h"
+#include "expect_error.h"
 #include "femup/core/errors.h"
 #include "femup/core/fe/builders.h"
 #include "femup/core/fe/fe.h"
@@ -28,19 +30,7 @@ const double kPi = std::acos(-1.0);
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
 const double kInf = std::numeric_limits<double>::infinity();
 
-// Expects `f` to throw InputError whose message contains every one of `parts`.
-void ExpectInputError(const std::function<void()>& f,
-                      const std::vector<std::string>& parts) {
-  try {
-    f();
-    ADD_FAILURE() << "no exception";
-  } catch (const InputError& e) {
-    const std::string what = e.what();
-    for (const std::string& p : parts) {
-      EXPECT_NE(what.find(p), std::string::npos) << "'" << p << "' not in: " << what;
-    }
-  }
-}
+using testing::ExpectInputError;
 
 // ---------------------------------------------------------------------------
 // Coefficients.
@@ -152,12 +142,7 @@ Structure Cantilever(const std::vector<double>& heights, bool free_base) {
   return BuildCantilever(fixtures::PaperCantilever(heights, free_base));
 }
 
-int Dof(const Structure& s, const std::string& label) {
-  for (std::size_t i = 0; i < s.dof_labels.size(); ++i) {
-    if (s.dof_labels[i] == label) return static_cast<int>(i);
-  }
-  return -1;
-}
+using fixtures::Dof;
 
 // Frame2dTransverseMass of each element in `elements` (0-based), scattered into
 // the global DOFs found by label.
@@ -182,20 +167,7 @@ Eigen::MatrixXd ScatteredTransverseMass(const Structure& s,
   return m;
 }
 
-// DOF vector of the transverse field ux(z) = z^k (rz = -dux/dz) on the nodes
-// that have DOFs; all axial DOFs 0.
-Eigen::VectorXd MonomialField(const Structure& s, const std::vector<double>& heights,
-                              int k) {
-  Eigen::VectorXd u = Eigen::VectorXd::Zero(s.dof_labels.size());
-  for (std::size_t node = 0; node < heights.size(); ++node) {
-    const double z = heights[node];
-    const int ux = Dof(s, "n" + std::to_string(node) + ":ux");
-    const int rz = Dof(s, "n" + std::to_string(node) + ":rz");
-    if (ux >= 0) u(ux) = std::pow(z, k);
-    if (rz >= 0) u(rz) = k == 0 ? 0.0 : -k * std::pow(z, k - 1);
-  }
-  return u;
-}
+using fixtures::MonomialField;
 
 // Closed form of the integral of z^k m(z) over [0, top], with m(z) the added
 // mass per length of the header (mpl below depth - fade, linear to 0 at depth).
@@ -230,9 +202,7 @@ TEST(WetTransverseAddedMass, FullyWetEqualsScatteredTransverseMass) {
     }
     // The builder's transverse added-mass basis (mass per length rho A),
     // rescaled, is the same matrix.
-    CantileverSpec spec;
-    spec.node_heights = kHeights;
-    spec.section = PaperSection();
+    CantileverSpec spec = fixtures::PaperCantilever(kHeights);
     spec.added_mass_basis = AddedMassBasis::kTransverse;
     if (free_base) spec.support_transverse = spec.support_rotation = 1e5;
     const Structure t = BuildCantilever(spec);

@@ -1,4 +1,4 @@
-// Simulated impulse responses (lib/include/femup/time_response.h), checked
+// Simulated impulse responses (core/include/femup/core/sysid/time_response.h), checked
 // against the closed-form impulse response of a single-DOF oscillator and
 // against the matrix exponential of the first-order (state-space) equations
 // with the damping matrix built explicitly.

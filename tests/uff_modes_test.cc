@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "expect_error.h"
 #include "femup/core/errors.h"
 #include "femup/core/fe/builders.h"
 #include "femup/core/linalg/modal.h"
@@ -22,18 +23,7 @@ namespace {
 
 const std::string kData = std::string(FEMUP_TEST_DATA_DIR);
 
-// Expects `f` to throw an InputError whose message holds every needle.
-template <typename F>
-void ExpectError(F f, const std::vector<std::string>& needles) {
-  try {
-    f();
-    ADD_FAILURE() << "no error; expected " << needles[0];
-  } catch (const InputError& e) {
-    const std::string msg = e.what();
-    for (const auto& n : needles)
-      EXPECT_NE(msg.find(n), std::string::npos) << "'" << n << "' in: " << msg;
-  }
-}
+using testing::ExpectError;
 
 // The paper's Model A beam: 10 elements over 1.9 m, clamped; 30 DOFs.
 struct Beam {

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "expect_error.h"
 #include "femup/core/errors.h"
 #include "femup/core/io/uff.h"
 #include "femup/core/linalg/modal.h"
@@ -77,17 +78,7 @@ void WriteBeamUff(const Study& study, const Modes& modes, const std::string& pat
   WriteUff(path, datasets);
 }
 
-template <typename F>
-void ExpectError(F f, const std::vector<std::string>& needles) {
-  try {
-    f();
-    ADD_FAILURE() << "no error; expected " << needles[0];
-  } catch (const InputError& e) {
-    const std::string msg = e.what();
-    for (const auto& n : needles)
-      EXPECT_NE(msg.find(n), std::string::npos) << "'" << n << "' in: " << msg;
-  }
-}
+using testing::ExpectError;
 
 TEST(UffStudy, ModesPlacedByGeometryAreTheModelsOwn) {
   testing::ScratchDir dir;

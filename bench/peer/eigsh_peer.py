@@ -32,16 +32,14 @@ reason on stderr, when scipy cannot be imported; 2 for bad arguments.
 
 import argparse
 import gc
-import json
 import sys
 import time
 
 try:
     import numpy as np
-    import scipy
     from scipy.sparse.linalg import LinearOperator, eigsh, splu
 
-    from peer_common import maxrss_mb, read_csc, reset_peak_rss, status_mb
+    from peer_common import print_result, read_csc, reset_peak_rss, status_mb
 except ImportError as error:
     print(f"scipy is not available to {sys.executable}: {error}", file=sys.stderr)
     sys.exit(3)
@@ -97,9 +95,7 @@ def main():
     residuals = [float(np.linalg.norm(k_phi[:, j] - values[j] * m_phi[:, j]) /
                        np.linalg.norm(k_phi[:, j])) for j in range(values.size)]
 
-    json.dump({
-        "scipy": scipy.__version__,
-        "numpy": np.__version__,
+    print_result({
         "n": int(k_matrix.shape[0]),
         "nnz_k": int(k_matrix.nnz),
         "nnz_m": int(m_matrix.nnz),
@@ -109,11 +105,7 @@ def main():
         "factorisation": args.factorisation,
         "eigenvalues": values.tolist(),
         "residuals": residuals,
-        "rss_before_solve_mb": rss_before,
-        "solve_peak_rss_mb": solve_peak,
-        "maxrss_mb": maxrss_mb(),
-    }, sys.stdout)
-    sys.stdout.write("\n")
+    }, memory=(rss_before, solve_peak))
 
 
 if __name__ == "__main__":

@@ -17,16 +17,13 @@ reason on stderr, when scipy cannot be imported; 2 for bad arguments.
 """
 
 import argparse
-import json
 import sys
 import time
 
 try:
-    import numpy as np
-    import scipy
     from scipy.optimize import lsq_linear
 
-    from peer_common import read_dense, read_vector
+    from peer_common import print_result, read_dense, read_vector
 except ImportError as error:
     print(f"scipy is not available to {sys.executable}: {error}", file=sys.stderr)
     sys.exit(3)
@@ -77,9 +74,7 @@ def main():
     upper = read_vector(f"{args.dir}/upper.mtx")
     results = {method: solve(a, b, lower, upper, method, args.repeat, args.budget)
                for method in ("bvls", "trf")}
-    json.dump({"scipy": scipy.__version__, "numpy": np.__version__, "results": results},
-              sys.stdout)
-    sys.stdout.write("\n")
+    print_result({"results": results})
 
 
 if __name__ == "__main__":

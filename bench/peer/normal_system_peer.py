@@ -40,7 +40,7 @@ try:
     import scipy.sparse
     from scipy.sparse.linalg import splu
 
-    from peer_common import maxrss_mb, read_csc, read_dense, reset_peak_rss, status_mb
+    from peer_common import print_result, read_csc, read_dense, reset_peak_rss, status_mb
 except ImportError as error:
     print(f"scipy is not available to {sys.executable}: {error}", file=sys.stderr)
     sys.exit(3)
@@ -118,20 +118,14 @@ def main():
     elapsed = time.perf_counter() - start
     solve_peak = status_mb("VmHWM") if have_peak else None
 
-    json.dump({
-        "scipy": scipy.__version__,
-        "numpy": np.__version__,
+    print_result({
         "read_time": read_time,
         "assembly_time": assembly_time,
         "solve_time": solve_time,
         "time": elapsed,
         "x": x.tolist(),
         "error_vs_truth": float(np.max(np.abs(x - truth))),
-        "rss_before_solve_mb": rss_before,
-        "solve_peak_rss_mb": solve_peak,
-        "maxrss_mb": maxrss_mb(),
-    }, sys.stdout)
-    sys.stdout.write("\n")
+    }, memory=(rss_before, solve_peak))
 
 
 if __name__ == "__main__":

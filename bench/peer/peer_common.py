@@ -1,13 +1,17 @@
 """What the peer scripts of bench/peer share: reading the Matrix Market files
-femup writes, and measuring the peak resident set of the process.
+femup writes, measuring the peak resident set of the process, and printing
+the result as one JSON object.
 
 Imported by the scripts next to it (their directory is on sys.path when they
 run as scripts). Needs numpy and scipy; the scripts check the import first.
 """
 
+import json
 import resource
+import sys
 
 import numpy as np
+import scipy
 import scipy.io
 import scipy.sparse
 
@@ -56,3 +60,19 @@ def reset_peak_rss():
 def maxrss_mb():
     """The whole process's peak resident set so far, MB (ru_maxrss is in kB on Linux)."""
     return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
+
+
+def print_result(fields, memory=None):
+    """Prints one JSON object on stdout: scipy's and numpy's versions, then
+    `fields`, then, with memory=(rss_before_solve_mb, solve_peak_rss_mb), those
+    two and maxrss_mb."""
+    result = {"scipy": scipy.__version__, "numpy": np.__version__}
+    result.update(fields)
+    if memory is not None:
+        result.update({
+            "rss_before_solve_mb": memory[0],
+            "solve_peak_rss_mb": memory[1],
+            "maxrss_mb": maxrss_mb(),
+        })
+    json.dump(result, sys.stdout)
+    sys.stdout.write("\n")

@@ -21,15 +21,7 @@ grep -q "afile/out" err_file.txt || fail "message does not name the folder: $(ca
 
 # Non-negative least squares from files: lower 0, upper inf (numpy's spelling),
 # and mixed spellings (MATLAB's Inf, -Infinity); NaN refused with file and line.
-cat > A.csv <<'CSV'
-1,0,0
-0,1,0
-0,0,1
-1,1,0
-0,1,1
-1,0,1
-CSV
-printf '1\n-2\n0.5\n-1\n-1.5\n1.5\n' > b.csv
+small_problem
 printf '0\n0\n0\n' > lo.csv
 printf 'inf\ninf\ninf\n' > up.csv
 "$FEMUP" solve --A A.csv --b b.csv --lower lo.csv --upper up.csv --solver bvls -o nnls -q \

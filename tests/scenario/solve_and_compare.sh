@@ -5,16 +5,7 @@
 # --method overrides; bad solver names fail before work.
 source "$(dirname "$0")/lib.sh"
 # A 6 x 3 problem with known x = (1, -2, 0.5) and exact data.
-cat > A.csv <<'CSV'
-a,b,c
-1,0,0
-0,1,0
-0,0,1
-1,1,0
-0,1,1
-1,0,1
-CSV
-printf '1\n-2\n0.5\n-1\n-1.5\n1.5\n' > b.csv
+small_problem "a,b,c"
 printf '1\n-2\n0.5\n' > x.csv
 for s in lstsq tsvd bvls ceres ipopt; do
   "$FEMUP" solve --A A.csv --b b.csv --truth x.csv --solver "$s" -o "out_$s" -q \

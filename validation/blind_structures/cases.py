@@ -1,5 +1,6 @@
 """What every blind suite's case generator does alike: the effect's size drawn
-in noise units and found by bisection, and the measurement noise added."""
+in noise units and found by bisection, the measurement noise added, and the
+study's measurements and diagnosis written as YAML."""
 import math
 
 import numpy as np
@@ -45,3 +46,30 @@ def measured(rng, freqs, shape_rows, fnoise, snoise, noise_free):
     noisy_f = np.asarray(freqs) * (1 + scale * fnoise * fn)
     rows = [(np.asarray(s) + scale * snoise * sn[k]).tolist() for k, s in enumerate(shape_rows)]
     return noisy_f.tolist(), rows
+
+
+def yaml_list(values):
+    """A YAML flow list of numbers, to 10 significant digits."""
+    return "[" + ", ".join("%.10g" % x for x in values) + "]"
+
+
+def measurements_yaml(s, quote_sensors=False):
+    """The measurements and diagnosis sections of case `s`'s study, as YAML
+    lines: its measured frequencies and, where it has them, its shapes at its
+    sensors (their names in double quotes with quote_sensors), and its noise."""
+    lines = [
+        "measurements:",
+        "  - state: test",
+        "    frequencies_hz: %s" % yaml_list(s["frequencies"]),
+    ]
+    if s["shapes"] is not None:
+        sensors = ['"%s"' % x for x in s["sensors"]] if quote_sensors else s["sensors"]
+        lines.append("    sensors: [%s]" % ", ".join(sensors))
+        lines.append("    shapes:")
+        lines += ["      - %s" % yaml_list(r) for r in s["shapes"]]
+    lines += [
+        "diagnosis:",
+        "  noise: {frequency: %g, shape: %g}" % (s["frequency_noise"], s["shape_noise"]),
+        "  use_shapes: %s" % ("true" if s["shapes"] is not None else "false"),
+    ]
+    return lines

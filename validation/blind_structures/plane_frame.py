@@ -33,7 +33,7 @@ Sizes by the largest relative frequency shift in noise units, as for the shear
 buildings. Sensors: horizontal (ux) at some joints, vertical (uy) at some beam
 middles; 3-5 modes, some cases without shapes.
 
-femup's node numbering (lib/plane_frame.h): the joints column line by column
+femup's node numbering (femup/core/fe/plane_frame.h): the joints column line by column
 line bottom up, then each member's inner node, storey by storey (columns left
 to right, then beams). Members are named s<storey>:col<line> and
 s<storey>:beam<bay>.
@@ -41,7 +41,7 @@ s<storey>:beam<bay>.
 
 import numpy as np
 
-from cases import draw_target, largest_shift, measured, size_for_shift
+from cases import draw_target, largest_shift, measured, measurements_yaml, size_for_shift
 from frame2d import Frame
 
 KINDS = ["none", "joint_flexibility", "member_damage", "added_floor_mass", "material_scaling"]
@@ -329,7 +329,6 @@ def nominal_gap(p, f_truth, modes):
 
 def study_yaml(s):
     p = s["p"]
-    fmt = lambda v: "[" + ", ".join("%.10g" % x for x in v) + "]"
     lines = [
         "# A blind case of validation/blind_structures (plane_frame suite): a steel",
         "# frame's model and the frame's measured modes.",
@@ -348,18 +347,5 @@ def study_yaml(s):
     ]
     if "base_rotation" in p:
         lines.append("  base: {rotation: %.10g}" % p["base_rotation"])
-    lines += [
-        "measurements:",
-        "  - state: test",
-        "    frequencies_hz: %s" % fmt(s["frequencies"]),
-    ]
-    if s["shapes"] is not None:
-        lines.append("    sensors: [%s]" % ", ".join('"%s"' % x for x in s["sensors"]))
-        lines.append("    shapes:")
-        lines += ["      - %s" % fmt(r) for r in s["shapes"]]
-    lines += [
-        "diagnosis:",
-        "  noise: {frequency: %g, shape: %g}" % (s["frequency_noise"], s["shape_noise"]),
-        "  use_shapes: %s" % ("true" if s["shapes"] is not None else "false"),
-    ]
+    lines += measurements_yaml(s, quote_sensors=True)
     return "\n".join(lines) + "\n"

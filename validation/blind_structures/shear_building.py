@@ -44,7 +44,8 @@ import math
 import numpy as np
 import scipy.linalg as sl
 
-from cases import draw_target, largest_shift, measured, size_for_shift
+from cases import (draw_target, largest_shift, measured, measurements_yaml, size_for_shift,
+                   yaml_list)
 from frame2d import Frame
 
 KINDS = ["none", "stiffness_loss", "attached_mass", "support_flexibility", "material_scaling"]
@@ -315,26 +316,13 @@ def chain_frequencies(masses, springs, count):
 
 
 def study_yaml(s):
-    fmt = lambda v: "[" + ", ".join("%.10g" % x for x in v) + "]"
     lines = [
         "# A blind case of validation/blind_structures (shear_building suite): the",
         "# chain model of a plane-frame building and the building's measured modes.",
         "name: %s" % s["name"],
         "model:",
         "  type: chain",
-        "  masses: %s" % fmt(s["masses"]),
-        "  springs: %s" % fmt(s["springs"]),
-        "measurements:",
-        "  - state: test",
-        "    frequencies_hz: %s" % fmt(s["frequencies"]),
-    ]
-    if s["shapes"] is not None:
-        lines.append("    sensors: [%s]" % ", ".join(s["sensors"]))
-        lines.append("    shapes:")
-        lines += ["      - %s" % fmt(r) for r in s["shapes"]]
-    lines += [
-        "diagnosis:",
-        "  noise: {frequency: %g, shape: %g}" % (s["frequency_noise"], s["shape_noise"]),
-        "  use_shapes: %s" % ("true" if s["shapes"] is not None else "false"),
-    ]
+        "  masses: %s" % yaml_list(s["masses"]),
+        "  springs: %s" % yaml_list(s["springs"]),
+    ] + measurements_yaml(s)
     return "\n".join(lines) + "\n"
