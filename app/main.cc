@@ -43,7 +43,8 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
 
   // Exit codes: 0 done, 1 bad input, 3 a result not usable (the command's
-  // own), 4 a bug; CLI11's own for a bad command line.
+  // own, or a numerical failure on valid input), 4 a bug; CLI11's own for a
+  // bad command line.
   try {
     for (std::size_t i = 0; i < commands.size(); ++i) {
       if (*subcommands[i]) return commands[i].run(invocation);
@@ -51,6 +52,11 @@ int main(int argc, char** argv) {
   } catch (const femup::InputError& e) {
     std::cerr << "femup: error: " << e.what() << "\n";
     return 1;
+  } catch (const femup::NumericalError& e) {
+    // Valid input on which a numerical method failed (an eigensolver that did
+    // not converge): no usable result, as for a solver that failed.
+    std::cerr << "femup: numerical failure: " << e.what() << "\n";
+    return 3;
   } catch (const std::exception& e) {
     std::cerr << "femup: internal error: " << e.what() << "\n";
     return 4;

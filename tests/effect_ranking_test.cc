@@ -23,7 +23,7 @@
 #include "femup/core/fe/plane_frame.h"
 #include "femup/core/fe/space_frame.h"
 #include "femup/core/linalg/modal.h"
-#include "femup/reporting/structure_diagnosis_outputs.h"
+#include "femup/reporting/outputs.h"
 #include "femup/studies/structure_diagnosis.h"
 #include "prior_builders.h"
 #include "scratch_dir.h"

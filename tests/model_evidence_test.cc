@@ -236,6 +236,14 @@ TEST(LaplaceEvidence, BestFitAtABoundSubtractsLogTwo) {
   EXPECT_NEAR(both.log_occam, in2.log_occam - 2 * std::log(2.0), 1e-12);
 }
 
+// The one-column design `a1` with a second parameter the data do not see.
+Eigen::MatrixXd WithUnseenParameter(const Eigen::MatrixXd& a1) {
+  Eigen::MatrixXd a2(a1.rows(), 2);
+  a2.col(0) = a1.col(0);
+  a2.col(1).setZero();
+  return a2;
+}
+
 TEST(LaplaceEvidence, AParameterTheDataDoNotSeeCostsNothing) {
   // The exact evidence integral of a likelihood flat along a parameter is the
   // same with or without that parameter: flat over its range, divided by its
@@ -246,9 +254,7 @@ TEST(LaplaceEvidence, AParameterTheDataDoNotSeeCostsNothing) {
   const Eigen::MatrixXd a1 = A1();
   const Eigen::VectorXd b = B1();
   const LinearFit fit = Fit(a1, b);
-  Eigen::MatrixXd a2(3, 2);
-  a2.col(0) = a1.col(0);
-  a2.col(1).setZero();
+  const Eigen::MatrixXd a2 = WithUnseenParameter(a1);
   const Eigen::VectorXd x2 = Vec({fit.x[0], 0.3});
   const ModelEvidence one = LaplaceEvidence(fit.chi2, a1, fit.x, Vec({-200}), Vec({250}));
   const ModelEvidence two =
@@ -271,9 +277,7 @@ TEST(LaplaceEvidence, AnUnseenParameterLeavesTheSeenOnesAlone) {
   // prior term's, and the seen one's sigma is unchanged.
   const Eigen::MatrixXd a1 = A1();
   const LinearFit fit = Fit(a1, B1());
-  Eigen::MatrixXd a2(3, 2);
-  a2.col(0) = a1.col(0);
-  a2.col(1).setZero();
+  const Eigen::MatrixXd a2 = WithUnseenParameter(a1);
   const Eigen::VectorXd x2 = Vec({fit.x[0], 0.3});
   const ModelEvidence one = LaplaceEvidence(fit.chi2, a1, fit.x, Vec({-200}), Vec({250}));
   const ModelEvidence two =

@@ -6,7 +6,7 @@
 
 #include "femup/problems/paper_chain.h"
 #include "femup/reporting/output_dir.h"
-#include "femup/reporting/update_outputs.h"
+#include "femup/reporting/outputs.h"
 #include "femup/studies/modes_study.h"
 #include "femup/studies/noise_study.h"
 #include "femup/studies/update_study.h"

@@ -329,17 +329,51 @@ TEST(SparseEigenTest, SizeMismatchThrows) {
       << message;
 }
 
-TEST(SparseEigenTest, NonConvergenceThrowsWithIterationCount) {
+// Non-convergence is a numerical failure on valid input, not an input error:
+// SolveModesSparse (and SolveModes) throw NumericalError, TrySolveModes returns
+// it as the solution's status with the same message.
+TEST(SparseEigenTest, NonConvergenceIsANumericalFailureWithIterationCount) {
   SparseMatrix K, M;
   RandomPencil(20, 25, 7u, &K, &M);
   EigenOptions options;
   options.num_modes = 12;
   options.max_iterations = 1;
   options.tolerance = 1e-15;
-  const std::string message = InputErrorMessage([&] { SolveModesSparse(K, M, options); });
+  options.method = EigenOptions::Method::kSparseShiftInvert;
+  std::string message;
+  try {
+    SolveModesSparse(K, M, options);
+  } catch (const NumericalError& e) {
+    message = e.what();
+  }
   EXPECT_NE(message.find("did not converge"), std::string::npos) << message;
   EXPECT_NE(message.find("restarts"), std::string::npos) << message;
   EXPECT_NE(message.find("k = 12, n = 500, shift = 0"), std::string::npos) << message;
+
+  EXPECT_THROW(SolveModes(K, M, options), NumericalError);
+  EigenSolution solution;
+  EXPECT_NO_THROW(solution = TrySolveModes(K, M, options));
+  EXPECT_FALSE(solution.ok());
+  EXPECT_EQ(solution.failure, message);
+  EXPECT_EQ(solution.modes.size(), 0);
+
+  // The same pencil with the default iterations converges: a status of ok.
+  options.max_iterations = EigenOptions().max_iterations;
+  options.tolerance = EigenOptions().tolerance;
+  solution = TrySolveModes(K, M, options);
+  ASSERT_TRUE(solution.ok()) << solution.failure;
+  ExpectValidModes(K, M, solution.modes, 12);
+}
+
+// Input errors stay input errors through TrySolveModes: it throws them.
+TEST(SparseEigenTest, TrySolveModesThrowsInputErrors) {
+  EigenOptions options;
+  options.num_modes = 2;
+  options.method = EigenOptions::Method::kSparseShiftInvert;
+  EXPECT_THROW(TrySolveModes(ChainStiffness(10, true), Identity(9), options), InputError);
+  SparseMatrix M = Identity(10);
+  M.coeffRef(3, 3) = -1;
+  EXPECT_THROW(TrySolveModes(ChainStiffness(10, true), M, options), InputError);
 }
 
 }  // namespace

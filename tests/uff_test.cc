@@ -233,6 +233,13 @@ UffFunction MakeFunction(UffOrdinateType type, bool even, bool binary, int point
 // ---------------------------------------------------------------------------
 // Real data.
 
+TEST(LabelRanges, SortsDropsRepeatsAndJoinsRuns) {
+  EXPECT_EQ(LabelRanges({}), "none");
+  EXPECT_EQ(LabelRanges({7}), "7");
+  EXPECT_EQ(LabelRanges({3, 1, 2, 10, 15, 11, 2}), "1-3, 10-11, 15");
+  EXPECT_EQ(LabelRanges({-2, -1, 0, 5}), "-2-0, 5");
+}
+
 TEST(UffRealData, MeasuredFrfsRoundTripAsciiAndBinaryAndKeepTheBeamPeaks) {
   // Accelerance FRFs of pyuff's data/meas_point_{1,2,3}.txt: 0..1000 Hz at
   // 1 Hz, one response point and three reference points. Written the way

@@ -1,7 +1,7 @@
 // femup compare: several studies of one structure side by side (added mass
 // along the structure, Sa, updated frequencies).
 #include "commands.h"
-#include "femup/reporting/compare_outputs.h"
+#include "femup/reporting/outputs.h"
 #include "femup/studies/compare_study.h"
 
 namespace femup::cli {

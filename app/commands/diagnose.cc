@@ -2,8 +2,7 @@
 // unmodelled effects. The cantilever has its own diagnosis (effects on the
 // paper's beam); every other model type has effects as changes of the model.
 #include "commands.h"
-#include "femup/reporting/diagnose_outputs.h"
-#include "femup/reporting/structure_diagnosis_outputs.h"
+#include "femup/reporting/outputs.h"
 #include "femup/studies/diagnose_study.h"
 #include "femup/studies/structure_diagnosis.h"
 

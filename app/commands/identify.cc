@@ -1,7 +1,7 @@
 // femup identify: modes from measured signals (ERA with a stabilisation
 // diagram).
 #include "commands.h"
-#include "femup/reporting/identify_outputs.h"
+#include "femup/reporting/outputs.h"
 #include "femup/studies/identify_study.h"
 
 namespace femup::cli {

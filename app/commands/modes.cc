@@ -1,6 +1,6 @@
 // femup modes: modal analysis of a study's nominal model.
 #include "commands.h"
-#include "femup/reporting/modes_outputs.h"
+#include "femup/reporting/outputs.h"
 #include "femup/studies/modes_study.h"
 
 namespace femup::cli {

@@ -2,7 +2,7 @@
 // spread as the data are corrupted).
 #include "commands.h"
 #include "femup/core/errors.h"
-#include "femup/reporting/noise_outputs.h"
+#include "femup/reporting/outputs.h"
 #include "femup/studies/noise_study.h"
 
 namespace femup::cli {

@@ -1,7 +1,7 @@
 // femup run: the paper's method on a study (Z d = F, or the sensitivity
 // method), the updated model and its comparison with the measurements.
 #include "commands.h"
-#include "femup/reporting/update_outputs.h"
+#include "femup/reporting/outputs.h"
 #include "femup/studies/update_study.h"
 
 namespace femup::cli {

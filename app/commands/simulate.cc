@@ -1,7 +1,7 @@
 // femup simulate: test records of a study's structure, as a test would give
 // them, with the truth kept beside.
 #include "commands.h"
-#include "femup/reporting/simulate_outputs.h"
+#include "femup/reporting/outputs.h"
 #include "femup/studies/simulate_study.h"
 
 namespace femup::cli {

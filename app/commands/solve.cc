@@ -1,6 +1,6 @@
 // femup solve: a general linear inverse problem A x ~ b read from files.
 #include "commands.h"
-#include "femup/reporting/solve_outputs.h"
+#include "femup/reporting/outputs.h"
 #include "femup/solvers/linear_solver.h"
 #include "femup/studies/solve_study.h"
 

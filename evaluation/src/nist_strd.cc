@@ -348,6 +348,15 @@ bool IsParameterName(const std::string& token, char letter, int* index) {
                     (range.last > file.num_lines() ? " before the end of file" : ""));
 }
 
+// The fields every dataset takes from its header, and its file.
+template <typename Dataset>
+void SetHeaderFields(const Header& h, const std::string& path, Dataset* d) {
+  d->name = h.name;
+  d->path = path;
+  d->difficulty = h.difficulty;
+  d->model = h.model;
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------------------
@@ -356,10 +365,7 @@ NistLinearDataset ReadNistLinear(const std::string& path) {
   const DatFile file(path);
   const Header h = ReadHeader(file, "Linear Least Squares Regression");
   NistLinearDataset d;
-  d.name = h.name;
-  d.path = path;
-  d.difficulty = h.difficulty;
-  d.model = h.model;
+  SetHeaderFields(h, path, &d);
 
   // "B0   estimate   sd" rows.
   std::vector<int> rows;
@@ -435,10 +441,7 @@ NistNonlinearDataset ReadNistNonlinear(const std::string& path) {
   const DatFile file(path);
   const Header h = ReadHeader(file, "Nonlinear Least Squares Regression");
   NistNonlinearDataset d;
-  d.name = h.name;
-  d.path = path;
-  d.difficulty = h.difficulty;
-  d.model = h.model;
+  SetHeaderFields(h, path, &d);
 
   // "b1 =  start1  start2  certified  sd" rows.
   std::vector<int> rows;

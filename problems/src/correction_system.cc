@@ -4,23 +4,22 @@
 #include <cmath>
 #include <sstream>
 
+#include "femup/core/enum_names.h"
 #include "femup/core/errors.h"
 
 namespace femup {
 
+constexpr EnumName<SystemForm> kSystemFormNames[] = {
+    {SystemForm::kSummed, "summed"},
+    {SystemForm::kStacked, "stacked"},
+};
+
 const char* ToString(SystemForm form) {
-  return form == SystemForm::kSummed ? "summed" : "stacked";
+  return NameIn(kSystemFormNames, form, "stacked");
 }
 
 bool SystemFormFromString(const std::string& text, SystemForm* form) {
-  if (text == "summed") {
-    *form = SystemForm::kSummed;
-  } else if (text == "stacked") {
-    *form = SystemForm::kStacked;
-  } else {
-    return false;
-  }
-  return true;
+  return ValueIn(kSystemFormNames, text, form);
 }
 
 PreparedCorrectionSystem::PreparedCorrectionSystem(const ParametrisedModel& model,

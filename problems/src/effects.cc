@@ -5,17 +5,13 @@
 #include <limits>
 
 #include "femup/core/errors.h"
+#include "vector_of.h"
 
 namespace femup {
 
 namespace {
 
-Eigen::VectorXd Vec(std::initializer_list<double> v) {
-  Eigen::VectorXd out(static_cast<Eigen::Index>(v.size()));
-  Eigen::Index i = 0;
-  for (double x : v) out[i++] = x;
-  return out;
-}
+using internal::VectorOf;
 
 // The location of an effect acting along the whole beam.
 EffectLocation WholeLength(const CantileverSpec& s) {
@@ -48,7 +44,7 @@ class AddedMassEffect : public Effect {
     const double length = BeamLength(s);
     std::vector<Eigen::VectorXd> out;
     for (double f : {0.3, 0.6, 0.95})
-      out.push_back(Vec({std::log(0.05), f * length, 0.0}));
+      out.push_back(VectorOf({std::log(0.05), f * length, 0.0}));
     return out;
   }
   void Apply(const Eigen::VectorXd& t, Immersion immersion, bool wet_only,
@@ -95,8 +91,9 @@ class SupportFlexibilityEffect : public Effect {
                         "translation_compliance_ratio", 1.0)};
   }
   std::vector<Eigen::VectorXd> Starts(const CantileverSpec&) const override {
-    return {Vec({std::log(1e-3), std::log(1e-5)}), Vec({std::log(1e-5), std::log(1e-3)}),
-            Vec({std::log(0.03), std::log(0.03)})};
+    return {VectorOf({std::log(1e-3), std::log(1e-5)}),
+            VectorOf({std::log(1e-5), std::log(1e-3)}),
+            VectorOf({std::log(0.03), std::log(0.03)})};
   }
   static double Series(double nominal, double added) {
     // 0 in a CantileverSpec means rigid.
@@ -143,7 +140,7 @@ class AttachedMassEffect : public Effect {
     const double length = BeamLength(s);
     std::vector<Eigen::VectorXd> out;
     for (double f : {0.25, 0.5, 0.75, 1.0})
-      out.push_back(Vec({std::log(0.02), f * length}));
+      out.push_back(VectorOf({std::log(0.02), f * length}));
     return out;
   }
   void Apply(const Eigen::VectorXd& t, Immersion, bool, const CantileverSpec& nominal,
@@ -189,7 +186,7 @@ class StiffnessLossEffect : public Effect {
     const double length = BeamLength(s);
     std::vector<Eigen::VectorXd> out;
     for (double f : {0.05, 0.25, 0.45, 0.65, 0.85})
-      out.push_back(Vec({std::log(0.1), f * length, std::log(kStartWidth)}));
+      out.push_back(VectorOf({std::log(0.1), f * length, std::log(kStartWidth)}));
     return out;
   }
   void Apply(const Eigen::VectorXd& t, Immersion, bool, const CantileverSpec& nominal,
@@ -230,7 +227,7 @@ class MaterialScalingEffect : public Effect {
                         "factor", 1.0)};
   }
   std::vector<Eigen::VectorXd> Starts(const CantileverSpec&) const override {
-    return {Vec({0.0})};
+    return {VectorOf({0.0})};
   }
   void Apply(const Eigen::VectorXd& t, Immersion, bool, const CantileverSpec& nominal,
              CantileverSpec* spec) const override {
@@ -266,7 +263,7 @@ class AxialLoadEffect : public Effect {
         std::numeric_limits<double>::infinity())};
   }
   std::vector<Eigen::VectorXd> Starts(const CantileverSpec&) const override {
-    return {Vec({0.0}), Vec({-0.4}), Vec({2.0})};
+    return {VectorOf({0.0}), VectorOf({-0.4}), VectorOf({2.0})};
   }
   void Apply(const Eigen::VectorXd& t, Immersion, bool, const CantileverSpec& nominal,
              CantileverSpec* spec) const override {

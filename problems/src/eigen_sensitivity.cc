@@ -131,11 +131,15 @@ bool EvaluateState(const Context& c, const StateTerms& st, const Eigen::VectorXd
   } else {
     EigenOptions eigen = c.eigen;
     eigen.num_modes = st.num_model_modes;
+    EigenSolution solution;
     try {
-      modes = SolveModes(k, m, eigen);
+      solution = TrySolveModes(k, m, eigen);
     } catch (const InputError& e) {
       return Fail(why, st.name + ": eigen-solve failed: " + e.what());
     }
+    if (!solution.ok())
+      return Fail(why, st.name + ": eigen-solve failed: " + solution.failure);
+    modes = std::move(solution.modes);
   }
   if (modes.size() < st.lambdas.size()) {
     return Fail(why, st.name + ": the eigen-solve returned too few modes");
@@ -343,6 +347,8 @@ bool Evaluate(const Context& c, const Eigen::VectorXd& x, Eigen::VectorXd* r,
       }
     }
   } catch (const InputError& e) {
+    return Fail(why, e.what());
+  } catch (const NumericalError& e) {
     return Fail(why, e.what());
   }
 

@@ -6,17 +6,13 @@
 
 #include "femup/core/errors.h"
 #include "femup/core/fe/sensor.h"
+#include "vector_of.h"
 
 namespace femup {
 
 namespace {
 
-Eigen::VectorXd Vec(std::initializer_list<double> v) {
-  Eigen::VectorXd out(static_cast<Eigen::Index>(v.size()));
-  Eigen::Index i = 0;
-  for (double x : v) out[i++] = x;
-  return out;
-}
+using internal::VectorOf;
 
 SparseMatrix Zero(int n) { return SparseMatrix(n, n); }
 
@@ -73,7 +69,7 @@ class MaterialScaling : public Base {
     return {LogQuantity({"ln_e_factor", "ln(E_real / E_model)", -0.7, 0.7, false},
                         "factor", 1.0)};
   }
-  std::vector<Eigen::VectorXd> Starts() const override { return {Vec({0.0})}; }
+  std::vector<Eigen::VectorXd> Starts() const override { return {VectorOf({0.0})}; }
   ModelChange Change(const Eigen::VectorXd& t, Immersion) const override {
     return {(std::exp(t[0]) - 1.0) * sum_, {}};
   }
@@ -105,7 +101,7 @@ class StiffnessLoss : public Base {
                         "loss", 1.0, kMaxLoss)};
   }
   std::vector<Eigen::VectorXd> Starts() const override {
-    return {Vec({std::log(0.03)}), Vec({std::log(0.3)})};
+    return {VectorOf({std::log(0.03)}), VectorOf({std::log(0.3)})};
   }
   ModelChange Change(const Eigen::VectorXd& t, Immersion) const override {
     return {-std::exp(t[0]) * Element().stiffness, {}};
@@ -146,7 +142,7 @@ class AttachedMass : public Base {
                         "mass_kg", m_ref_)};
   }
   std::vector<Eigen::VectorXd> Starts() const override {
-    return {Vec({std::log(0.003)}), Vec({std::log(0.1)})};
+    return {VectorOf({std::log(0.003)}), VectorOf({std::log(0.1)})};
   }
   ModelChange Change(const Eigen::VectorXd& t, Immersion) const override {
     return {{}, m_ref_ * std::exp(t[0]) * unit_};
@@ -196,7 +192,7 @@ class SegmentMass : public Base {
              0.95, false}};
   }
   std::vector<Eigen::VectorXd> Starts() const override {
-    return {Vec({std::log(0.003), 0.3}), Vec({std::log(0.1), 0.7})};
+    return {VectorOf({std::log(0.003), 0.3}), VectorOf({std::log(0.1), 0.7})};
   }
   ModelChange Change(const Eigen::VectorXd& t, Immersion) const override {
     return {{}, Outer(t[1], false) * (m_ref_ * std::exp(t[0]))};
@@ -265,10 +261,10 @@ class AddedMass : public Base {
     return p;
   }
   std::vector<Eigen::VectorXd> Starts() const override {
-    if (!with_level_) return {Vec({std::log(0.05)}), Vec({std::log(0.5)})};
+    if (!with_level_) return {VectorOf({std::log(0.05)}), VectorOf({std::log(0.5)})};
     std::vector<Eigen::VectorXd> out;
     for (double f : {0.3, 0.6, 0.95})
-      out.push_back(Vec({std::log(0.05), Bottom() + f * (Top() - Bottom())}));
+      out.push_back(VectorOf({std::log(0.05), Bottom() + f * (Top() - Bottom())}));
     return out;
   }
   ModelChange Change(const Eigen::VectorXd& t, Immersion immersion) const override {
@@ -332,7 +328,7 @@ class SupportFlexibility : public Base {
                     "compliance_ratio", 1.0)};
   }
   std::vector<Eigen::VectorXd> Starts() const override {
-    return {Vec({std::log(0.01)}), Vec({std::log(1.0)})};
+    return {VectorOf({std::log(0.01)}), VectorOf({std::log(1.0)})};
   }
   ModelChange Change(const Eigen::VectorXd& t, Immersion) const override {
     const double c = std::exp(t[0]);

@@ -2,23 +2,22 @@
 
 #include <cmath>
 
+#include "femup/core/enum_names.h"
 #include "femup/core/errors.h"
 
 namespace femup {
 
+constexpr EnumName<NoiseDistribution> kNoiseDistributionNames[] = {
+    {NoiseDistribution::kGaussian, "gaussian"},
+    {NoiseDistribution::kUniform, "uniform"},
+};
+
 const char* ToString(NoiseDistribution d) {
-  return d == NoiseDistribution::kUniform ? "uniform" : "gaussian";
+  return NameIn(kNoiseDistributionNames, d, "gaussian");
 }
 
 bool NoiseDistributionFromString(const std::string& text, NoiseDistribution* d) {
-  if (text == "gaussian") {
-    *d = NoiseDistribution::kGaussian;
-  } else if (text == "uniform") {
-    *d = NoiseDistribution::kUniform;
-  } else {
-    return false;
-  }
-  return true;
+  return ValueIn(kNoiseDistributionNames, text, d);
 }
 
 Invalid NoiseModel::Validate() const {

@@ -25,7 +25,9 @@ Areas:
 
 Bad input raises :class:`InputError` (a ``ValueError``) with the C++ message,
 which names the file, line and field, e.g.
-``<dict>:5:3: model.masses[2]: expected a positive number, found -1``.
+``<dict>:5:3: model.masses[2]: expected a positive number, found -1``. A numerical
+method that fails on valid input (an eigensolver that does not converge) raises
+:class:`NumericalError` (a ``RuntimeError``).
 """
 
 import json as _json
@@ -33,7 +35,7 @@ import math as _math
 import os as _os
 
 from ._femup import *  # noqa: F401,F403  (the compiled module's functions and classes)
-from ._femup import InputError, build_chain, parse_study, parse_study_model
+from ._femup import InputError, NumericalError, build_chain, parse_study, parse_study_model
 
 __version__ = "0.1.0"
 

@@ -11,7 +11,7 @@
 #include "femup/core/sysid/era.h"
 #include "femup/core/sysid/frf_impulse.h"
 #include "femup/core/sysid/measurement.h"
-#include "femup/reporting/identify_outputs.h"
+#include "femup/reporting/outputs.h"
 #include "femup/studies/identify_study.h"
 
 namespace femup_python {

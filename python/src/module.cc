@@ -10,6 +10,7 @@
 namespace femup_python {
 
 PyObject* g_input_error = nullptr;
+PyObject* g_numerical_error = nullptr;
 
 namespace {
 
@@ -20,6 +21,10 @@ void TranslateInputError(std::exception_ptr p) {
     py::object error = py::reinterpret_borrow<py::object>(g_input_error)(e.what());
     error.attr("where") = e.where();
     PyErr_SetObject(g_input_error, error.ptr());
+  } catch (const femup::NumericalError& e) {
+    py::object error = py::reinterpret_borrow<py::object>(g_numerical_error)(e.what());
+    error.attr("where") = e.where();
+    PyErr_SetObject(g_numerical_error, error.ptr());
   }
 }
 
@@ -38,6 +43,12 @@ PYBIND11_MODULE(_femup, m) {
       "Bad input: the message names the file, line and field (as the command line's "
       "errors do); `where` holds the location alone.";
   fp::g_input_error = input_error.ptr();
+  static py::exception<femup::NumericalError> numerical_error(m, "NumericalError",
+                                                              PyExc_RuntimeError);
+  numerical_error.attr("__doc__") =
+      "A numerical method failed on valid input (an eigensolver that did not "
+      "converge); `where` holds the location.";
+  fp::g_numerical_error = numerical_error.ptr();
   py::register_exception_translator(&fp::TranslateInputError);
   fp::InitModels(m);
   fp::InitMeasurements(m);

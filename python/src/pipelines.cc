@@ -10,12 +10,7 @@
 
 #include "common.h"
 #include "femup/core/errors.h"
-#include "femup/reporting/diagnose_outputs.h"
-#include "femup/reporting/modes_outputs.h"
-#include "femup/reporting/noise_outputs.h"
-#include "femup/reporting/simulate_outputs.h"
-#include "femup/reporting/structure_diagnosis_outputs.h"
-#include "femup/reporting/update_outputs.h"
+#include "femup/reporting/outputs.h"
 #include "femup/studies/diagnose_study.h"
 #include "femup/studies/modes_study.h"
 #include "femup/studies/noise_study.h"

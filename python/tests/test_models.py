@@ -240,3 +240,12 @@ def test_predict_modes_states():
     assert wet.immersion == "wet" and np.all(wet.frequencies_hz < dry.frequencies_hz)
     with pytest.raises(femup.InputError, match="immersion"):
         femup.predict_modes(model, d, "damp", 3)
+
+
+def test_numerical_failures_are_their_own_exception():
+    # A numerical method failing on valid input (an eigensolver that does not
+    # converge) is a RuntimeError, not the ValueError of bad input.
+    assert issubclass(femup.NumericalError, RuntimeError)
+    assert not issubclass(femup.NumericalError, ValueError)
+    assert not issubclass(femup.InputError, RuntimeError)
+    assert femup.NumericalError is not femup.InputError

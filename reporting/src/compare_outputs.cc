@@ -1,5 +1,3 @@
-#include "femup/reporting/compare_outputs.h"
-
 #include <cmath>
 #include <iomanip>
 #include <limits>
@@ -7,6 +5,7 @@
 #include <sstream>
 
 #include "femup/core/errors.h"
+#include "femup/reporting/outputs.h"
 #include "femup/reporting/plot.h"
 #include "femup/studies/study.h"
 #include "json_util.h"

@@ -1,14 +1,13 @@
 // The outputs of femup diagnose: diagnosis.json (verdict, noise, classes, the
 // gap mode by mode before and after the top class, the localisation), the
 // plots (where, which, how far the gap shrinks) and the terminal report.
-#include "femup/reporting/diagnose_outputs.h"
-
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "femup/reporting/outputs.h"
 #include "femup/reporting/plot.h"
 #include "femup/studies/diagnose_study.h"
 #include "json_util.h"

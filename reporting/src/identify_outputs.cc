@@ -1,5 +1,3 @@
-#include "femup/reporting/identify_outputs.h"
-
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -11,6 +9,7 @@
 #include "femup/core/io/csv_series.h"
 #include "femup/core/io/uff.h"
 #include "femup/core/sysid/frf_impulse.h"
+#include "femup/reporting/outputs.h"
 #include "json_util.h"
 #include "render_staged.h"
 

@@ -1,9 +1,8 @@
-#include "femup/reporting/modes_outputs.h"
-
 #include <iomanip>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "femup/reporting/outputs.h"
 #include "json_util.h"
 #include "render_staged.h"
 

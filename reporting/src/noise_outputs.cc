@@ -1,5 +1,3 @@
-#include "femup/reporting/noise_outputs.h"
-
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -15,6 +13,7 @@
 #include "femup/core/parallel.h"
 #include "femup/problems/correction_system.h"
 #include "femup/problems/noise.h"
+#include "femup/reporting/outputs.h"
 #include "femup/studies/factor_solve.h"
 #include "json_util.h"
 #include "render_staged.h"

@@ -14,6 +14,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "femup/core/enum_names.h"
 #include "femup/core/errors.h"
 #include "plot_internal.h"
 
@@ -24,21 +25,15 @@ using Style = PlotSeries::Style;
 using plot_internal::FindGnuplot;
 using plot_internal::RunGnuplot;
 
-const char* StyleName(Style style) {
-  switch (style) {
-    case Style::kLines:
-      return "lines";
-    case Style::kPoints:
-      return "points";
-    case Style::kLinesPoints:
-      return "linespoints";
-    case Style::kBars:
-      return "bars";
-    case Style::kErrorBars:
-      return "yerrorbars";
-  }
-  return "unknown";
-}
+constexpr EnumName<Style> kStyleNames[] = {
+    {Style::kLines, "lines"},
+    {Style::kPoints, "points"},
+    {Style::kLinesPoints, "linespoints"},
+    {Style::kBars, "bars"},
+    {Style::kErrorBars, "yerrorbars"},
+};
+
+const char* StyleName(Style style) { return NameIn(kStyleNames, style, "unknown"); }
 
 // Text for comments and error messages: control characters become spaces.
 std::string Printable(const std::string& text) {

@@ -1,5 +1,3 @@
-#include "femup/reporting/simulate_outputs.h"
-
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -13,6 +11,7 @@
 #include "femup/core/io/csv_series.h"
 #include "femup/core/io/uff.h"
 #include "femup/core/linalg/modal.h"
+#include "femup/reporting/outputs.h"
 #include "femup/reporting/plot.h"
 #include "json_util.h"
 #include "render_staged.h"

@@ -1,5 +1,3 @@
-#include "femup/reporting/solve_outputs.h"
-
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -8,6 +6,7 @@
 
 #include "femup/core/errors.h"
 #include "femup/core/io/matrix_market.h"
+#include "femup/reporting/outputs.h"
 #include "femup/reporting/plot.h"
 #include "json_util.h"
 #include "regularisation_output.h"

@@ -1,5 +1,3 @@
-#include "femup/reporting/structure_diagnosis_outputs.h"
-
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
@@ -8,6 +6,7 @@
 
 #include "femup/core/errors.h"
 #include "femup/reporting/diagnosis_map_figure.h"
+#include "femup/reporting/outputs.h"
 #include "json_util.h"
 #include "render_staged.h"
 #include "stated_priors_text.h"

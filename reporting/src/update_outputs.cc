@@ -1,8 +1,6 @@
 // The outputs of femup run (update_study.h): result.json, the updated matrices
 // and the system as Matrix Market files, the plots (factors, frequencies, mode
 // shapes, L-curve and GCV) and the terminal report.
-#include "femup/reporting/update_outputs.h"
-
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
@@ -12,7 +10,7 @@
 
 #include "femup/core/fe/dof_labels.h"
 #include "femup/core/io/matrix_market.h"
-#include "femup/reporting/identify_outputs.h"
+#include "femup/reporting/outputs.h"
 #include "femup/reporting/plot.h"
 #include "json_util.h"
 #include "regularisation_output.h"

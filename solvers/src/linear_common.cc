@@ -90,4 +90,27 @@ void FillUncertainty(const LinearProblem& problem, const Eigen::MatrixXd& x_map,
   SetIntervals(dof, solution);
 }
 
+Eigen::VectorXd SetAnswer(const LinearProblem& problem, const ReducedProblem& reduced,
+                          const Eigen::VectorXd& z, LinearSolution* solution) {
+  solution->x = reduced.ToX(z);
+  solution->residual = problem.A * solution->x - problem.b;
+  Eigen::VectorXd weighted_residual =
+      reduced.weighted.A * solution->x - reduced.weighted.b;
+  solution->summary.cost = 0.5 * weighted_residual.squaredNorm();
+  solution->summary.iterations = 1;
+  return weighted_residual;
+}
+
+void FinishRegularised(const std::string& message, const ReducedProblem& reduced,
+                       double seconds, LinearSolution* solution) {
+  SolverSummary& summary = solution->summary;
+  summary.status = SolverStatus::kSolved;
+  summary.message = message;
+  if (!solution->regularisation.note.empty())
+    summary.warnings.push_back(solution->regularisation.note);
+  summary.warnings.insert(summary.warnings.end(), reduced.warnings.begin(),
+                          reduced.warnings.end());
+  summary.time_seconds = seconds;
+}
+
 }  // namespace femup::internal

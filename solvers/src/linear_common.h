@@ -42,6 +42,17 @@ void FillUncertainty(const LinearProblem& problem, const Eigen::MatrixXd& x_map,
                      const Eigen::VectorXd& weighted_residual, double parameters_used,
                      double confidence_level, LinearSolution* solution);
 
+// The answer x = particular + basis z of the estimate z: x, its residual
+// A x - b, the cost 0.5 ||weighted residual||^2 and one iteration. Returns the
+// weighted residual (for FillUncertainty).
+Eigen::VectorXd SetAnswer(const LinearProblem& problem, const ReducedProblem& reduced,
+                          const Eigen::VectorXd& z, LinearSolution* solution);
+
+// The end of a regularised solve (TSVD, Tikhonov): status solved, `message`,
+// the parameter choice's note and the reduction's warnings, the time taken.
+void FinishRegularised(const std::string& message, const ReducedProblem& reduced,
+                       double seconds, LinearSolution* solution);
+
 class Stopwatch {
  public:
   double Seconds() const {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "femup/core/enum_names.h"
 #include "femup/core/errors.h"
 #include "femup/solvers/backend_linear_solvers.h"
 #include "femup/solvers/bvls.h"
@@ -12,20 +13,16 @@
 
 namespace femup {
 
+constexpr EnumName<SolverStatus> kSolverStatusNames[] = {
+    {SolverStatus::kSolved, "solved"},
+    {SolverStatus::kMinimumNorm, "minimum_norm"},
+    {SolverStatus::kNoConvergence, "no_convergence"},
+    {SolverStatus::kInfeasible, "infeasible"},
+    {SolverStatus::kFailed, "failed"},
+};
+
 const char* ToString(SolverStatus status) {
-  switch (status) {
-    case SolverStatus::kSolved:
-      return "solved";
-    case SolverStatus::kMinimumNorm:
-      return "minimum_norm";
-    case SolverStatus::kNoConvergence:
-      return "no_convergence";
-    case SolverStatus::kInfeasible:
-      return "infeasible";
-    case SolverStatus::kFailed:
-      return "failed";
-  }
-  return "failed";
+  return NameIn(kSolverStatusNames, status, "failed");
 }
 
 Invalid LinearSolverOptions::Validate() const {

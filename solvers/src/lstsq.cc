@@ -59,11 +59,7 @@ LinearSolution LstsqSolver::Solve(const LinearProblem& problem) const {
     FullRankLeastSquares qr(options_.relative_rank_tolerance, options_.scale_columns);
     if (qr.Solve(r.A, r.b, &z)) {
       LinearSolution solution;
-      solution.x = r.ToX(z);
-      solution.residual = problem.A * solution.x - problem.b;
-      const Eigen::VectorXd weighted_residual = r.weighted.A * solution.x - r.weighted.b;
-      solution.summary.cost = 0.5 * weighted_residual.squaredNorm();
-      solution.summary.iterations = 1;
+      internal::SetAnswer(problem, r, z, &solution);
       solution.summary.status = SolverStatus::kSolved;
       solution.summary.message = "least squares by Householder QR: full column rank (" +
                                  std::to_string(k) + " free unknowns); diagnostics off";
@@ -108,11 +104,7 @@ LinearSolution LstsqSolver::Solve(const LinearProblem& problem) const {
                                 inv.asDiagonal() * svd.matrixU().transpose();
   const Eigen::VectorXd z =
       Refine(r.A, r.b, scale, svd.matrixU(), inv, svd.matrixV(), z_map * r.b);
-  solution.x = r.ToX(z);
-  solution.residual = problem.A * solution.x - problem.b;
-  const Eigen::VectorXd weighted_residual = r.weighted.A * solution.x - r.weighted.b;
-  solution.summary.cost = 0.5 * weighted_residual.squaredNorm();
-  solution.summary.iterations = 1;
+  const Eigen::VectorXd weighted_residual = internal::SetAnswer(problem, r, z, &solution);
   internal::FillUncertainty(problem, r.basis * z_map, weighted_residual, rank,
                             options_.confidence_level, &solution);
 

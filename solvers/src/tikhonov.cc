@@ -48,11 +48,7 @@ LinearSolution TikhonovSolver::Solve(const LinearProblem& problem) const {
   const double lambda = ChooseLambda(path, options_.regularisation, &rep);
 
   const Eigen::VectorXd z = path.Solve(lambda);
-  solution.x = r.ToX(z);
-  solution.residual = problem.A * solution.x - problem.b;
-  const Eigen::VectorXd weighted_residual = r.weighted.A * solution.x - r.weighted.b;
-  solution.summary.cost = 0.5 * weighted_residual.squaredNorm();
-  solution.summary.iterations = 1;
+  const Eigen::VectorXd weighted_residual = internal::SetAnswer(problem, r, z, &solution);
   const Eigen::MatrixXd xz = path.Inverse(lambda);  // z - z0 = X (b - A z0)
   internal::FillUncertainty(problem, r.basis * xz, weighted_residual,
                             path.EffectiveParameters(lambda), options_.confidence_level,
@@ -62,16 +58,11 @@ LinearSolution TikhonovSolver::Solve(const LinearProblem& problem) const {
   solution.bias_estimate =
       r.basis * ((rz - Eigen::MatrixXd::Identity(rz.rows(), rz.cols())) * (z - z0));
 
-  solution.summary.status = SolverStatus::kSolved;
   std::ostringstream msg;
   msg << "Tikhonov (" << options_.regularisation.op << "), lambda = " << lambda << " by "
       << rep.parameter_choice << "; " << path.EffectiveParameters(lambda)
       << " effective parameters of " << r.A.cols();
-  solution.summary.message = msg.str();
-  if (!rep.note.empty()) solution.summary.warnings.push_back(rep.note);
-  solution.summary.warnings.insert(solution.summary.warnings.end(), r.warnings.begin(),
-                                   r.warnings.end());
-  solution.summary.time_seconds = clock.Seconds();
+  internal::FinishRegularised(msg.str(), r, clock.Seconds(), &solution);
   return solution;
 }
 

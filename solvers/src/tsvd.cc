@@ -129,11 +129,7 @@ LinearSolution TsvdSolver::Solve(const LinearProblem& problem) const {
   const Eigen::MatrixXd z_map =
       vk * s.head(chosen).cwiseInverse().asDiagonal() * uk.transpose();
   const Eigen::VectorXd z = z_map * r.b;
-  solution.x = r.ToX(z);
-  solution.residual = problem.A * solution.x - problem.b;
-  const Eigen::VectorXd weighted_residual = r.weighted.A * solution.x - r.weighted.b;
-  solution.summary.cost = 0.5 * weighted_residual.squaredNorm();
-  solution.summary.iterations = 1;
+  const Eigen::VectorXd weighted_residual = internal::SetAnswer(problem, r, z, &solution);
   internal::FillUncertainty(problem, r.basis * z_map, weighted_residual, chosen,
                             options_.confidence_level, &solution);
   const Eigen::MatrixXd rz = vk * vk.transpose();  // resolution in z
@@ -142,15 +138,10 @@ LinearSolution TsvdSolver::Solve(const LinearProblem& problem) const {
   solution.bias_estimate =
       r.basis * ((rz - Eigen::MatrixXd::Identity(rz.rows(), rz.cols())) * zt);
 
-  solution.summary.status = SolverStatus::kSolved;
   std::ostringstream msg;
   msg << "truncated SVD: " << chosen << " of " << r.A.cols() << " singular values kept ("
       << rep.parameter_choice << ")";
-  solution.summary.message = msg.str();
-  if (!rep.note.empty()) solution.summary.warnings.push_back(rep.note);
-  solution.summary.warnings.insert(solution.summary.warnings.end(), r.warnings.begin(),
-                                   r.warnings.end());
-  solution.summary.time_seconds = clock.Seconds();
+  internal::FinishRegularised(msg.str(), r, clock.Seconds(), &solution);
   return solution;
 }
 

@@ -91,6 +91,8 @@ Fit FitInstance(const std::shared_ptr<const Structure>& structure,
           reduced.ritz = BuildRitzBasis(pencil, states, options, from);
         } catch (const InputError&) {
           break;
+        } catch (const NumericalError&) {
+          break;
         }
         NonlinearSolution sol;
         if (solve(from, reduced, &sol) < 0) break;

@@ -17,22 +17,6 @@
 namespace femup::file_info {
 namespace {
 
-// "1-10, 15": sorted labels with runs joined.
-std::string Ranges(std::vector<int> labels) {
-  std::sort(labels.begin(), labels.end());
-  labels.erase(std::unique(labels.begin(), labels.end()), labels.end());
-  std::string out;
-  for (std::size_t i = 0; i < labels.size();) {
-    std::size_t j = i;
-    while (j + 1 < labels.size() && labels[j + 1] == labels[j] + 1) ++j;
-    if (!out.empty()) out += ", ";
-    out += std::to_string(labels[i]);
-    if (j > i) out += "-" + std::to_string(labels[j]);
-    i = j + 1;
-  }
-  return out.empty() ? "none" : out;
-}
-
 // --- Names of UFF codes -------------------------------------------------------
 
 std::string FunctionTypeName(int type) {
@@ -232,14 +216,14 @@ void DescribeNodes(const UffNodes& d, std::string* text, nlohmann::json* j) {
   }
   std::ostringstream t;
   t << "nodes (" << (d.dataset == 15 ? "single" : "double")
-    << " precision): " << d.nodes.size() << " (" << Ranges(labels) << ")";
+    << " precision): " << d.nodes.size() << " (" << LabelRanges(labels) << ")";
   if (!d.nodes.empty()) {
     const char* axes[3] = {"X", "Y", "Z"};
     for (std::size_t c = 0; c < 3; ++c)
       t << (c ? ", " : "; ") << axes[c] << " " << Num(lo[c]) << " .. " << Num(hi[c]);
   }
   std::vector<int> cs(systems.begin(), systems.end());
-  t << "; coordinate systems " << Ranges(cs);
+  t << "; coordinate systems " << LabelRanges(cs);
   *text = t.str();
   (*j)["kind"] = "nodes";
   (*j)["nodes"] = d.nodes.size();
@@ -286,7 +270,7 @@ void DescribeShape(const UffModeShape& s, std::string* text, nlohmann::json* j) 
     t << Num(s.frequency_hz) << " Hz";
     (*j)["frequency_hz"] = s.frequency_hz;
   }
-  t << "; " << s.nodes.size() << " nodes (" << Ranges(s.nodes) << ") x " << per_node
+  t << "; " << s.nodes.size() << " nodes (" << LabelRanges(s.nodes) << ") x " << per_node
     << " values (";
   for (std::size_t k = 0; k < dirs.size(); ++k) t << (k ? " " : "") << dirs[k];
   t << "), " << CharacteristicName(s.data_characteristic) << ", "

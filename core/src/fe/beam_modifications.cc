@@ -79,6 +79,17 @@ void AddMassPiece(double z0, double length, double lo, double hi, double m_lo,
   }
 }
 
+// Calls f(e, ze0, length, lo, hi) for each element e of the cantilever that
+// overlaps [z0, z1]: its start ze0 and length, and [lo, hi] the overlap.
+template <typename F>
+void ForEachOverlap(const Structure& s, double z0, double z1, F f) {
+  for (std::size_t e = 0; e < s.elements.size(); ++e) {
+    const double ze0 = s.elements[e].x0, ze1 = s.elements[e].x1;
+    const double lo = std::max(z0, ze0), hi = std::min(z1, ze1);
+    if (hi > lo) f(e, ze0, ze1 - ze0, lo, hi);
+  }
+}
+
 }  // namespace
 
 SparseMatrix TransverseMassOverInterval(const Structure& s, double z0, double z1,
@@ -97,21 +108,18 @@ SparseMatrix TransverseMassOverInterval(const Structure& s, double z0, double z1
   };
   const double top = std::min(z1, tip);
   Triplets t;
-  for (std::size_t e = 0; e < s.elements.size(); ++e) {
-    const double ze0 = s.elements[e].x0, ze1 = s.elements[e].x1;
-    const double lo = std::max(z0, ze0), hi = std::min(top, ze1);
-    if (!(hi > lo)) continue;
-    const double length = ze1 - ze0;
-    Matrix6 me = Matrix6::Zero();
-    // Full part [lo, min(hi, z_fade)], faded part [max(lo, z_fade), hi].
-    AddMassPiece(ze0, length, lo, std::min(hi, z_fade), mass_per_length, mass_per_length,
-                 &me);
-    if (fade_length > 0) {
-      const double flo = std::max(lo, z_fade);
-      AddMassPiece(ze0, length, flo, hi, m_at(flo), m_at(hi), &me);
-    }
-    Scatter(0.5 * (me + me.transpose()), ElementDofs(nodes, e), &t);
-  }
+  ForEachOverlap(s, z0, top,
+                 [&](std::size_t e, double ze0, double length, double lo, double hi) {
+                   Matrix6 me = Matrix6::Zero();
+                   // Full part [lo, min(hi, z_fade)], faded part [max(lo, z_fade), hi].
+                   AddMassPiece(ze0, length, lo, std::min(hi, z_fade), mass_per_length,
+                                mass_per_length, &me);
+                   if (fade_length > 0) {
+                     const double flo = std::max(lo, z_fade);
+                     AddMassPiece(ze0, length, flo, hi, m_at(flo), m_at(hi), &me);
+                   }
+                   Scatter(0.5 * (me + me.transpose()), ElementDofs(nodes, e), &t);
+                 });
   return FromTriplets(n, t);
 }
 
@@ -122,21 +130,18 @@ SparseMatrix BendingStiffnessOverInterval(const Structure& s, double z0, double 
   RequireInterval(z0, z1, Tip(s), /*z1_within_tip=*/true);
   const int n = static_cast<int>(s.dof_labels.size());
   Triplets t;
-  for (std::size_t e = 0; e < s.elements.size(); ++e) {
-    const double ze0 = s.elements[e].x0, ze1 = s.elements[e].x1;
-    const double lo = std::max(z0, ze0), hi = std::min(z1, ze1);
-    if (!(hi > lo)) continue;
-    const double length = ze1 - ze0;
-    // N'' is linear in z: degree 2, exact with the Gauss rule.
-    const double half = 0.5 * (hi - lo);
-    Matrix6 ke = Matrix6::Zero();
-    for (std::size_t q = 0; q < kGaussX.size(); ++q) {
-      const double z = lo + 0.5 * (1 + kGaussX[q]) * (hi - lo);
-      const Vector6 b = internal::TransverseCurvature((z - ze0) / length, length);
-      ke += (kGaussW[q] * half * delta_ei) * (b * b.transpose());
-    }
-    Scatter(0.5 * (ke + ke.transpose()), ElementDofs(nodes, e), &t);
-  }
+  ForEachOverlap(
+      s, z0, z1, [&](std::size_t e, double ze0, double length, double lo, double hi) {
+        // N'' is linear in z: degree 2, exact with the Gauss rule.
+        const double half = 0.5 * (hi - lo);
+        Matrix6 ke = Matrix6::Zero();
+        for (std::size_t q = 0; q < kGaussX.size(); ++q) {
+          const double z = lo + 0.5 * (1 + kGaussX[q]) * (hi - lo);
+          const Vector6 b = internal::TransverseCurvature((z - ze0) / length, length);
+          ke += (kGaussW[q] * half * delta_ei) * (b * b.transpose());
+        }
+        Scatter(0.5 * (ke + ke.transpose()), ElementDofs(nodes, e), &t);
+      });
   return FromTriplets(n, t);
 }
 

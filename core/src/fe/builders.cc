@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "fe/assembly.h"
+#include "femup/core/enum_names.h"
 #include "femup/core/errors.h"
 #include "femup/core/fe/beam_modifications.h"
 #include "text_util.h"
@@ -149,24 +150,17 @@ Structure BuildSpringMassChain(const ChainSpec& spec) {
   return s;
 }
 
+constexpr EnumName<AddedMassBasis> kAddedMassBasisNames[] = {
+    {AddedMassBasis::kElementMass, "element_mass"},
+    {AddedMassBasis::kTransverse, "transverse"},
+};
+
 const char* ToString(AddedMassBasis basis) {
-  switch (basis) {
-    case AddedMassBasis::kElementMass:
-      return "element_mass";
-    case AddedMassBasis::kTransverse:
-      return "transverse";
-  }
-  return "unknown";
+  return NameIn(kAddedMassBasisNames, basis, "unknown");
 }
 
 bool AddedMassBasisFromString(const std::string& text, AddedMassBasis* basis) {
-  for (AddedMassBasis b : {AddedMassBasis::kElementMass, AddedMassBasis::kTransverse}) {
-    if (text == ToString(b)) {
-      *basis = b;
-      return true;
-    }
-  }
-  return false;
+  return ValueIn(kAddedMassBasisNames, text, basis);
 }
 
 std::vector<double> UniformHeights(double length, int num_elements) {

@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
+#include "femup/core/enum_names.h"
 #include "femup/core/errors.h"
 
 namespace femup {
@@ -98,24 +99,17 @@ Matrix12 Rotate(const Matrix12& t, const Matrix12& local) {
 
 }  // namespace
 
+constexpr EnumName<BeamTheory> kBeamTheoryNames[] = {
+    {BeamTheory::kEulerBernoulli, "euler_bernoulli"},
+    {BeamTheory::kTimoshenko, "timoshenko"},
+};
+
 const char* ToString(BeamTheory theory) {
-  switch (theory) {
-    case BeamTheory::kEulerBernoulli:
-      return "euler_bernoulli";
-    case BeamTheory::kTimoshenko:
-      return "timoshenko";
-  }
-  return "unknown";
+  return NameIn(kBeamTheoryNames, theory, "unknown");
 }
 
 bool BeamTheoryFromString(const std::string& text, BeamTheory* theory) {
-  for (BeamTheory t : {BeamTheory::kEulerBernoulli, BeamTheory::kTimoshenko}) {
-    if (text == ToString(t)) {
-      *theory = t;
-      return true;
-    }
-  }
-  return false;
+  return ValueIn(kBeamTheoryNames, text, theory);
 }
 
 Invalid FrameSection3d::Validate(BeamTheory theory) const {

@@ -4,31 +4,23 @@
 #include <cmath>
 #include <sstream>
 
+#include "femup/core/enum_names.h"
 #include "femup/core/errors.h"
 
 namespace femup {
 
+constexpr EnumName<ParameterKind> kParameterKindNames[] = {
+    {ParameterKind::kMass, "mass"},
+    {ParameterKind::kStiffness, "stiffness"},
+    {ParameterKind::kAddedMass, "added_mass"},
+};
+
 const char* ToString(ParameterKind kind) {
-  switch (kind) {
-    case ParameterKind::kMass:
-      return "mass";
-    case ParameterKind::kStiffness:
-      return "stiffness";
-    case ParameterKind::kAddedMass:
-      return "added_mass";
-  }
-  return "unknown";
+  return NameIn(kParameterKindNames, kind, "unknown");
 }
 
 bool ParameterKindFromString(const std::string& text, ParameterKind* kind) {
-  for (ParameterKind k :
-       {ParameterKind::kMass, ParameterKind::kStiffness, ParameterKind::kAddedMass}) {
-    if (text == ToString(k)) {
-      *kind = k;
-      return true;
-    }
-  }
-  return false;
+  return ValueIn(kParameterKindNames, text, kind);
 }
 
 namespace {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "fe/assembly.h"
+#include "femup/core/enum_names.h"
 #include "femup/core/errors.h"
 
 namespace femup {
@@ -120,26 +121,18 @@ SparseMatrix AssembleGroups(int n, const std::vector<SpaceFrameElement>& element
 
 }  // namespace
 
+constexpr EnumName<FaceBracing> kFaceBracingNames[] = {
+    {FaceBracing::kNone, "none"},
+    {FaceBracing::kDiagonal, "diagonal"},
+    {FaceBracing::kX, "x"},
+};
+
 const char* ToString(FaceBracing bracing) {
-  switch (bracing) {
-    case FaceBracing::kNone:
-      return "none";
-    case FaceBracing::kDiagonal:
-      return "diagonal";
-    case FaceBracing::kX:
-      return "x";
-  }
-  return "unknown";
+  return NameIn(kFaceBracingNames, bracing, "unknown");
 }
 
 bool FaceBracingFromString(const std::string& text, FaceBracing* bracing) {
-  for (FaceBracing b : {FaceBracing::kNone, FaceBracing::kDiagonal, FaceBracing::kX}) {
-    if (text == ToString(b)) {
-      *bracing = b;
-      return true;
-    }
-  }
-  return false;
+  return ValueIn(kFaceBracingNames, text, bracing);
 }
 
 Invalid SpaceFrameSpec::Validate() const {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <sstream>
 
+#include "femup/core/enum_names.h"
 #include "femup/core/errors.h"
 
 namespace femup {
@@ -25,16 +26,14 @@ ParameterPlan PaperParameterPlan() {
 
 namespace {
 
+constexpr EnumName<ParameterFamily::Selection> kSelectionNames[] = {
+    {ParameterFamily::Selection::kAll, "all"},
+    {ParameterFamily::Selection::kWet, "wet"},
+    {ParameterFamily::Selection::kDry, "dry"},
+};
+
 const char* SelectionName(ParameterFamily::Selection s) {
-  switch (s) {
-    case ParameterFamily::Selection::kAll:
-      return "all";
-    case ParameterFamily::Selection::kWet:
-      return "wet";
-    case ParameterFamily::Selection::kDry:
-      return "dry";
-  }
-  return "all";
+  return NameIn(kSelectionNames, s, "all");
 }
 
 const SparseMatrix& BasisOf(const ElementMatrices& e, ParameterKind kind) {

@@ -5,6 +5,7 @@
 // each dataset family in uff_datasets_*.cc.
 #include "femup/core/io/uff.h"
 
+#include <algorithm>
 #include <string>
 #include <string_view>
 #include <variant>
@@ -110,6 +111,21 @@ std::string FormatUff(const std::vector<UffDataset>& datasets, const std::string
 
 void WriteUff(const std::string& path, const std::vector<UffDataset>& datasets) {
   internal::WriteFileAtomically(path, FormatUff(datasets, path));
+}
+
+std::string LabelRanges(std::vector<int> labels) {
+  std::sort(labels.begin(), labels.end());
+  labels.erase(std::unique(labels.begin(), labels.end()), labels.end());
+  std::string out;
+  for (std::size_t i = 0; i < labels.size();) {
+    std::size_t j = i;
+    while (j + 1 < labels.size() && labels[j + 1] == labels[j] + 1) ++j;
+    if (!out.empty()) out += ", ";
+    out += std::to_string(labels[i]);
+    if (j > i) out += "-" + std::to_string(labels[j]);
+    i = j + 1;
+  }
+  return out.empty() ? "none" : out;
 }
 
 }  // namespace femup

@@ -36,21 +36,6 @@ std::string Xyz(const Eigen::Vector3d& p) {
   return Xyz(std::array<double, 3>{p.x(), p.y(), p.z()});
 }
 
-// "1-10, 15, 20-22": sorted labels with runs joined.
-std::string Ranges(std::vector<int> labels) {
-  std::sort(labels.begin(), labels.end());
-  std::string out;
-  for (std::size_t i = 0; i < labels.size();) {
-    std::size_t j = i;
-    while (j + 1 < labels.size() && labels[j + 1] == labels[j] + 1) ++j;
-    if (!out.empty()) out += ", ";
-    out += std::to_string(labels[i]);
-    if (j > i) out += "-" + std::to_string(labels[j]);
-    i = j + 1;
-  }
-  return out.empty() ? "none" : out;
-}
-
 std::string DirectionsHeld(int per_node) {
   std::string out;
   for (int d = 1; d <= std::min(per_node, 6); ++d)
@@ -281,7 +266,7 @@ UffModes ExtractUffModes(const UffFile& file, const std::string& name,
     const std::string what = ModeName(s, e.frequency_hz);
     const std::string against =
         "the modes must share one node set: " + ModeName(ref, first.frequency_hz) +
-        " at line " + std::to_string(ref.line) + " has nodes " + Ranges(ref.nodes);
+        " at line " + std::to_string(ref.line) + " has nodes " + LabelRanges(ref.nodes);
     const auto rows = NodeRows(s, name);
     if (s.values.cols() != per_node) {
       throw InputError(
@@ -307,8 +292,8 @@ UffModes ExtractUffModes(const UffFile& file, const std::string& name,
 
   // Sensors: explicit entries, skipped nodes, then the rest by coordinates.
   const std::string in_modes = "dataset 55 of " + name + " (line " +
-                               std::to_string(ref.line) + ": nodes " + Ranges(ref.nodes) +
-                               ", " + std::to_string(per_node) +
+                               std::to_string(ref.line) + ": nodes " +
+                               LabelRanges(ref.nodes) + ", " + std::to_string(per_node) +
                                " values per node: " + DirectionsHeld(per_node) + ")";
   std::map<int, std::vector<const UffSensor*>> explicit_by_node;
   for (const UffSensor& s : map.sensors) {
@@ -384,7 +369,7 @@ UffModes ExtractUffModes(const UffFile& file, const std::string& name,
                      [&] {
                        std::vector<int> l;
                        for (const UffNode& n : map.geometry) l.push_back(n.label);
-                       return Ranges(l);
+                       return LabelRanges(l);
                      }() +
                      "); map it in uff_dofs or skip it (\"" + std::to_string(node) +
                      "\": skip)");

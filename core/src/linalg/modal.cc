@@ -31,7 +31,8 @@ Modes SolveDense(const SparseMatrix& k, const SparseMatrix& m, int num_modes) {
   Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(
       kd, md, Eigen::ComputeEigenvectors | Eigen::Ax_lBx);
   if (es.info() != Eigen::Success) {
-    throw InputError("modal analysis", "dense generalised eigensolver did not converge");
+    throw NumericalError("modal analysis",
+                         "dense generalised eigensolver did not converge");
   }
   const int n = static_cast<int>(kd.rows());
   const int count = num_modes < 0 ? n : num_modes;
@@ -61,6 +62,17 @@ Invalid EigenOptions::Validate() const {
   if (!(tolerance > 0)) return {"tolerance", "tolerance must be positive"};
   if (max_iterations < 1) return {"max_iterations", "max_iterations must be >= 1"};
   return {};
+}
+
+EigenSolution TrySolveModes(const SparseMatrix& stiffness, const SparseMatrix& mass,
+                            const EigenOptions& options) {
+  EigenSolution solution;
+  try {
+    solution.modes = SolveModes(stiffness, mass, options);
+  } catch (const NumericalError& e) {
+    solution.failure = e.what();
+  }
+  return solution;
 }
 
 Modes SolveModes(const SparseMatrix& stiffness, const SparseMatrix& mass,

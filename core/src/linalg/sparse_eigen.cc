@@ -353,6 +353,8 @@ Modes SolveModesSparse(const SparseMatrix& K, const SparseMatrix& M,
     throw InputError(kWhere, out.str());
   }
   op.set_shift(shift);  // the solver's own set_shift(shift) then reuses this
+  // K - shift*M singular at the shift (a free-free model at shift 0): the
+  // study's shift or supports are to change, so an input error that says so.
   if (!op.failure().empty()) {
     throw InputError(kWhere, "cannot factorise K - shift*M: " + op.failure() + " " +
                                  Context(k, n, shift));
@@ -390,17 +392,17 @@ Modes SolveModesSparse(const SparseMatrix& K, const SparseMatrix& M,
           << ", tolerance = " << Format(options.tolerance) << ", ncv = " << ncv << ") "
           << Context(k, n, shift)
           << "; raise max_iterations or tolerance, or move the shift";
-      throw InputError(kWhere, out.str());
+      throw NumericalError(kWhere, out.str());
     }
     eigenvalues = solver.eigenvalues();
     shapes = solver.eigenvectors();
-  } catch (const InputError&) {
+  } catch (const NumericalError&) {
     throw;
   } catch (const std::exception& e) {
-    throw InputError(kWhere,
-                     std::string("shift-invert Lanczos failed (") + e.what() +
-                         "); K - shift*M may be nearly singular: move the shift " +
-                         Context(k, n, shift));
+    throw NumericalError(kWhere,
+                         std::string("shift-invert Lanczos failed (") + e.what() +
+                             "); K - shift*M may be nearly singular: move the shift " +
+                             Context(k, n, shift));
   }
 
   // Ascending eigenvalues (Spectra already sorts; keep it explicit).
@@ -422,7 +424,7 @@ Modes SolveModesSparse(const SparseMatrix& K, const SparseMatrix& M,
       std::ostringstream out;
       out << "mode " << j << " has modal mass " << Format(modal_mass)
           << "; expected a positive value " << Context(k, n, shift);
-      throw InputError(kWhere, out.str());
+      throw NumericalError(kWhere, out.str());
     }
     phi /= std::sqrt(modal_mass);
     Eigen::Index largest = 0;

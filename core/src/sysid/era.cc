@@ -8,6 +8,7 @@
 #include <limits>
 #include <sstream>
 
+#include "femup/core/enum_names.h"
 #include "femup/core/errors.h"
 #include "femup/core/linalg/modal.h"
 
@@ -271,25 +272,17 @@ Realisation Realise(const Factorisation& f, int n, const EraOptions& options) {
 
 }  // namespace
 
-const char* ToString(PoleStatus status) {
-  switch (status) {
-    case PoleStatus::kAccepted:
-      return "accepted";
-    case PoleStatus::kNotOscillatory:
-      return "not_oscillatory";
-    case PoleStatus::kNegativeDamping:
-      return "negative_damping";
-    case PoleStatus::kExcessiveDamping:
-      return "excessive_damping";
-    case PoleStatus::kOutOfBand:
-      return "out_of_band";
-    case PoleStatus::kLowEmac:
-      return "low_emac";
-    case PoleStatus::kLowMpc:
-      return "low_mpc";
-  }
-  return "?";
-}
+constexpr EnumName<PoleStatus> kPoleStatusNames[] = {
+    {PoleStatus::kAccepted, "accepted"},
+    {PoleStatus::kNotOscillatory, "not_oscillatory"},
+    {PoleStatus::kNegativeDamping, "negative_damping"},
+    {PoleStatus::kExcessiveDamping, "excessive_damping"},
+    {PoleStatus::kOutOfBand, "out_of_band"},
+    {PoleStatus::kLowEmac, "low_emac"},
+    {PoleStatus::kLowMpc, "low_mpc"},
+};
+
+const char* ToString(PoleStatus status) { return NameIn(kPoleStatusNames, status, "?"); }
 
 namespace {
 

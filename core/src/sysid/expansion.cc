@@ -34,6 +34,23 @@ ExpandedShape FitModalCoordinates(const Eigen::MatrixXd& phi,
   return out;
 }
 
+// How many model modes the modal-coordinate fit uses (options.num_modes, or
+// one per sensor), checked against the sensors and the model modes given.
+int ModesToFit(const ExpansionOptions& options, int s, const Modes& model_modes, int n) {
+  const int k = options.num_modes > 0 ? options.num_modes : s;
+  if (k > s) {
+    throw InputError("expansion.num_modes",
+                     std::to_string(k) + " modes from " + std::to_string(s) +
+                         " sensors: at most as many modes as sensors");
+  }
+  if (k > model_modes.size() || model_modes.shapes.rows() != n) {
+    throw InputError(
+        "expansion.model_modes",
+        "needs " + std::to_string(k) + " modes on " + std::to_string(n) + " DOFs");
+  }
+  return k;
+}
+
 }  // namespace
 
 ExpandedShape ExpandShape(const SparseMatrix& stiffness, const SparseMatrix& mass,
@@ -84,17 +101,7 @@ ExpandedShape ExpandShape(const SparseMatrix& stiffness, const SparseMatrix& mas
     out.condition_number = 0;
     return out;
   }
-  const int k = options.num_modes > 0 ? options.num_modes : s;
-  if (k > s) {
-    throw InputError("expansion.num_modes",
-                     std::to_string(k) + " modes from " + std::to_string(s) +
-                         " sensors: at most as many modes as sensors");
-  }
-  if (k > model_modes.size() || model_modes.shapes.rows() != n) {
-    throw InputError(
-        "expansion.model_modes",
-        "needs " + std::to_string(k) + " modes on " + std::to_string(n) + " DOFs");
-  }
+  const int k = ModesToFit(options, s, model_modes, n);
   const Eigen::MatrixXd phi = model_modes.shapes.leftCols(k);
   const Eigen::MatrixXd phi_a = phi(sensors, Eigen::all);
   out = FitModalCoordinates(phi, phi_a, measured);
@@ -126,17 +133,7 @@ ExpandedShape ExpandShape(const SparseMatrix& stiffness, const SparseMatrix& mas
                      "dynamic expansion needs sensors on model DOFs; these read between "
                      "nodes: use serep or lsq");
   }
-  const int k = options.num_modes > 0 ? options.num_modes : s;
-  if (k > s) {
-    throw InputError("expansion.num_modes",
-                     std::to_string(k) + " modes from " + std::to_string(s) +
-                         " sensors: at most as many modes as sensors");
-  }
-  if (k > model_modes.size() || model_modes.shapes.rows() != n) {
-    throw InputError(
-        "expansion.model_modes",
-        "needs " + std::to_string(k) + " modes on " + std::to_string(n) + " DOFs");
-  }
+  const int k = ModesToFit(options, s, model_modes, n);
   const Eigen::MatrixXd phi = model_modes.shapes.leftCols(k);
   const Eigen::MatrixXd phi_a = sensors * phi;
   ExpandedShape out = FitModalCoordinates(phi, phi_a, measured);

@@ -5,6 +5,7 @@
 #include <random>
 #include <sstream>
 
+#include "femup/core/enum_names.h"
 #include "femup/core/errors.h"
 
 namespace femup {
@@ -16,16 +17,14 @@ double Omega(double eigenvalue) { return eigenvalue > 0 ? std::sqrt(eigenvalue) 
 
 }  // namespace
 
+constexpr EnumName<ResponseQuantity> kResponseQuantityNames[] = {
+    {ResponseQuantity::kDisplacement, "displacement"},
+    {ResponseQuantity::kVelocity, "velocity"},
+    {ResponseQuantity::kAcceleration, "acceleration"},
+};
+
 const char* ToString(ResponseQuantity quantity) {
-  switch (quantity) {
-    case ResponseQuantity::kDisplacement:
-      return "displacement";
-    case ResponseQuantity::kVelocity:
-      return "velocity";
-    case ResponseQuantity::kAcceleration:
-      return "acceleration";
-  }
-  return "?";
+  return NameIn(kResponseQuantityNames, quantity, "?");
 }
 
 const char* ToString(DampingModel model) {

@@ -228,4 +228,8 @@ void WriteUff(const std::string& path, const std::vector<UffDataset>& datasets);
 // for the file in messages.
 std::string FormatUff(const std::vector<UffDataset>& datasets, const std::string& name);
 
+// Node or other labels as a reader reads them: sorted, repeats dropped, runs
+// joined ("1-10, 15, 20-22"); "none" when there are none.
+std::string LabelRanges(std::vector<int> labels);
+
 }  // namespace femup

@@ -30,9 +30,24 @@ struct EigenOptions {
   Invalid Validate() const;
 };
 
+// What became of an eigen-solve on valid input: the modes, or why the
+// numerical method failed (the dense solver or shift-invert Lanczos did not
+// converge, a mode came out with no positive modal mass), with what to change.
+struct EigenSolution {
+  Modes modes;          // empty unless ok()
+  std::string failure;  // empty when ok
+  bool ok() const { return failure.empty(); }
+};
+
 // Lowest modes of (K, M), M-normalised, with the sign fixed so that the entry of
-// largest magnitude is positive. Throws InputError when M is not positive
-// definite, sizes differ, or the sparse solver does not converge.
+// largest magnitude is positive. Throws InputError for unusable input (sizes
+// differ, invalid options, a non-finite entry, M not positive definite, K -
+// shift*M singular at the shift); a numerical failure is the solution's status.
+EigenSolution TrySolveModes(const SparseMatrix& stiffness, const SparseMatrix& mass,
+                            const EigenOptions& options = {});
+
+// TrySolveModes for callers that cannot go on without the modes: a numerical
+// failure throws NumericalError (errors.h), input errors InputError.
 Modes SolveModes(const SparseMatrix& stiffness, const SparseMatrix& mass,
                  const EigenOptions& options = {});
 
