@@ -25,7 +25,7 @@ class InputError : public std::runtime_error {
 };
 
 // A numerical method failed on valid input: an eigensolver that did not
-// converge, a shifted factorisation that broke down. Not an InputError: the
+// converge, a mode without positive modal mass. Not an InputError: the
 // input was usable; the command line reports it apart (exit code 3) and a fit
 // that meets one treats that evaluation as failed.
 class NumericalError : public std::runtime_error {
