@@ -201,6 +201,10 @@ class Frame:
             w, V = spl.eigsh(K, k=count, M=M, sigma=0.0, which="LM")
             order = np.argsort(w)
             w, V = w[order], V[:, order]
+        # eigh and eigsh (random start vector) return each shape with an arbitrary sign;
+        # fix it (largest-magnitude entry positive) so that a seed makes the same case,
+        # shape noise included, on every run.
+        V = V * np.where(V[np.argmax(np.abs(V), axis=0), np.arange(V.shape[1])] < 0, -1.0, 1.0)
         full = np.zeros((self.num_dofs(), V.shape[1]))
         full[free, :] = V
         full = full[self._master, :]
