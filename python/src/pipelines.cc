@@ -398,6 +398,7 @@ void BindDiagnosis(py::module_& m) {
       .def_readonly("kind", &femup::RankedClass::kind)
       .def_readonly("region", &femup::RankedClass::region)
       .def_readonly("probability", &femup::RankedClass::probability)
+      .def_readonly("laplace_probability", &femup::RankedClass::laplace_probability)
       .def_readonly("group_probability", &femup::RankedClass::group_probability)
       .def_readonly("equivalent", &femup::RankedClass::equivalent)
       .def_readonly("names", &femup::RankedClass::names)
@@ -425,6 +426,7 @@ void BindDiagnosis(py::module_& m) {
       .def_readonly("shape_temperature", &femup::EffectRanking::shape_temperature)
       .def_readonly("best_chi2_p_value", &femup::EffectRanking::best_chi2_p_value)
       .def_readonly("num_residuals", &femup::EffectRanking::num_residuals)
+      .def_readonly("bagging_copies", &femup::EffectRanking::bagging_copies)
       .def_readonly("skipped", &femup::EffectRanking::skipped)
       .def_readonly("form_errors", &femup::EffectRanking::form_errors);
   py::class_<femup::StructureDiagnosisResult>(

@@ -39,6 +39,7 @@ void WriteStructureDiagnosisOutputs(const StructureDiagnosisResult& r, bool plot
   j["shape_temperature"] = k.shape_temperature;
   j["best_chi2_p_value"] = k.best_chi2_p_value;
   j["residuals"] = k.num_residuals;
+  j["bagging_copies"] = k.bagging_copies;
   j["form_errors"] = nlohmann::json::array();
   for (const FormErrorAllowance& e : k.form_errors)
     j["form_errors"].push_back({{"variant", e.name},
@@ -52,6 +53,7 @@ void WriteStructureDiagnosisOutputs(const StructureDiagnosisResult& r, bool plot
     nlohmann::json cj = {{"kind", c.kind},
                          {"region", c.region},
                          {"probability", c.probability},
+                         {"laplace_probability", c.laplace_probability},
                          {"chi2", c.chi2},
                          {"log_evidence", c.evidence.log_evidence},
                          {"log_occam", c.evidence.log_occam},

@@ -15,6 +15,7 @@
 #include "femup/core/parallel.h"
 #include "femup/problems/effect_priors.h"
 #include "femup/problems/model_effect_pencil.h"
+#include "femup/solvers/bagged_posterior.h"
 #include "femup/solvers/nonlinear_solver.h"
 
 namespace femup {
@@ -225,6 +226,8 @@ Invalid EffectRankingOptions::Validate() const {
   if (!(shape_sigma > 0) || !std::isfinite(shape_sigma))
     return {"shape_sigma", "must be positive and finite"};
   if (threads < 0) return {"threads", "must be >= 0 (0: every core)"};
+  if (bagging_copies < 0)
+    return {"bagging_copies", "must be >= 0 (0: the Laplace posterior alone)"};
   const auto names = AvailableNonlinearSolvers();
   if (std::find(names.begin(), names.end(), solver) == names.end())
     return {"solver", "unknown nonlinear solver '" + solver + "'"};
@@ -478,10 +481,28 @@ EffectRanking RankModelEffects(const Structure& structure_in,
     log_evidence[i] = classes[i].evidence.log_evidence;
     prior[i] = std::exp(classes[i].log_prior);
   }
-  const Eigen::VectorXd p = PosteriorProbabilities(log_evidence, prior);
+  const Eigen::VectorXd laplace = PosteriorProbabilities(log_evidence, prior);
+  Eigen::VectorXd p = laplace;
+  if (options.bagging_copies > 0) {
+    std::vector<ClassFit> fits_for_bagging(classes.size());
+    for (std::size_t i = 0; i < classes.size(); ++i) {
+      ClassFit& b = fits_for_bagging[i];
+      b.residual = residuals[i].cwiseProduct(row_scale);
+      b.log_evidence = log_evidence[static_cast<Eigen::Index>(i)];
+      b.prior = prior[static_cast<Eigen::Index>(i)];
+    }
+    BaggingOptions bagging;
+    bagging.copies = options.bagging_copies;
+    // Frequencies are drawn among the frequencies and shape entries among the
+    // shape entries: a copy has the measured design.
+    std::vector<int> strata(is_frequency.begin(), is_frequency.end());
+    p = BaggedPosteriorProbabilities(fits_for_bagging, bagging, strata);
+  }
+  out.bagging_copies = options.bagging_copies;
   std::map<std::string, double> by_kind;
   for (std::size_t i = 0; i < classes.size(); ++i) {
     classes[i].probability = p[i];
+    classes[i].laplace_probability = laplace[i];
     by_kind[classes[i].kind] += p[i];
   }
   auto label = [](const RankedClass& c) {

@@ -45,6 +45,7 @@ StructureDiagnosisResult RunStructureDiagnosis(const Study& study) {
   options.solver = spec.solver;
   options.priors = spec.priors;
   options.formulation_error = spec.formulation_error;
+  options.bagging_copies = spec.bagging_copies;
   r.priors = spec.priors;
   // A named family that does not apply is the study's error, before any fit.
   for (const std::string& kind : options.kinds) {

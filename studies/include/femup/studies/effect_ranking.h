@@ -33,6 +33,17 @@
 // "none", and a real effect larger than the form error is still found. This
 // comes before the temperatures, which then judge what is left.
 //
+// Probabilities that hold when no class is right (a bagged posterior,
+// bagged_posterior.h): the Laplace posterior judges the classes as if one of
+// them made the data up to the (tempered) noise. On data made by another
+// formulation none does, and a difference in chi2 that a few residuals make
+// was stated with the certainty of one spread over all of them (verdicts
+// stated at >= 0.9 on the blind frame suite were right half the time). The
+// probabilities are therefore averaged over bootstrap copies of the residuals
+// (frequencies drawn among the frequencies, shape entries among the shape
+// entries), every class scored on each copy at its fit; the Laplace
+// probability is kept beside it (RankedClass::laplace_probability).
+//
 // Observational equivalence: two classes whose fits predict the data alike
 // (their whitened residuals differ by at most 1 in squared norm: less than one
 // standard deviation in all) and whose Jacobians at the fits span the same
@@ -77,6 +88,9 @@ struct EffectRankingOptions {
   // Allow for the model's form error where the structure carries form
   // variants (above); false: judge the classes on the stated noise alone.
   bool formulation_error = true;
+  // Bootstrap copies of the residuals the probabilities are averaged over
+  // (above); 0: the Laplace posterior alone.
+  int bagging_copies = 400;
   // What the study states about the families (empty: their defaults). Each
   // family it names must be among those tried.
   StatedPriors priors;
@@ -92,7 +106,8 @@ struct RankedClass {
   double chi2 = 0;
   ModelEvidence evidence;  // at the final temperature
   double log_prior = 0;
-  double probability = 0;
+  double probability = 0;          // bagged (above), or Laplace where bagging is off
+  double laplace_probability = 0;  // from the Laplace evidences alone
   bool converged = true;
   // "<kind> at <region>" of the classes observationally equivalent to this one
   // (see above), and the probability of the group (this class's included).
@@ -115,6 +130,7 @@ struct EffectRanking {
   double temperature = 1;        // of the frequencies' noise
   double shape_temperature = 1;  // of the shapes' noise
   double best_chi2_p_value = 1;
+  int bagging_copies = 0;  // the probabilities' bootstrap copies (0: Laplace)
   int num_residuals = 0;
   std::vector<std::string> skipped;             // "<kind>: why it does not apply"
   std::vector<FormErrorAllowance> form_errors;  // allowed for, one per variant

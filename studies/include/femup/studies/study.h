@@ -150,6 +150,10 @@ struct DiagnosisSpec {
   // formulation (a plane frame's members with shear deformation;
   // effect_ranking.h). Not used by the cantilever's own pipeline.
   bool formulation_error = true;
+  // Bootstrap copies the structures' probabilities are averaged over (a
+  // bagged posterior, effect_ranking.h); 0: the Laplace posterior alone. Not
+  // used by the cantilever's own pipeline.
+  int bagging_copies = 400;
   // The candidate families' form error, as a fraction of the nominal model's
   // misfit per frequency and shape entry, added to the noise in quadrature: a
   // family of a few parameters describes a real effect only to some fraction
