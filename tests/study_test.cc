@@ -504,6 +504,20 @@ TEST(Study, BadStatedPriorsNameTheField) {
               {"diagnosis.weights.rust: unknown family"});
 }
 
+// diagnosis.bagging_copies: the bootstrap copies of the structures' bagged
+// posterior (effect_ranking.h), 400 unless stated, 0 for Laplace alone.
+TEST(Study, BaggingCopiesAreReadAndChecked) {
+  EXPECT_EQ(LoadStudy(Write("bag_default.yaml", kShear)).diagnosis->bagging_copies, 400);
+  EXPECT_EQ(
+      LoadStudy(Write("bag_off.yaml", kShear + std::string("  bagging_copies: 0\n")))
+          .diagnosis->bagging_copies,
+      0);
+  ExpectError("bag_negative.yaml", kShear + std::string("  bagging_copies: -3\n"),
+              {"diagnosis.bagging_copies", "0 (Laplace probabilities alone) to 100000"});
+  ExpectError("bag_text.yaml", kShear + std::string("  bagging_copies: many\n"),
+              {"diagnosis.bagging_copies"});
+}
+
 // The cantilever's effects are placed by a fitted height: regions are refused
 // (x_m states where), and the sampled evidence takes uniform priors only.
 TEST(Study, CantileverPriorsUseHeights) {
