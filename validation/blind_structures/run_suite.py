@@ -79,6 +79,17 @@ def score(truth, d):
     best = min(d["classes"], key=lambda c: c["chi2"] + len(c["parameters"]) * math.log(n))
     bic_kind_right = best["kind"] == truth["kind"] or (
         truth["kind"] != "none" and group(best["kind"], best["region"]) == tg)
+    # The Laplace posterior on the same fits (diagnosis.json keeps it beside the
+    # bagged probability): its own verdict, scored alike.
+    lap = max(d["classes"], key=lambda c: c.get("laplace_probability", c.get("probability", 0)))
+    lap_p = lap.get("laplace_probability", v["probability"])
+    lap_kind_p = sum(c.get("laplace_probability", 0) for c in d["classes"]
+                     if c["kind"] == lap["kind"]) if "laplace_probability" in lap else \
+        v["kind_probability"]
+    lap_class_right = (lap["kind"] == truth["kind"] and
+                       lap["region"] in truth.get("regions", [truth["region"]])) or (
+        truth["kind"] != "none" and group(lap["kind"], lap["region"]) == tg)
+    lap_kind_right = lap["kind"] == truth["kind"] or lap_class_right
     informative = (truth["modes"] >= 3 and truth["shapes"] and
                    (truth["kind"] == "none" or truth["shift_in_noise"] >= 5))
     return dict(
@@ -94,7 +105,10 @@ def score(truth, d):
         group_probability=v.get("group_probability", v["probability"]),
         equivalent=v.get("equivalent", []), temperature=d["temperature"],
         kind_right=kind_eq_right, class_right=eq_right, strict_class_right=class_right,
-        bic_kind=best["kind"], bic_region=best["region"], bic_kind_right=bic_kind_right)
+        bic_kind=best["kind"], bic_region=best["region"], bic_kind_right=bic_kind_right,
+        laplace_kind=lap["kind"], laplace_probability=lap_p,
+        laplace_kind_probability=lap_kind_p, laplace_kind_right=lap_kind_right,
+        laplace_class_right=lap_class_right)
 
 
 def fraction(rows, key):
@@ -109,6 +123,13 @@ def reliability(rows, prob_key, right_key, edges=(0.0, 0.5, 0.7, 0.9, 1.0001)):
                          mean_stated=float(np.mean([r[prob_key] for r in sel])) if sel else None,
                          fraction_right=fraction(sel, right_key) if sel else None))
     return bins
+
+
+def brier(rows, prob_key, right_key):
+    """Mean squared difference of the verdict's stated probability and its being
+    right (0 or 1): 0 is perfect, 0.25 what always stating 0.5 scores."""
+    return float(np.mean([(r[prob_key] - (1.0 if r[right_key] else 0.0)) ** 2
+                          for r in rows])) if rows else float("nan")
 
 
 def summarise(rows, args):
@@ -139,6 +160,17 @@ def summarise(rows, args):
                                          if r["nominal_gap_in_noise"] >= 3], "x"),
         noise_scaled=sum(1 for r in rows if r["temperature"] > 1),
         reliability_class=reliability(rows, "probability", "class_right"),
+        brier_class=brier(rows, "probability", "class_right"),
+        # The Laplace posterior on the same fits.
+        laplace=dict(
+            top1_kind=fraction(rows, "laplace_kind_right"),
+            top1_kind_informative=fraction(inf, "laplace_kind_right"),
+            top1_kind_weak=fraction(weak, "laplace_kind_right"),
+            top1_class=fraction(rows, "laplace_class_right"),
+            false_alarms_on_none=(sum(1 for r in none if r["laplace_kind"] != "none") /
+                                  len(none)) if none else float("nan"),
+            reliability_class=reliability(rows, "laplace_probability", "laplace_class_right"),
+            brier_class=brier(rows, "laplace_probability", "laplace_class_right")),
         reliability_kind=reliability(rows, "kind_probability", "kind_right"),
         per_effect={k: dict(cases=len([r for r in rows if r["truth_effect"] == k]),
                             top1_kind=fraction([r for r in rows if r["truth_effect"] == k],
@@ -179,6 +211,7 @@ plot x title 'calibrated' lt 0, \\
 
 def table(s):
     pct = lambda x: "n/a" if x != x else "%.1f %%" % (100 * x)
+    L = s["laplace"]
     lines = [
         "# Blind suite %s: %d cases (seed %d, %s design%s%s)" % (
             s["suite"], s["cases"], s["seed"], s["design"],
@@ -186,32 +219,41 @@ def table(s):
             ", noise-free" if s["noise_free"] else "") + (
             ", stated model error %g" % s["stated_model_error"] if s["stated_model_error"] else ""),
         "",
-        "| figure | femup diagnose | flat BIC |",
-        "|---|---|---|",
-        "| top-1 kind, all | %s | %s |" % (pct(s["top1_kind"]), pct(s["bic_top1_kind"])),
-        "| top-1 kind, informative (%d) | %s | %s |" % (
-            s["informative_cases"], pct(s["top1_kind_informative"]),
-            pct(s["bic_top1_kind_informative"])),
-        "| top-1 kind, weak (%d) | %s | %s |" % (s["weak_cases"], pct(s["top1_kind_weak"]),
-                                                pct(s["bic_top1_kind_weak"])),
-        "| top-1 class (kind and region) | %s | |" % pct(s["top1_class"]),
-        "| false alarms on none (%d) | %s | |" % (s["none_cases"],
-                                                 pct(s["false_alarms_on_none"])),
-        "| ... where the model's own gap < 3 noise units (%d) | %s | |" % (
-            s["none_small_gap"], pct(s["false_alarms_small_gap"])),
-        "| ... where it is >= 3 noise units (%d) | %s | |" % (
-            s["none_cases"] - s["none_small_gap"], pct(s["false_alarms_large_gap"])),
-        "",
-        "Calibration (the verdict's stated probability, class level):",
-        "",
-        "| stated | cases | mean stated | fraction right |",
+        "| figure | femup diagnose | Laplace posterior, same fits | flat BIC |",
         "|---|---|---|---|",
+        "| top-1 kind, all | %s | %s | %s |" % (pct(s["top1_kind"]), pct(L["top1_kind"]),
+                                             pct(s["bic_top1_kind"])),
+        "| top-1 kind, informative (%d) | %s | %s | %s |" % (
+            s["informative_cases"], pct(s["top1_kind_informative"]),
+            pct(L["top1_kind_informative"]), pct(s["bic_top1_kind_informative"])),
+        "| top-1 kind, weak (%d) | %s | %s | %s |" % (
+            s["weak_cases"], pct(s["top1_kind_weak"]), pct(L["top1_kind_weak"]),
+            pct(s["bic_top1_kind_weak"])),
+        "| top-1 class (kind and region) | %s | %s | |" % (pct(s["top1_class"]),
+                                                        pct(L["top1_class"])),
+        "| false alarms on none (%d) | %s | %s | |" % (
+            s["none_cases"], pct(s["false_alarms_on_none"]), pct(L["false_alarms_on_none"])),
+        "| ... where the model's own gap < 3 noise units (%d) | %s | | |" % (
+            s["none_small_gap"], pct(s["false_alarms_small_gap"])),
+        "| ... where it is >= 3 noise units (%d) | %s | | |" % (
+            s["none_cases"] - s["none_small_gap"], pct(s["false_alarms_large_gap"])),
+        "| Brier score of the verdict's class probability | %.3f | %.3f | |" % (
+            s["brier_class"], L["brier_class"]),
+        "",
+        "Calibration (the verdict's stated probability, class level; the diagnosis's, and "
+        "the Laplace posterior's on the same fits):",
+        "",
+        "| stated | cases | mean stated | fraction right | Laplace: cases | mean stated | "
+        "fraction right |",
+        "|---|---|---|---|---|---|---|",
     ]
-    for b in s["reliability_class"]:
-        lines.append("| %.1f-%.1f | %d | %s | %s |" % (
+    for b, c in zip(s["reliability_class"], L["reliability_class"]):
+        lines.append("| %.1f-%.1f | %d | %s | %s | %d | %s | %s |" % (
             b["lower"], b["upper"], b["cases"],
             "" if b["mean_stated"] is None else "%.2f" % b["mean_stated"],
-            "" if b["fraction_right"] is None else pct(b["fraction_right"])))
+            "" if b["fraction_right"] is None else pct(b["fraction_right"]), c["cases"],
+            "" if c["mean_stated"] is None else "%.2f" % c["mean_stated"],
+            "" if c["fraction_right"] is None else pct(c["fraction_right"])))
     lines += ["", "Confusion (truth's effect -> verdict kind):", ""]
     for t, row in sorted(s["confusion"].items()):
         lines.append("- %s: %s" % (t, ", ".join("%s %d" % kv for kv in sorted(row.items()))))

@@ -27,6 +27,23 @@ def truth(kind, region, regions=None, shift=10.0, modes=4, shapes=True):
 
 
 class ScoreTest(unittest.TestCase):
+    def test_laplace_verdict_scored_from_the_same_fits(self):
+        d = diagnosis(("attached_mass", "node n4", 0.6),
+                      [("attached_mass", "node n4", 10.0, 1), ("stiffness_loss", "element 3", 11.0, 1)])
+        d["classes"][0]["laplace_probability"] = 0.3
+        d["classes"][1]["laplace_probability"] = 0.7
+        r = run_suite.score(truth("stiffness_loss", "element 3"), d)
+        self.assertFalse(r["kind_right"])
+        self.assertTrue(r["laplace_kind_right"])
+        self.assertTrue(r["laplace_class_right"])
+        self.assertAlmostEqual(r["laplace_probability"], 0.7)
+        self.assertAlmostEqual(r["laplace_kind_probability"], 0.7)
+        self.assertEqual(r["laplace_kind"], "stiffness_loss")
+
+    def test_brier_score(self):
+        rows = [dict(p=1.0, ok=True), dict(p=0.5, ok=False), dict(p=0.8, ok=False)]
+        self.assertAlmostEqual(run_suite.brier(rows, "p", "ok"), (0 + 0.25 + 0.64) / 3)
+
     def test_right_kind_and_region(self):
         d = diagnosis(("stiffness_loss", "element 3", 0.95),
                       [("stiffness_loss", "element 3", 10.0, 1), ("none", "", 200.0, 0)])
