@@ -120,8 +120,10 @@ def test_structure_diagnosis_matches_diagnosis_json(run_cli):
     classes = result.classes
     assert [(c.kind, c.region) for c in classes] == [
         (e["kind"], e["region"]) for e in expected["classes"]]
+    assert result.ranking.bagging_copies == expected["bagging_copies"] == 400
     for c, e in zip(classes, expected["classes"]):
         close(c.probability, e["probability"], rel=1e-9, abs_=1e-300)
+        close(c.laplace_probability, e["laplace_probability"], rel=1e-9, abs_=1e-300)
         close(c.chi2, e["chi2"], rel=1e-9)
         close(c.evidence.log_evidence, e["log_evidence"], rel=1e-9)
         assert c.equivalent == e["equivalent"]
