@@ -130,7 +130,7 @@ std::string StructureDiagnosisReport(const StructureDiagnosisResult& r) {
       << std::fixed << std::setprecision(2) << std::sqrt(k.temperature)
       << " (frequencies) and " << std::sqrt(k.shape_temperature) << " (shapes)\n";
   }
-  o << "classes (most probable first):\n";
+  o << "classes (the most probable family first, then its most probable places):\n";
   const std::size_t shown = std::min<std::size_t>(k.classes.size(), 8);
   for (std::size_t i = 0; i < shown; ++i) {
     const RankedClass& c = k.classes[i];

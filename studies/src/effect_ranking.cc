@@ -519,8 +519,15 @@ EffectRanking RankModelEffects(const Structure& structure_in,
       classes[i].group_probability += classes[k].probability;
     }
   }
+  // The most probable family first ("none" is a family of one class), and
+  // within it the most probable class: the verdict answers which effect before
+  // where, so a family whose probability is shared among many places is not
+  // outranked by a single class that has less.
   std::stable_sort(classes.begin(), classes.end(),
-                   [](const RankedClass& a, const RankedClass& b) {
+                   [&by_kind](const RankedClass& a, const RankedClass& b) {
+                     const double ka = by_kind.at(a.kind), kb = by_kind.at(b.kind);
+                     if (ka != kb) return ka > kb;
+                     if (a.kind != b.kind) return a.kind < b.kind;
                      return a.probability > b.probability;
                    });
   out.classes = std::move(classes);

@@ -125,7 +125,9 @@ struct FormErrorAllowance {
 };
 
 struct EffectRanking {
-  std::vector<RankedClass> classes;                                // most probable first
+  // By family, the most probable family first, then by class within it: the
+  // first is the verdict (the most probable class of the most probable family).
+  std::vector<RankedClass> classes;
   std::vector<std::pair<std::string, double>> kind_probabilities;  // most probable first
   double temperature = 1;        // of the frequencies' noise
   double shape_temperature = 1;  // of the shapes' noise
