@@ -80,12 +80,16 @@ def score(truth, d):
     bic_kind_right = best["kind"] == truth["kind"] or (
         truth["kind"] != "none" and group(best["kind"], best["region"]) == tg)
     # The Laplace posterior on the same fits (diagnosis.json keeps it beside the
-    # bagged probability): its own verdict, scored alike.
-    lap = max(d["classes"], key=lambda c: c.get("laplace_probability", c.get("probability", 0)))
-    lap_p = lap.get("laplace_probability", v["probability"])
-    lap_kind_p = sum(c.get("laplace_probability", 0) for c in d["classes"]
-                     if c["kind"] == lap["kind"]) if "laplace_probability" in lap else \
-        v["kind_probability"]
+    # bagged probability): its own verdict, chosen as femup chooses (the most
+    # probable class of the most probable family), scored alike.
+    lp = lambda c: c.get("laplace_probability", c.get("probability", 0.0))
+    by_kind = {}
+    for c in d["classes"]:
+        by_kind[c["kind"]] = by_kind.get(c["kind"], 0.0) + lp(c)
+    lap_kind = max(by_kind, key=by_kind.get)
+    lap = max((c for c in d["classes"] if c["kind"] == lap_kind), key=lp)
+    lap_p = lp(lap)
+    lap_kind_p = by_kind[lap_kind]
     lap_class_right = (lap["kind"] == truth["kind"] and
                        lap["region"] in truth.get("regions", [truth["region"]])) or (
         truth["kind"] != "none" and group(lap["kind"], lap["region"]) == tg)
