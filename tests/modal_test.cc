@@ -195,6 +195,11 @@ TEST(EigenOptions, Validate) {
   o = EigenOptions();
   o.max_iterations = 0;
   EXPECT_NE(o.Validate().ToString(), "");
+  o = EigenOptions();
+  o.threads = -1;
+  EXPECT_NE(o.Validate().ToString().find("threads must be >= 0"), std::string::npos);
+  o.threads = 3;
+  EXPECT_EQ(o.Validate().ToString(), "");
 }
 
 TEST(Modes, FrequenciesHzOfHandValues) {

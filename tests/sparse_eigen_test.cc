@@ -169,6 +169,76 @@ TEST(SparseEigenTest, SimplicialAndSupernodalFactorisationsMatchDenseSolver) {
   }
 }
 
+// The two Lanczos processes on one pencil: below the spectrum the standard form
+// L^{-1} P M P' L^{-T} on K - shift*M's LL' factor; a shift inside the
+// spectrum (here between modes 2 and 3 of the pencil) takes the LDL' factor
+// and the M-inner product. Both give the dense solver's modes above the shift,
+// and the modes they share agree to the dense solver's accuracy.
+TEST(SparseEigenTest, StandardAndGeneralisedLanczosAgreeOnOnePencil) {
+  SparseMatrix K, M;
+  RandomPencil(20, 25, 20261128u, &K, &M);
+  EigenOptions options;
+  options.num_modes = 10;
+  const Modes below = SolveModesSparse(K, M, options);  // LL': the standard form
+  ExpectMatchesDense(K, M, below, 0, 10);
+  options.shift = 0.5 * (below.eigenvalues[1] + below.eigenvalues[2]);
+  options.num_modes = 6;
+  const Modes inside = SolveModesSparse(K, M, options);  // LDL': the M-inner product
+  ExpectMatchesDense(K, M, inside, 2, 6);
+  for (int j = 0; j < 6; ++j) {
+    EXPECT_NEAR(inside.eigenvalues[j], below.eigenvalues[j + 2],
+                1e-9 * below.eigenvalues[j + 2]);
+    EXPECT_GT(Mac(inside.shapes.col(j), below.shapes.col(j + 2)), 1.0 - 1e-9) << j;
+  }
+}
+
+// From 10^4 DOFs M's factorisation (its check) runs beside K - shift*M's when
+// threads allow: the same bits whatever the thread count, and the same input
+// error when M is not positive definite.
+TEST(SparseEigenTest, ThreadCountDoesNotChangeTheModesOrTheErrors) {
+  const int n = 12000;
+  const SparseMatrix K = ChainStiffness(n, /*grounded=*/true);
+  std::vector<Eigen::Triplet<double>> m;  // a consistent (tridiagonal) mass
+  for (int i = 0; i < n; ++i) m.emplace_back(i, i, i + 1 < n ? 2.0 / 3.0 : 1.0 / 3.0);
+  for (int i = 0; i + 1 < n; ++i) {
+    m.emplace_back(i, i + 1, 1.0 / 6.0);
+    m.emplace_back(i + 1, i, 1.0 / 6.0);
+  }
+  SparseMatrix M = FromTriplets(n, m);
+  EigenOptions options;
+  options.num_modes = 5;
+  options.threads = 1;
+  const Modes one = SolveModesSparse(K, M, options);
+  options.threads = 2;
+  const Modes two = SolveModesSparse(K, M, options);
+  options.threads = 0;
+  const Modes all = SolveModesSparse(K, M, options);
+  EXPECT_EQ(one.eigenvalues, two.eigenvalues);
+  EXPECT_EQ(one.shapes, two.shapes);
+  EXPECT_EQ(one.eigenvalues, all.eigenvalues);
+  EXPECT_EQ(one.shapes, all.shapes);
+  // A fixed-free rod of n two-node elements (unit stiffness, consistent mass):
+  // u_i = sin(i t) with t = (2j - 1) pi / (2n) satisfies the free end, and the
+  // interior rows give lambda_j = 6 (1 - cos t) / (2 + cos t).
+  for (int j = 0; j < 5; ++j) {
+    const double t = (2.0 * (j + 1) - 1.0) * kPi / (2.0 * n);
+    const double exact = 6.0 * (1.0 - std::cos(t)) / (2.0 + std::cos(t));
+    EXPECT_NEAR(one.eigenvalues[j], exact, 1e-6 * exact) << j;
+  }
+
+  M.coeffRef(7000, 7001) = 1.0;  // |c| > 2/3: M indefinite
+  M.coeffRef(7001, 7000) = 1.0;
+  for (int threads : {1, 2}) {
+    options.threads = threads;
+    const std::string message =
+        InputErrorMessage([&] { SolveModesSparse(K, M, options); });
+    EXPECT_NE(message.find("mass matrix is not positive definite (its Cholesky "
+                           "factorisation breaks down at DOF "),
+              std::string::npos)
+        << message;
+  }
+}
+
 TEST(SparseEigenTest, ShiftInsideSpectrumUsesLdltAndReturnsModesAboveShift) {
   SparseMatrix K, M;
   RandomPencil(20, 25, 20240611u, &K, &M);

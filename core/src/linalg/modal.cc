@@ -61,6 +61,7 @@ Invalid EigenOptions::Validate() const {
   if (!std::isfinite(shift)) return {"shift", "shift must be finite"};
   if (!(tolerance > 0)) return {"tolerance", "tolerance must be positive"};
   if (max_iterations < 1) return {"max_iterations", "max_iterations must be >= 1"};
+  if (threads < 0) return {"threads", "threads must be >= 0 (0: one per core)"};
   return {};
 }
 

@@ -9,13 +9,17 @@ namespace femup {
 namespace internal {
 
 // Lowest `options.num_modes` eigenpairs of K phi = lambda M phi nearest above
-// options.shift, by shift-invert Lanczos (Spectra SymGEigsShiftSolver,
-// GEigsMode::ShiftInvert) on a sparse Cholesky factorisation of K - shift*M
-// (CHOLMOD LL', supernodal when the analysed factorisation needs at least
-// `supernodal_switch` flops per entry of L, simplicial below; SimplicialLDLT
-// when K - shift*M is not positive definite, i.e. when the shift lies inside
-// the spectrum). One symbolic analysis serves K - shift*M and the check that M
-// is positive definite (a diagonal M is checked without factorising).
+// options.shift, by shift-invert Lanczos on a sparse Cholesky factorisation of
+// K - shift*M (CHOLMOD LL', supernodal when the analysed factorisation needs at
+// least `supernodal_switch` flops per entry of L, simplicial below). Where that
+// factorisation exists (the shift below the spectrum), the Lanczos process runs
+// on the standard symmetric operator L^{-1} P M P' L^{-T} (Spectra
+// SymEigsSolver: one product with M a step, Euclidean orthogonalisation);
+// where K - shift*M is indefinite (the shift inside the spectrum), on
+// SimplicialLDLT with the M-inner product (SymGEigsShiftSolver,
+// GEigsMode::ShiftInvert). M is checked to be positive definite by its own
+// factorisation (a diagonal M is read), beside K - shift*M's on
+// options.threads threads from 10^4 DOFs.
 //
 // Only the lower triangles of K and M are read. Eigenvalues are ascending; the
 // shapes are M-normalised (phi' M phi = 1) with the sign fixed so that the entry

@@ -25,6 +25,11 @@ struct EigenOptions {
   double shift = 0.0;        // sparse: modes nearest this eigenvalue (rad^2/s^2)
   double tolerance = 1e-10;  // sparse: Krylov convergence tolerance
   int max_iterations = 1000;
+  // sparse: threads for the two factorisations that are independent of each
+  // other (M's, which checks that it is positive definite, and K - shift*M's)
+  // on models of 10^4 DOFs or more; 0 = DefaultThreadCount(),
+  // 1 = one after the other. The modes are the same bits whatever it is.
+  int threads = 0;
   // Ok when valid, otherwise the field and what is wrong. The messages name
   // the field too ("num_modes must be ..."): callers show the message alone.
   Invalid Validate() const;
