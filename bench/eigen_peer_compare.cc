@@ -49,6 +49,7 @@
 #include "femup/core/fe/space_frame.h"
 #include "femup/core/io/matrix_market.h"
 #include "femup/core/linalg/modal.h"
+#include "femup/core/parallel.h"
 #include "peer_runner.h"
 
 namespace {
@@ -297,6 +298,7 @@ int main(int argc, char** argv) {
   std::string script = FEMUP_EIGSH_PEER_SCRIPT;
   std::string markdown, keep;
   std::string peers_text = "default,symmetric";
+  int threads = 0;
   app.add_option("--dofs", sizes_text,
                  "frames, comma-separated: 1e4, 1e5, 1e6 (docs/space_frame.md) or "
                  "BXxBYxLEVELS");
@@ -312,6 +314,10 @@ int main(int argc, char** argv) {
                  "scipy configurations, comma-separated: default (eigsh factorises "
                  "with SuperLU's defaults), symmetric (splu with a symmetric ordering "
                  "and no pivoting, as OPinv)");
+  app.add_option("--threads", threads,
+                 "femup's EigenOptions::threads (M's check beside K - shift*M's "
+                 "factorisation): 0 = one per core, 1 = one after the other")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--keep", keep,
                  "write K.mtx and M.mtx under this directory (one subdirectory per "
                  "size) and keep them, instead of a temporary directory");
@@ -342,6 +348,7 @@ int main(int argc, char** argv) {
   options.num_modes = modes;
   options.shift = shift;
   options.tolerance = tolerance;
+  options.threads = threads;
 
   std::vector<Row> rows;
   std::string versions;
@@ -406,7 +413,11 @@ int main(int argc, char** argv) {
       << modes << " modes nearest above shift " << shift << ", tolerance " << tolerance
       << " on both sides; one run each. femup: SolveModes(kSparseShiftInvert) in a "
          "forked child (OMP_NUM_THREADS="
-      << (omp != nullptr ? omp : "unset") << "). "
+      << (omp != nullptr ? omp : "unset") << ", EigenOptions::threads = " << threads
+      << (threads == 0
+              ? " (one per core: " + std::to_string(femup::DefaultThreadCount()) + ")"
+              : std::string())
+      << "). "
       << (versions.empty()
               ? std::string("Peer: not run.")
               : "Peer: " + versions + " (" + python +
