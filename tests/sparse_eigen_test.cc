@@ -239,6 +239,33 @@ TEST(SparseEigenTest, ThreadCountDoesNotChangeTheModesOrTheErrors) {
   }
 }
 
+// Only the lower triangles are read: entries above the diagonal that disagree
+// with them (here scaled by 3) change nothing, on either Lanczos process.
+TEST(SparseEigenTest, OnlyTheLowerTrianglesAreRead) {
+  SparseMatrix K, M;
+  RandomPencil(20, 25, 20261129u, &K, &M);
+  SparseMatrix k_skewed = K;
+  SparseMatrix m_skewed = M;
+  for (SparseMatrix* a : {&k_skewed, &m_skewed}) {
+    for (Eigen::Index j = 0; j < a->outerSize(); ++j) {
+      for (SparseMatrix::InnerIterator it(*a, j); it; ++it) {
+        if (it.row() < j) it.valueRef() *= 3.0;
+      }
+    }
+  }
+  for (const bool inside : {false, true}) {
+    EigenOptions options;
+    options.num_modes = 6;
+    if (inside)
+      options.shift = 0.5 * (SolveModesSparse(K, M, options).eigenvalues[0] +
+                             SolveModesSparse(K, M, options).eigenvalues[1]);
+    const Modes expected = SolveModesSparse(K, M, options);
+    const Modes skewed = SolveModesSparse(k_skewed, m_skewed, options);
+    EXPECT_EQ(expected.eigenvalues, skewed.eigenvalues) << inside;
+    EXPECT_EQ(expected.shapes, skewed.shapes) << inside;
+  }
+}
+
 TEST(SparseEigenTest, ShiftInsideSpectrumUsesLdltAndReturnsModesAboveShift) {
   SparseMatrix K, M;
   RandomPencil(20, 25, 20240611u, &K, &M);

@@ -64,7 +64,8 @@ std::string Context(int k, Eigen::Index n, double shift) {
   return out.str();
 }
 
-// alpha A + beta B on the union of their patterns, explicit zeros kept, so
+// The lower triangle of alpha A + beta B (entries of A and B above the
+// diagonal are not read) on the union of their patterns, explicit zeros kept, so
 // that every combination of the same A and B has the same pattern (CHOLMOD
 // factorises on an analysis only matrices of the analysed pattern). One merge
 // per column: Eigen's sparse sum takes five times as long on the 10^5-DOF frame.
@@ -83,6 +84,8 @@ SparseMatrix Combine(double alpha, const SparseMatrix& a, double beta,
     outer[j] = static_cast<int>(next);
     SparseMatrix::InnerIterator ia(a, j);
     SparseMatrix::InnerIterator ib(b, j);
+    while (ia && ia.row() < j) ++ia;  // the lower triangles only
+    while (ib && ib.row() < j) ++ib;
     while (ia || ib) {
       if (ib && (!ia || ib.row() < ia.row())) {
         inner[next] = static_cast<int>(ib.row());
@@ -322,7 +325,7 @@ class StandardShiftInvertOp {
 };
 
 // The factorisation of K - sigma M, and the Spectra operation y = (K - sigma
-// M)^{-1} x for GEigsMode::ShiftInvert. K and M hold lower triangles.
+// M)^{-1} x for GEigsMode::ShiftInvert (only K's and M's lower triangles are read).
 // Factorises with CHOLMOD (LL') and falls back to SimplicialLDLT when K - sigma
 // M is not positive definite. One symbolic analysis (ordering and fill) serves
 // every shift: K - sigma M has the pattern of K + M whatever sigma. set_shift()
@@ -483,33 +486,6 @@ class CholmodShiftInvertOp {
   std::unique_ptr<Ldlt> ldlt_;
 };
 
-// The lower triangle of `a`, compressed, in one pass (Eigen's triangularView
-// assignment takes three times as long on the 10^5-DOF frame).
-SparseMatrix LowerTriangle(const SparseMatrix& a) {
-  const Eigen::Index n = a.cols();
-  SparseMatrix lower(a.rows(), n);
-  Eigen::Index nnz = 0;
-  for (Eigen::Index j = 0; j < n; ++j) {
-    for (SparseMatrix::InnerIterator it(a, j); it; ++it) nnz += it.row() >= j ? 1 : 0;
-  }
-  lower.resizeNonZeros(nnz);
-  int* outer = lower.outerIndexPtr();
-  int* inner = lower.innerIndexPtr();
-  double* values = lower.valuePtr();
-  Eigen::Index next = 0;
-  for (Eigen::Index j = 0; j < n; ++j) {
-    outer[j] = static_cast<int>(next);
-    for (SparseMatrix::InnerIterator it(a, j); it; ++it) {
-      if (it.row() < j) continue;
-      inner[next] = static_cast<int>(it.row());
-      values[next] = it.value();
-      ++next;
-    }
-  }
-  outer[n] = static_cast<int>(next);
-  return lower;
-}
-
 bool AllFinite(const SparseMatrix& a) {
   for (Eigen::Index j = 0; j < a.outerSize(); ++j) {
     for (SparseMatrix::InnerIterator it(a, j); it; ++it) {
@@ -559,18 +535,16 @@ Modes SolveModesSparse(const SparseMatrix& K, const SparseMatrix& M,
                      "mass matrix has a non-finite entry " + Context(k, n, shift));
   }
 
-  // Only the lower triangles are read, by every factorisation and product.
-  const SparseMatrix k_lower = LowerTriangle(K);
-  const SparseMatrix m_lower = LowerTriangle(M);
+  // Only the lower triangles of K and M are read, by every factorisation and
+  // product (no copies of them are made).
 
   // The B-inner product of the Lanczos process needs M positive definite; that
   // check (a factorisation of M) and K - shift*M's are independent, and run
   // side by side on large models when options.threads allows. The check's
   // InputError, the lower index, is the one rethrown when both fail.
-  CholmodShiftInvertOp op(k_lower, m_lower, supernodal_switch);
+  CholmodShiftInvertOp op(K, M, supernodal_switch);
   const auto check_mass = [&](const CholmodLlt& analysed) {
-    if (const Eigen::Index dof =
-            MassBreakdown(k_lower, m_lower, analysed, supernodal_switch);
+    if (const Eigen::Index dof = MassBreakdown(K, M, analysed, supernodal_switch);
         dof >= 0) {
       std::ostringstream out;
       out << "mass matrix is not positive definite (its Cholesky factorisation breaks "
@@ -623,7 +597,7 @@ Modes SolveModesSparse(const SparseMatrix& K, const SparseMatrix& M,
       // K - shift*M positive definite (the shift below the spectrum): the
       // standard form C = L^{-1} P M P' L^{-T}, whose largest eigenvalues nu =
       // 1 / (lambda - shift) are the lambdas nearest above the shift.
-      StandardShiftInvertOp standard(op.llt(), m_lower);
+      StandardShiftInvertOp standard(op.llt(), M);
       Spectra::SymEigsSolver<StandardShiftInvertOp> solver(standard, k, ncv);
       solver.init();
       const Eigen::Index converged =
@@ -646,7 +620,7 @@ Modes SolveModesSparse(const SparseMatrix& K, const SparseMatrix& M,
       using BOp = Spectra::SparseSymMatProd<double>;
       using Solver = Spectra::SymGEigsShiftSolver<CholmodShiftInvertOp, BOp,
                                                   Spectra::GEigsMode::ShiftInvert>;
-      BOp mass_op(m_lower);
+      BOp mass_op(M);
       Solver solver(op, mass_op, k, ncv, shift);
       solver.init();
       // nu = 1 / (lambda - shift): the largest nu are the eigenvalues nearest
@@ -683,7 +657,7 @@ Modes SolveModesSparse(const SparseMatrix& K, const SparseMatrix& M,
     modes.eigenvalues[j] = eigenvalues[order[j]];
     Eigen::VectorXd phi = shapes.col(order[j]);
     // Spectra returns M-orthonormal vectors; normalise again explicitly.
-    const double modal_mass = phi.dot(m_lower.selfadjointView<Eigen::Lower>() * phi);
+    const double modal_mass = phi.dot(M.selfadjointView<Eigen::Lower>() * phi);
     if (!(modal_mass > 0.0) || !std::isfinite(modal_mass)) {
       std::ostringstream out;
       out << "mode " << j << " has modal mass " << Format(modal_mass)
