@@ -11,7 +11,9 @@
 #                 eigsh with its defaults and with a symmetric-ordering splu as
 #                 OPinv (FEMUP_EIGEN_PEERS, default "default,symmetric"; at 10^6
 #                 DOF the default one runs out of memory after ~15 min: use
-#                 FEMUP_EIGEN_PEERS=symmetric there)
+#                 FEMUP_EIGEN_PEERS=symmetric there); femup on
+#                 FEMUP_EIGEN_THREADS threads (EigenOptions::threads, default 0:
+#                 one per core; 1 runs M's check and K's factorisation in turn)
 #   system_peer.md the linear correction-factor system of a 10^5-DOF frame with
 #                 10^3 factors and 10 measured modes, femup against scipy
 #                 (bench/system_peer_compare.cc), with the memory read bound
@@ -33,6 +35,7 @@ min_time=${FEMUP_BENCH_MIN_TIME:-0.2}
 sizes=${FEMUP_PEER_SIZES:-500x50,2000x200,5000x500}
 eigen_dofs=${FEMUP_EIGEN_PEER_DOFS:-1e5}
 eigen_peers=${FEMUP_EIGEN_PEERS:-default,symmetric}
+eigen_threads=${FEMUP_EIGEN_THREADS:-0}
 system_size=${FEMUP_SYSTEM_PEER_SIZE:-1e5}
 noise_draws=${FEMUP_NOISE_PEER_DRAWS:-1000}
 
@@ -78,6 +81,7 @@ echo "== peer comparison (scipy.optimize.lsq_linear)"
 echo "== peer comparison (scipy.sparse.linalg.eigsh, shift-invert)"
 # One OpenMP thread for CHOLMOD, as scipy gets one BLAS thread.
 OMP_NUM_THREADS=1 "$build/bench/femup_eigen_peer_compare" --dofs "$eigen_dofs" --peers "$eigen_peers" \
+  --threads "$eigen_threads" \
   --markdown "$out/eigen_peer.md"
 echo "== peer comparison (the linear correction-factor system, scipy)"
 OMP_NUM_THREADS=1 "$build/bench/femup_system_peer_compare" --size "$system_size" \
