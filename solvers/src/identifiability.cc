@@ -97,13 +97,17 @@ void CheckInput(const Eigen::MatrixXd& a, double relative_tolerance) {
   }
 }
 
-// The analysis from the column-scaled SVD (singular values, all of V).
-Identifiability FromScaledSvd(const Eigen::MatrixXd& a, const Eigen::VectorXd& s,
-                              const Eigen::MatrixXd& v,
-                              const std::vector<std::string>& names,
-                              const std::vector<std::string>& groups,
-                              double relative_tolerance, bool scale_columns) {
+// The analysis from the column-scaled matrix's singular values `s` (up to n,
+// descending) and the right singular vectors of the smallest ones: `trailing`
+// (n x t) holds those of singular values n - t, ..., n - 1. A negative
+// `unscaled_condition` is computed here from A's own singular values.
+Identifiability FromSpectrum(const Eigen::MatrixXd& a, const Eigen::VectorXd& s,
+                             const Eigen::MatrixXd& trailing, double unscaled_condition,
+                             const std::vector<std::string>& names,
+                             const std::vector<std::string>& groups,
+                             double relative_tolerance, bool scale_columns) {
   const Eigen::Index n = a.cols();
+  const Eigen::Index first = n - trailing.cols();  // singular value of trailing.col(0)
   Identifiability out;
   for (Eigen::Index j = 0; j < n; ++j) {
     if (a.col(j).squaredNorm() == 0) {
@@ -130,15 +134,26 @@ Identifiability FromScaledSvd(const Eigen::MatrixXd& a, const Eigen::VectorXd& s
       (smin > 0 && out.rank == n) ? smax / smin : std::numeric_limits<double>::infinity();
   out.condition_number_in_rank = out.rank > 0 ? smax / out.singular_values[out.rank - 1]
                                               : std::numeric_limits<double>::infinity();
-  {
+  if (unscaled_condition >= 0) {
+    out.condition_number_unscaled = unscaled_condition;
+  } else {
     const Eigen::VectorXd raw = Eigen::BDCSVD<Eigen::MatrixXd>(a).singularValues();
     const double raw_min = a.cols() > a.rows() ? 0.0 : raw[raw.size() - 1];
     out.condition_number_unscaled =
         raw_min > 0 ? raw[0] / raw_min : std::numeric_limits<double>::infinity();
   }
+  const bool weakest_needed = out.rank == n && out.condition_number > 1e8;
+  if (first > std::min<Eigen::Index>(out.rank, weakest_needed ? n - 1 : n)) {
+    throw InputError(
+        "identifiability",
+        "the singular vectors given stop at value " + std::to_string(first) +
+            "; the analysis needs them from value " +
+            std::to_string(std::min<Eigen::Index>(out.rank, weakest_needed ? n - 1 : n)));
+  }
   for (Eigen::Index k = out.rank; k < n; ++k) {
     // Back to the unknowns' own units: x = S^-1 x_scaled.
-    const Eigen::VectorXd dir = scale.cwiseInverse().asDiagonal() * v.col(k);
+    const Eigen::VectorXd dir =
+        scale.cwiseInverse().asDiagonal() * trailing.col(k - first);
     out.null_directions.push_back(Describe(dir, out.singular_values[k], names, groups));
   }
   if (out.rank < n) {
@@ -146,11 +161,12 @@ Identifiability FromScaledSvd(const Eigen::MatrixXd& a, const Eigen::VectorXd& s
     w << "rank " << out.rank << " of " << n << " unknowns: " << n - out.rank
       << " direction(s) are not determined by the data";
     out.warnings.push_back(w.str());
-  } else if (out.condition_number > 1e8) {
+  } else if (weakest_needed) {
     std::ostringstream w;
     w << "full rank but ill-conditioned (condition number " << std::setprecision(3)
       << out.condition_number << "); weakest direction: "
-      << Describe(scale.cwiseInverse().asDiagonal() * v.col(n - 1), smin, names, groups)
+      << Describe(scale.cwiseInverse().asDiagonal() * trailing.col(n - 1 - first), smin,
+                  names, groups)
              .description;
     out.warnings.push_back(w.str());
   }
@@ -177,8 +193,8 @@ Identifiability AnalyseIdentifiability(const Eigen::MatrixXd& a,
   const Eigen::VectorXd scale = IdentifiabilityScale(a, scale_columns);
   const Eigen::BDCSVD<Eigen::MatrixXd> svd(a * scale.cwiseInverse().asDiagonal(),
                                            Eigen::ComputeFullV);
-  return FromScaledSvd(a, svd.singularValues(), svd.matrixV(), names, groups,
-                       relative_tolerance, scale_columns);
+  return FromSpectrum(a, svd.singularValues(), svd.matrixV(), -1, names, groups,
+                      relative_tolerance, scale_columns);
 }
 
 Identifiability AnalyseIdentifiability(const Eigen::MatrixXd& a,
@@ -193,8 +209,33 @@ Identifiability AnalyseIdentifiability(const Eigen::MatrixXd& a,
                      "the SVD given does not hold all of V for the matrix's " +
                          std::to_string(a.cols()) + " columns");
   }
-  return FromScaledSvd(a, scaled_svd.singularValues(), scaled_svd.matrixV(), names,
-                       groups, relative_tolerance, scale_columns);
+  return FromSpectrum(a, scaled_svd.singularValues(), scaled_svd.matrixV(), -1, names,
+                      groups, relative_tolerance, scale_columns);
+}
+
+Identifiability AnalyseIdentifiability(const Eigen::MatrixXd& a,
+                                       const Eigen::VectorXd& singular_values,
+                                       const Eigen::MatrixXd& trailing_vectors,
+                                       double condition_number_unscaled,
+                                       const std::vector<std::string>& names,
+                                       const std::vector<std::string>& groups,
+                                       double relative_tolerance, bool scale_columns) {
+  CheckInput(a, relative_tolerance);
+  if (singular_values.size() > a.cols() || trailing_vectors.rows() != a.cols() ||
+      trailing_vectors.cols() > a.cols()) {
+    throw InputError("identifiability",
+                     "the spectrum given does not fit the matrix's " +
+                         std::to_string(a.cols()) + " columns (" +
+                         std::to_string(singular_values.size()) + " singular values, " +
+                         std::to_string(trailing_vectors.rows()) + " x " +
+                         std::to_string(trailing_vectors.cols()) + " vectors)");
+  }
+  if (!(condition_number_unscaled >= 0)) {
+    throw InputError("identifiability",
+                     "the unscaled condition number must be >= 0 (inf allowed)");
+  }
+  return FromSpectrum(a, singular_values, trailing_vectors, condition_number_unscaled,
+                      names, groups, relative_tolerance, scale_columns);
 }
 
 }  // namespace femup

@@ -14,6 +14,14 @@ Eigen::MatrixXd ReducedProblem::ToX(const Eigen::VectorXd& z) const {
   return particular + basis * z;
 }
 
+Eigen::MatrixXd ReducedProblem::Lift(const Eigen::MatrixXd& m) const {
+  if (has_equalities) return basis * m;
+  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(basis.rows(), m.cols());
+  for (std::size_t k = 0; k < free.size(); ++k)
+    out.row(free[k]) = m.row(static_cast<Eigen::Index>(k));
+  return out;
+}
+
 ReducedProblem Reduce(const LinearProblem& problem, const std::string& solver) {
   if (const Invalid bad = problem.Validate())
     throw InputError("linear problem", bad.ToString());
@@ -86,7 +94,15 @@ void FillUncertainty(const LinearProblem& problem, const Eigen::MatrixXd& x_map,
     }
     variance = (weighted_residual.squaredNorm() + problem.residual_offset) / dof;
   }
-  solution->covariance = variance * x_map * x_map.transpose();
+  // X X' by a symmetric rank update (half the flops of a general product),
+  // then the upper triangle from the lower: exactly symmetric.
+  const Eigen::Index n = x_map.rows();
+  solution->covariance = Eigen::MatrixXd::Zero(n, n);
+  solution->covariance.selfadjointView<Eigen::Lower>().rankUpdate(x_map, variance);
+  Eigen::MatrixXd& c = solution->covariance;
+  for (Eigen::Index j = 1; j < n; ++j) {  // a loop: no aliasing of c with c'
+    for (Eigen::Index i = 0; i < j; ++i) c(i, j) = c(j, i);
+  }
   SetIntervals(dof, solution);
 }
 

@@ -48,6 +48,10 @@ Invalid LinearSolverOptions::Validate() const {
     msg << "must be in (0, 1), got " << confidence_level;
     return {"confidence_level", msg.str()};
   }
+  if (gram_min_unknowns < 1) {
+    msg << "must be >= 1, got " << gram_min_unknowns;
+    return {"gram_min_unknowns", msg.str()};
+  }
   return regularisation.Validate().Under("regularisation");
 }
 

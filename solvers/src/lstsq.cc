@@ -6,6 +6,7 @@
 #include <limits>
 #include <sstream>
 
+#include "gram_least_squares.h"
 #include "linear_common.h"
 
 namespace femup {
@@ -47,6 +48,44 @@ Eigen::VectorXd Refine(const Eigen::MatrixXd& a, const Eigen::VectorXd& b,
   return z;
 }
 
+constexpr const char* kGramRoute =
+    "least squares through the Gram matrix of the compressed system (its eigenvalues and "
+    "a Cholesky factor)";
+
+// The column-scaled SVD route: A D^-1 = U S V', z = D^-1 V S^+ U' b refined,
+// Cov(z) / sigma^2 = (D^-1 V S^+)(D^-1 V S^+)' (U's columns are orthonormal).
+internal::LeastSquaresDecomposition BySvd(const internal::ReducedProblem& r,
+                                          const LinearSolverOptions& options) {
+  const Eigen::Index k = r.A.cols();
+  const Eigen::VectorXd scale = IdentifiabilityScale(r.A, options.scale_columns);
+  const Eigen::MatrixXd as = r.A * scale.cwiseInverse().asDiagonal();
+  // One SVD for the solve and, when it holds all of V (at least as many rows
+  // as columns), for the identifiability analysis too.
+  const Eigen::BDCSVD<Eigen::MatrixXd> svd(as, Eigen::ComputeThinU | Eigen::ComputeThinV);
+  internal::LeastSquaresDecomposition d;
+  d.identifiability =
+      r.A.rows() >= k
+          ? AnalyseIdentifiability(r.A, svd, r.names, r.groups,
+                                   options.relative_rank_tolerance, options.scale_columns)
+          : AnalyseIdentifiability(r.A, r.names, r.groups,
+                                   options.relative_rank_tolerance,
+                                   options.scale_columns);
+  const Eigen::VectorXd& s = svd.singularValues();
+  const double threshold =
+      s.size() > 0 ? options.relative_rank_tolerance * s.maxCoeff() : 0.0;
+  Eigen::VectorXd inv = Eigen::VectorXd::Zero(s.size());
+  for (Eigen::Index i = 0; i < s.size(); ++i) {
+    if (s[i] > threshold) {
+      inv[i] = 1.0 / s[i];
+      ++d.rank;
+    }
+  }
+  d.z_root = scale.cwiseInverse().asDiagonal() * svd.matrixV() * inv.asDiagonal();
+  d.z = Refine(r.A, r.b, scale, svd.matrixU(), inv, svd.matrixV(),
+               d.z_root * (svd.matrixU().transpose() * r.b));
+  return d;
+}
+
 }  // namespace
 
 LinearSolution LstsqSolver::Solve(const LinearProblem& problem) const {
@@ -70,53 +109,36 @@ LinearSolution LstsqSolver::Solve(const LinearProblem& problem) const {
   }
 
   LinearSolution solution;
-  // One column-scaled SVD for the solve and, when it holds all of V (at least
-  // as many rows as columns), for the identifiability analysis too.
   // No free unknown or a non-finite entry: the analysis throws its own
-  // InputError, before any SVD.
+  // InputError, before any decomposition.
   if (k == 0 || !r.A.allFinite()) {
     AnalyseIdentifiability(r.A, r.names, r.groups, options_.relative_rank_tolerance,
                            options_.scale_columns);
   }
-  const Eigen::VectorXd scale = IdentifiabilityScale(r.A, options_.scale_columns);
-  const Eigen::MatrixXd as = r.A * scale.cwiseInverse().asDiagonal();
-  const Eigen::BDCSVD<Eigen::MatrixXd> svd(as, Eigen::ComputeThinU | Eigen::ComputeThinV);
-  solution.identifiability =
-      r.A.rows() >= k ? AnalyseIdentifiability(r.A, svd, r.names, r.groups,
-                                               options_.relative_rank_tolerance,
-                                               options_.scale_columns)
-                      : AnalyseIdentifiability(r.A, r.names, r.groups,
-                                               options_.relative_rank_tolerance,
-                                               options_.scale_columns);
-  const Eigen::VectorXd& s = svd.singularValues();
-  const double threshold =
-      s.size() > 0 ? options_.relative_rank_tolerance * s.maxCoeff() : 0.0;
-  int rank = 0;
-  Eigen::VectorXd inv = Eigen::VectorXd::Zero(s.size());
-  for (Eigen::Index i = 0; i < s.size(); ++i) {
-    if (s[i] > threshold) {
-      inv[i] = 1.0 / s[i];
-      ++rank;
-    }
-  }
-  // z = D^-1 V S^+ U' b: the map from the weighted data to the answer.
-  const Eigen::MatrixXd z_map = scale.cwiseInverse().asDiagonal() * svd.matrixV() *
-                                inv.asDiagonal() * svd.matrixU().transpose();
-  const Eigen::VectorXd z =
-      Refine(r.A, r.b, scale, svd.matrixU(), inv, svd.matrixV(), z_map * r.b);
-  const Eigen::VectorXd weighted_residual = internal::SetAnswer(problem, r, z, &solution);
-  internal::FillUncertainty(problem, r.basis * z_map, weighted_residual, rank,
+  internal::LeastSquaresDecomposition d;
+  const bool by_gram = problem.source_rows > 0 && k >= options_.gram_min_unknowns &&
+                       r.A.rows() >= k &&
+                       internal::LeastSquaresByGram(r, options_.relative_rank_tolerance,
+                                                    options_.scale_columns, &d);
+  if (!by_gram) d = BySvd(r, options_);
+  const int rank = d.rank;
+  solution.identifiability = std::move(d.identifiability);
+  const Eigen::VectorXd weighted_residual =
+      internal::SetAnswer(problem, r, d.z, &solution);
+  internal::FillUncertainty(problem, r.Lift(d.z_root), weighted_residual, rank,
                             options_.confidence_level, &solution);
 
   std::ostringstream msg;
   if (rank == k) {
     solution.summary.status = SolverStatus::kSolved;
-    msg << "least squares by SVD: full column rank (" << rank
+    msg << (by_gram ? kGramRoute : "least squares by SVD") << ": full column rank ("
+        << rank
         << (r.has_equalities ? " free combinations after the equalities)"
                              : " free unknowns)");
   } else {
     solution.summary.status = SolverStatus::kMinimumNorm;
-    msg << "least squares by SVD: rank " << rank << " of " << k
+    msg << (by_gram ? kGramRoute : "least squares by SVD") << ": rank " << rank << " of "
+        << k
         << " free unknowns; the minimum-norm solution is one of many. Add a constraint: ";
     for (std::size_t j = 0; j < solution.identifiability.null_directions.size(); ++j) {
       msg << (j ? "; " : "") << solution.identifiability.null_directions[j].description;

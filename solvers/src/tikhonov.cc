@@ -50,7 +50,7 @@ LinearSolution TikhonovSolver::Solve(const LinearProblem& problem) const {
   const Eigen::VectorXd z = path.Solve(lambda);
   const Eigen::VectorXd weighted_residual = internal::SetAnswer(problem, r, z, &solution);
   const Eigen::MatrixXd xz = path.Inverse(lambda);  // z - z0 = X (b - A z0)
-  internal::FillUncertainty(problem, r.basis * xz, weighted_residual,
+  internal::FillUncertainty(problem, r.Lift(xz), weighted_residual,
                             path.EffectiveParameters(lambda), options_.confidence_level,
                             &solution);
   const Eigen::MatrixXd rz = xz * r.A;

@@ -130,7 +130,7 @@ LinearSolution TsvdSolver::Solve(const LinearProblem& problem) const {
       vk * s.head(chosen).cwiseInverse().asDiagonal() * uk.transpose();
   const Eigen::VectorXd z = z_map * r.b;
   const Eigen::VectorXd weighted_residual = internal::SetAnswer(problem, r, z, &solution);
-  internal::FillUncertainty(problem, r.basis * z_map, weighted_residual, chosen,
+  internal::FillUncertainty(problem, r.Lift(z_map), weighted_residual, chosen,
                             options_.confidence_level, &solution);
   const Eigen::MatrixXd rz = vk * vk.transpose();  // resolution in z
   solution.resolution = r.basis * rz * r.basis.transpose();

@@ -60,4 +60,19 @@ Identifiability AnalyseIdentifiability(const Eigen::MatrixXd& a,
                                        double relative_tolerance,
                                        bool scale_columns = true);
 
+// The same analysis from what it needs when the caller has it without a full
+// SVD (lstsq's Gram route on a large compressed problem): the column-scaled
+// matrix's singular values (descending, up to n), the right singular vectors
+// of the smallest ones only (`trailing_vectors`, n x t, column j for singular
+// value n - t + j), and A's own condition number before column scaling
+// (>= 0; inf allowed). The vectors must cover every singular value at or below
+// the rank threshold, and the smallest one when the matrix has full rank but a
+// condition number above 1e8 (the weakest direction the warning names);
+// otherwise, or on sizes that do not fit, InputError.
+Identifiability AnalyseIdentifiability(
+    const Eigen::MatrixXd& a, const Eigen::VectorXd& singular_values,
+    const Eigen::MatrixXd& trailing_vectors, double condition_number_unscaled,
+    const std::vector<std::string>& names, const std::vector<std::string>& groups,
+    double relative_tolerance, bool scale_columns = true);
+
 }  // namespace femup

@@ -52,6 +52,15 @@ struct LinearSolverOptions {
   // to about cond^2 * machine epsilon); anything else goes the SVD path. Other
   // solvers ignore it.
   bool diagnostics = true;
+  // lstsq: a compressed problem (LinearProblem::source_rows > 0, such as the
+  // M^-1-weighted correction system) with at least this many free unknowns is
+  // solved through its Gram matrix instead of an SVD of A: its eigenvalues,
+  // the eigenvectors of the few below the rank threshold, and a Cholesky
+  // factor (about 3 n^3 flops against 22 n^3). A compressed A carries only the
+  // Gram matrix's accuracy, so nothing is lost; the rank threshold there is
+  // max(relative_rank_tolerance, sqrt(n eps)), below which a singular value is
+  // rounding. Must be >= 1.
+  int gram_min_unknowns = 200;
   Invalid Validate() const;  // ok when valid, else the field and what is wrong
 };
 
