@@ -28,7 +28,7 @@
 //
 // Usage: femup_system_peer_compare [--size 1e5] [--air-modes 5] [--water-modes 5]
 //                                  [--python /usr/bin/python3] [--script path]
-//                                  [--markdown file] [--keep dir]
+//                                  [--markdown file] [--keep dir] [--threads 1]
 // --size: 1e5 (4 x 4 bays, 40 levels, 4 blocks, all wet: 102,720 DOF, 1000
 // factors), 1e4 (2 x 2 bays, 10 levels, 2 blocks, all wet) or BXxBYxLEVELSxBLOCKS
 // (all wet).
@@ -178,14 +178,14 @@ void WriteBases(const fs::path& path, const femup::ParametrisedModel& model) {
 // The femup side, in the calling process: time, answer, memory.
 nlohmann::json SolveFemup(const femup::ParametrisedModel& model,
                           const std::vector<femup::ModalData>& states,
-                          const Eigen::VectorXd& truth) {
+                          const Eigen::VectorXd& truth, int threads) {
   nlohmann::json out;
   const bool have_peak = femup_bench::ResetPeakRss();
   out["rss_before_solve_mb"] = femup_bench::StatusMb("VmRSS");
   const auto start = Clock::now();
   femup::NormalCorrectionStats stats;
   femup::LinearProblem problem =
-      femup::BuildNormalCorrectionSystem(model, states, &stats);
+      femup::BuildNormalCorrectionSystem(model, states, &stats, {threads});
   // Scaling K and M together leaves every mode's residual zero: fix the first
   // factor (a mass factor) at its preset value, as the linear method does.
   problem.fixed = {{0, truth[0]}};
@@ -231,7 +231,7 @@ double MaxAbsDifference(const nlohmann::json& a, const nlohmann::json& b) {
 int main(int argc, char** argv) {
   CLI::App app{"the linear correction-factor system at scale: femup against scipy"};
   std::string size = "1e5";
-  int air_modes = 5, water_modes = 5;
+  int air_modes = 5, water_modes = 5, threads = 1;
   std::string python = "/usr/bin/python3";
   std::string script = FEMUP_SYSTEM_PEER_SCRIPT;
   std::string markdown, keep;
@@ -243,6 +243,9 @@ int main(int argc, char** argv) {
   femup_bench::AddPeerOptions(app, python, script, markdown, "scipy",
                               "normal_system_peer.py");
   app.add_option("--keep", keep, "write the files under this directory and keep them");
+  app.add_option("--threads", threads,
+                 "femup's threads for the half solves and G (0 = one per core)")
+      ->check(CLI::NonNegativeNumber);
   CLI11_PARSE(app, argc, argv);
   femup::SpaceFrameSpec spec;
   try {
@@ -362,7 +365,7 @@ int main(int argc, char** argv) {
 
   std::cerr << size << ": femup\n";
   const PeerResult femup_side =
-      femup_bench::RunInChild([&] { return SolveFemup(model, states, truth); });
+      femup_bench::RunInChild([&] { return SolveFemup(model, states, truth, threads); });
   if (!femup_side.error.empty())
     std::cerr << "  femup failed: " << femup_side.error << "\n";
   std::cerr << size << ": scipy\n";
@@ -462,7 +465,8 @@ int main(int argc, char** argv) {
   }
   const char* omp = std::getenv("OMP_NUM_THREADS");
   md << " femup ran with OMP_NUM_THREADS=" << (omp != nullptr ? omp : "unset")
-     << " (CHOLMOD's threads).";
+     << " (CHOLMOD's threads) and " << threads
+     << " thread(s) for its half solves and G (--threads; 0 = one per core).";
   md << " Peak: VmHWM of the solving process, reset just before the work starts (it "
         "counts the model held in memory; scipy: also the interpreter).\n";
   std::cout << md.str();

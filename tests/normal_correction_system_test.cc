@@ -119,6 +119,32 @@ TEST(NormalCorrectionSystem, SpaceFrameMatchesTheDenseStackedForm) {
   EXPECT_GT(stats.nnz_z, 0);
 }
 
+// The half solves and G's products on threads: the same bits for 1 and 2
+// threads and one per core; negative threads refused by name.
+TEST(NormalCorrectionSystem, ThreadCountDoesNotChangeTheSystem) {
+  SpaceFrameSpec spec = fixtures::SpaceFrame(3, 1, 1, 2);
+  spec.water_depth = 15;
+  const ParametrisedModel model = BuildSpaceFrame(spec);
+  Eigen::VectorXd truth = Eigen::VectorXd::Constant(model.num_parameters(), 0.05);
+  const std::vector<ModalData> states = {
+      PredictModes(model, truth, Immersion::kDry, 4, "air"),
+      PredictModes(model, truth, Immersion::kWet, 4, "water")};
+  const LinearProblem one = BuildNormalCorrectionSystem(model, states, nullptr, {1});
+  for (const int threads : {2, 0}) {
+    const LinearProblem other =
+        BuildNormalCorrectionSystem(model, states, nullptr, {threads});
+    EXPECT_EQ(other.A, one.A) << threads;
+    EXPECT_EQ(other.b, one.b) << threads;
+    EXPECT_EQ(other.residual_offset, one.residual_offset) << threads;
+  }
+  try {
+    BuildNormalCorrectionSystem(model, states, nullptr, {-1});
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where(), "threads");
+  }
+}
+
 TEST(NormalCorrectionSystem, CountsTheGramMatrixsFlopsFromTheBasesSupports) {
   // The chain's mass matrix is diagonal, so L^-1 P Z_j has Z_j's pattern: DOF
   // r's row holds one entry per factor entering the state whose basis touches

@@ -178,6 +178,56 @@ TEST(SparseCholesky, CountsTheFactorisationsFlopsFromTheColumnCounts) {
   EXPECT_EQ(SparseCholesky(diagonal).info().flops, 7.0);
 }
 
+// The shared-pattern half solve runs blocks of columns on threads: the same
+// bits for 1, 2 and 3 threads (each column's arithmetic is its own), and the
+// same pattern; a negative count is refused by name.
+TEST(SparseCholesky, HalfSolveThreadsGiveTheSameBits) {
+  const SparseMatrix a = Grid(30, 20, 0.02);
+  const SparseMatrix pattern = SparseColumns(static_cast<int>(a.rows()), 100, 5, 31);
+  std::vector<SparseMatrix> b(4, pattern);
+  std::mt19937_64 rng(33);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  for (SparseMatrix& bj : b) {
+    for (Eigen::Index k = 0; k < bj.nonZeros(); ++k) bj.valuePtr()[k] = normal(rng);
+  }
+  std::vector<std::vector<SparseMatrix>> runs;
+  for (const int threads : {1, 2, 3}) {
+    SparseCholeskyOptions options;
+    options.threads = threads;
+    runs.push_back(SparseCholesky(a, options).HalfSolve(b));
+  }
+  for (std::size_t r = 1; r < runs.size(); ++r) {
+    for (std::size_t j = 0; j < b.size(); ++j) {
+      const SparseMatrix& one = runs[0][j];
+      const SparseMatrix& other = runs[r][j];
+      ASSERT_EQ(other.nonZeros(), one.nonZeros());
+      EXPECT_TRUE(std::equal(one.outerIndexPtr(), one.outerIndexPtr() + one.cols() + 1,
+                             other.outerIndexPtr()));
+      EXPECT_TRUE(std::equal(one.innerIndexPtr(), one.innerIndexPtr() + one.nonZeros(),
+                             other.innerIndexPtr()));
+      EXPECT_TRUE(
+          std::equal(one.valuePtr(), one.valuePtr() + one.nonZeros(), other.valuePtr()));
+    }
+  }
+  // And the values are L^-1 P B: W' W = B' A^-1 B against a dense solve.
+  const Eigen::MatrixXd dense_b(b[2]);
+  const Eigen::MatrixXd reference =
+      dense_b.transpose() * Eigen::MatrixXd(a).llt().solve(dense_b);
+  const Eigen::MatrixXd w(runs[1][2]);
+  EXPECT_LT((w.transpose() * w - reference).cwiseAbs().maxCoeff(),
+            1e-12 * reference.cwiseAbs().maxCoeff());
+  SparseCholeskyOptions negative;
+  negative.name = "model.mass";
+  negative.threads = -1;
+  try {
+    SparseCholesky chol(a, negative);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where(), "model.mass");
+    EXPECT_NE(std::string(e.what()).find("threads"), std::string::npos) << e.what();
+  }
+}
+
 TEST(SparseCholesky, RejectsWhatItCannotFactorise) {
   SparseCholeskyOptions options;
   options.name = "model.mass";

@@ -5,13 +5,18 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <sstream>
 
 #include "femup/core/errors.h"
 #include "femup/core/linalg/sparse_cholesky.h"
+#include "femup/core/parallel.h"
 
 namespace femup {
 namespace {
+
+// Ranges of G's columns its products are split into, for the threads.
+constexpr int kGramParts = 8;
 
 double Since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -22,8 +27,8 @@ double Since(std::chrono::steady_clock::time_point t0) {
 // each row's t entries for all modes at once, t (t + 1) / 2 products of
 // m-vectors into G, with no sparse product and its sparse result. Returns the
 // floating-point operations it made (a multiplication and an addition per
-// product term).
-double AddGramLower(const std::vector<SparseMatrix>& w, Eigen::MatrixXd* g) {
+// product term). Runs on `threads` threads.
+double AddGramLower(const std::vector<SparseMatrix>& w, int threads, Eigen::MatrixXd* g) {
   if (w.empty()) return 0;
   const SparseMatrix& first = w.front();
   const int n = static_cast<int>(first.rows());
@@ -50,20 +55,51 @@ double AddGramLower(const std::vector<SparseMatrix>& w, Eigen::MatrixXd* g) {
   double* gd = g->data();
   const Eigen::Index ld = g->rows();
   double flops = 0;
+  // The products each column of G receives (its pairs a <= b in every row),
+  // to split G's columns into kGramParts ranges of about equal work.
+  std::vector<double> work(static_cast<std::size_t>(p), 0.0);
   for (int r = 0; r < n; ++r) {
     const double t = row_start[r + 1] - row_start[r];
     flops += t * (t + 1) * static_cast<double>(m);
-    for (int a = row_start[r]; a < row_start[r + 1]; ++a) {
-      const double* va = value.data() + static_cast<std::size_t>(a) * m;
-      double* ga = gd + static_cast<Eigen::Index>(column[a]) * ld;  // column a of G
-      for (int b = a; b < row_start[r + 1]; ++b) {
-        const double* vb = value.data() + static_cast<std::size_t>(b) * m;
-        double sum = 0;
-        for (std::size_t j = 0; j < m; ++j) sum += va[j] * vb[j];
-        ga[column[b]] += sum;  // G(column b, column a), column b >= column a
-      }
+    for (int a = row_start[r]; a < row_start[r + 1]; ++a)
+      work[static_cast<std::size_t>(column[a])] += row_start[r + 1] - a;
+  }
+  std::vector<int> part_start(kGramParts + 1, p);
+  part_start[0] = 0;
+  {
+    const double total = std::accumulate(work.begin(), work.end(), 0.0);
+    double sum = 0;
+    for (int c = 0, cut = 1; c < p && cut < kGramParts; ++c) {
+      sum += work[static_cast<std::size_t>(c)];
+      while (cut < kGramParts && sum >= total * cut / kGramParts)
+        part_start[cut++] = c + 1;
     }
   }
+  // Each part writes the columns of G in its range only, their terms added in
+  // row order as one loop would: the bits do not depend on the threads. A
+  // row's entries are in ascending column order, so a part's are contiguous.
+  ParallelFor(kGramParts, threads, [&](int part) {
+    const int lo = part_start[part], hi = part_start[part + 1];
+    if (lo >= hi) return;
+    for (int r = 0; r < n; ++r) {
+      const int* first_col = column.data() + row_start[r];
+      const int* last_col = column.data() + row_start[r + 1];
+      const int begin =
+          static_cast<int>(std::lower_bound(first_col, last_col, lo) - column.data());
+      const int end =
+          static_cast<int>(std::lower_bound(first_col, last_col, hi) - column.data());
+      for (int a = begin; a < end; ++a) {
+        const double* va = value.data() + static_cast<std::size_t>(a) * m;
+        double* ga = gd + static_cast<Eigen::Index>(column[a]) * ld;  // column a of G
+        for (int b = a; b < row_start[r + 1]; ++b) {
+          const double* vb = value.data() + static_cast<std::size_t>(b) * m;
+          double sum = 0;
+          for (std::size_t j = 0; j < m; ++j) sum += va[j] * vb[j];
+          ga[column[b]] += sum;  // G(column b, column a), column b >= column a
+        }
+      }
+    }
+  });
   return flops;
 }
 
@@ -71,7 +107,8 @@ double AddGramLower(const std::vector<SparseMatrix>& w, Eigen::MatrixXd* g) {
 
 LinearProblem BuildNormalCorrectionSystem(const ParametrisedModel& model,
                                           const std::vector<ModalData>& states,
-                                          NormalCorrectionStats* stats) {
+                                          NormalCorrectionStats* stats,
+                                          const NormalCorrectionOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   const int dofs = model.num_dofs();
   const int p = model.num_parameters();
@@ -79,8 +116,13 @@ LinearProblem BuildNormalCorrectionSystem(const ParametrisedModel& model,
     throw InputError("parameters", "the model has no correction factor to identify");
   if (states.empty()) throw InputError("measurements", "no measured state is given");
 
+  if (options.threads < 0) {
+    throw InputError("threads", "must be >= 0 (0 = one per core), got " +
+                                    std::to_string(options.threads));
+  }
   SparseCholeskyOptions chol_options;
   chol_options.name = "model.mass";
+  chol_options.threads = options.threads;
   const SparseCholesky chol(model.mass(), chol_options);
 
   Eigen::MatrixXd g = Eigen::MatrixXd::Zero(p, p);
@@ -150,7 +192,7 @@ LinearProblem BuildNormalCorrectionSystem(const ParametrisedModel& model,
       h += w[j].transpose() * y.col(j);
     }
     t_phase = std::chrono::steady_clock::now();
-    flops_gram += AddGramLower(w, &g);
+    flops_gram += AddGramLower(w, options.threads, &g);
     seconds_gram += Since(t_phase);
   }
   // The upper triangle from the lower (a loop: no aliasing between the two).

@@ -9,9 +9,13 @@
 #include <numeric>
 
 #include "femup/core/errors.h"
+#include "femup/core/parallel.h"
 
 namespace femup {
 namespace {
+
+// Blocks of columns a sparse half-solve is split into, for its threads.
+constexpr int kHalfSolveBlocks = 32;
 
 double Since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -57,8 +61,7 @@ struct SparseCholesky::Impl {
   std::vector<int> perm;             // row i of P A P' is row perm[i] of A
   std::vector<int> inverse;          // inverse[perm[i]] = i
   SparseCholeskyInfo info;
-  // Work space of the sparse half-solve.
-  mutable std::vector<int> xi;
+  int threads = 0;  // of the sparse half-solve (0: one per core)
 
   ~Impl() {
     if (factor != nullptr) cholmod_free_factor(&factor, &common);
@@ -90,7 +93,12 @@ SparseCholesky::SparseCholesky(const SparseMatrix& a,
       throw InputError(name, "holds a non-finite entry");
     }
   }
+  if (options.threads < 0) {
+    throw InputError(name, "threads must be >= 0 (0 = one per core), got " +
+                               std::to_string(options.threads));
+  }
   Impl& m = *impl_;
+  m.threads = options.threads;
   m.info.n = a.rows();
   m.info.nnz_a = lower.nonZeros();
   cholmod_start(&m.common);
@@ -156,7 +164,6 @@ SparseCholesky::SparseCholesky(const SparseMatrix& a,
     m.inverse[m.perm[i]] = i;
   }
   m.info.nnz_l = m.lp()[n];
-  m.xi.assign(2 * static_cast<std::size_t>(n), 0);
 }
 
 SparseCholesky::~SparseCholesky() = default;
@@ -214,56 +221,105 @@ std::vector<SparseMatrix> SparseCholesky::HalfSolve(
   std::vector<int> rows(first.innerIndexPtr(), first.innerIndexPtr() + first.nonZeros());
   for (int& r : rows) r = m.inverse[r];
   std::vector<int> outer(first.outerIndexPtr(), first.outerIndexPtr() + first.cols() + 1);
-  cs_di l = CsView(n, n, m.lp(), m.li(), m.lx());
-  cs_di pattern =
-      CsView(n, static_cast<int>(first.cols()), outer.data(), rows.data(), nullptr);
+  const int columns = static_cast<int>(first.cols());
 
-  // x: n x count, row-major, so that the count values of one row sit together.
-  std::vector<double> x(static_cast<std::size_t>(n) * count, 0.0);
-  std::vector<int> out_outer(first.cols() + 1, 0);
-  std::vector<int> out_inner;
-  std::vector<std::vector<double>> out_values(count);
-  std::vector<int> column;
-  const int* lp = m.lp();
+  // Blocks of consecutive columns of about equal right-hand-side entries, a
+  // fixed number of them whatever the thread count (each column's arithmetic
+  // is its own, so the bits do not depend on the split either way).
+  const int blocks = std::min(columns, kHalfSolveBlocks);
+  std::vector<int> block_start(static_cast<std::size_t>(blocks) + 1, columns);
+  block_start[0] = 0;
+  for (int k = 0, next = 1; k < columns && next < blocks; ++k) {
+    if (static_cast<long long>(outer[k]) * blocks >=
+        static_cast<long long>(outer[columns]) * next) {
+      block_start[static_cast<std::size_t>(next++)] = k;
+    }
+  }
+  for (int q = blocks - 1; q > 0; --q)  // monotonic, none empty beyond the end
+    block_start[q] = std::min(block_start[q], block_start[q + 1]);
+
+  // Per worker: the dense accumulator (n x count, row-major, so that the
+  // count values of one row sit together; entries are zeroed over each reach
+  // before use), the reach's stack and a copy of L's column pointers, which
+  // cs_di_reach marks while it runs.
+  struct Workspace {
+    std::vector<double> x;
+    std::vector<int> xi, lp;
+  };
+  const int workers = ParallelWorkers(blocks, m.threads);
+  std::vector<Workspace> space(static_cast<std::size_t>(workers));
+  struct Block {
+    std::vector<int> inner, counts;  // counts: entries per column
+    std::vector<std::vector<double>> values;
+  };
+  std::vector<Block> done(static_cast<std::size_t>(blocks));
   const int* li = m.li();
   const double* lx = m.lx();
-  for (int k = 0; k < pattern.n; ++k) {
-    const int top = cs_di_reach(&l, &pattern, k, m.xi.data(), nullptr);
-    for (int p = top; p < n; ++p) {
-      std::fill_n(x.data() + static_cast<std::size_t>(m.xi[p]) * count, count, 0.0);
+  ParallelForWorkers(blocks, m.threads, [&](int block, int worker) {
+    Workspace& w = space[static_cast<std::size_t>(worker)];
+    if (w.lp.empty()) {
+      w.x.assign(static_cast<std::size_t>(n) * count, 0.0);
+      w.xi.assign(2 * static_cast<std::size_t>(n), 0);
+      w.lp.assign(m.lp(), m.lp() + n + 1);
     }
-    for (int p = outer[k]; p < outer[k + 1]; ++p) {
-      double* row = x.data() + static_cast<std::size_t>(rows[p]) * count;
-      for (std::size_t j = 0; j < count; ++j) row[j] = b[j].valuePtr()[p];
-    }
-    // Forward substitution in the reach's topological order (L's diagonal
-    // entry first in each column).
-    for (int p = top; p < n; ++p) {
-      const int c = m.xi[p];
-      double* xc = x.data() + static_cast<std::size_t>(c) * count;
-      const double diagonal = lx[lp[c]];
-      for (std::size_t j = 0; j < count; ++j) xc[j] /= diagonal;
-      for (int q = lp[c] + 1; q < lp[c + 1]; ++q) {
-        double* xr = x.data() + static_cast<std::size_t>(li[q]) * count;
-        const double v = lx[q];
-        for (std::size_t j = 0; j < count; ++j) xr[j] -= v * xc[j];
+    const int* lp = w.lp.data();
+    cs_di l = CsView(n, n, w.lp.data(), const_cast<int*>(li), const_cast<double*>(lx));
+    cs_di pattern = CsView(n, columns, outer.data(), rows.data(), nullptr);
+    Block& out_block = done[static_cast<std::size_t>(block)];
+    out_block.values.resize(count);
+    std::vector<int> column;
+    for (int k = block_start[block]; k < block_start[block + 1]; ++k) {
+      const int top = cs_di_reach(&l, &pattern, k, w.xi.data(), nullptr);
+      for (int p = top; p < n; ++p) {
+        std::fill_n(w.x.data() + static_cast<std::size_t>(w.xi[p]) * count, count, 0.0);
       }
+      for (int p = outer[k]; p < outer[k + 1]; ++p) {
+        double* row = w.x.data() + static_cast<std::size_t>(rows[p]) * count;
+        for (std::size_t j = 0; j < count; ++j) row[j] = b[j].valuePtr()[p];
+      }
+      // Forward substitution in the reach's topological order (L's diagonal
+      // entry first in each column).
+      for (int p = top; p < n; ++p) {
+        const int c = w.xi[p];
+        double* xc = w.x.data() + static_cast<std::size_t>(c) * count;
+        const double diagonal = lx[lp[c]];
+        for (std::size_t j = 0; j < count; ++j) xc[j] /= diagonal;
+        for (int q = lp[c] + 1; q < lp[c + 1]; ++q) {
+          double* xr = w.x.data() + static_cast<std::size_t>(li[q]) * count;
+          const double v = lx[q];
+          for (std::size_t j = 0; j < count; ++j) xr[j] -= v * xc[j];
+        }
+      }
+      column.assign(w.xi.begin() + top, w.xi.begin() + n);
+      std::sort(column.begin(), column.end());
+      for (int r : column) {
+        out_block.inner.push_back(r);
+        const double* xr = w.x.data() + static_cast<std::size_t>(r) * count;
+        for (std::size_t j = 0; j < count; ++j) out_block.values[j].push_back(xr[j]);
+      }
+      out_block.counts.push_back(static_cast<int>(column.size()));
     }
-    column.assign(m.xi.begin() + top, m.xi.begin() + n);
-    std::sort(column.begin(), column.end());
-    for (int r : column) {
-      out_inner.push_back(r);
-      const double* xr = x.data() + static_cast<std::size_t>(r) * count;
-      for (std::size_t j = 0; j < count; ++j) out_values[j].push_back(xr[j]);
-    }
-    out_outer[k + 1] = static_cast<int>(out_inner.size());
-  }
+  });
+  // The blocks in column order.
+  std::size_t total = 0;
+  for (const Block& d : done) total += d.inner.size();
   for (std::size_t j = 0; j < count; ++j) {
     SparseMatrix& w = out[j];
-    w.resizeNonZeros(static_cast<Eigen::Index>(out_inner.size()));
-    std::copy(out_outer.begin(), out_outer.end(), w.outerIndexPtr());
-    std::copy(out_inner.begin(), out_inner.end(), w.innerIndexPtr());
-    std::copy(out_values[j].begin(), out_values[j].end(), w.valuePtr());
+    w.resizeNonZeros(static_cast<Eigen::Index>(total));
+    int* out_outer = w.outerIndexPtr();
+    out_outer[0] = 0;
+    int k = 0;
+    std::size_t at = 0;
+    for (const Block& d : done) {
+      for (int c : d.counts) {
+        out_outer[k + 1] = out_outer[k] + c;
+        ++k;
+      }
+      std::copy(d.inner.begin(), d.inner.end(), w.innerIndexPtr() + at);
+      if (!d.values.empty())
+        std::copy(d.values[j].begin(), d.values[j].end(), w.valuePtr() + at);
+      at += d.inner.size();
+    }
   }
   return out;
 }

@@ -45,10 +45,18 @@ struct NormalCorrectionStats {
   double flops_gram = 0;          // multiplications and additions of G's lower triangle
 };
 
+struct NormalCorrectionOptions {
+  // Threads of the sparse half solves and of G's products (0 = one per core).
+  // The system is the same bits for any count. Negative: InputError.
+  int threads = 0;
+};
+
 // Throws InputError for shapes that are not on every DOF, a model without
-// parameters, or no state; a mass matrix that is not positive definite.
+// parameters, or no state; a mass matrix that is not positive definite;
+// negative threads.
 LinearProblem BuildNormalCorrectionSystem(const ParametrisedModel& model,
                                           const std::vector<ModalData>& states,
-                                          NormalCorrectionStats* stats = nullptr);
+                                          NormalCorrectionStats* stats = nullptr,
+                                          const NormalCorrectionOptions& options = {});
 
 }  // namespace femup

@@ -28,6 +28,10 @@ struct SparseCholeskyOptions {
   Ordering ordering = Ordering::kNestedDissection;
   // Name used in error messages ("model.mass").
   std::string name = "matrix";
+  // Threads of the sparse half-solve with several columns (blocks of columns
+  // on each): 0 = one per core. The result is the same bits for any count.
+  // Negative: InputError.
+  int threads = 0;
 };
 
 // Summary of the factor.
@@ -63,13 +67,14 @@ class SparseCholesky {
   Eigen::MatrixXd HalfSolve(const Eigen::MatrixXd& b) const;
   // W = L^-1 P B for sparse B, column by column, touching only the columns of
   // L reachable from each column's pattern (the several-right-hand-side solve
-  // below with one of them). Not thread-safe on one object (the solve marks
-  // the factor's column pointers while it runs, and shares a work space).
+  // below with one of them). Each call has its own work space and its own copy
+  // of the column pointers the reach marks, so calls may run concurrently.
   SparseMatrix HalfSolve(const SparseMatrix& b) const;
   // W_j = L^-1 P B_j for several right-hand sides B_j that share one sparsity
   // pattern (the same outer and inner index arrays; values may differ, zeros
   // included): each column's reach in L is found once for all of them and L is
   // read once per column for all of them. The W_j share one pattern too.
+  // Blocks of columns run on `threads` threads (SparseCholeskyOptions).
   // Throws InputError when the B_j differ in size or pattern.
   std::vector<SparseMatrix> HalfSolve(const std::vector<SparseMatrix>& b) const;
 
