@@ -140,6 +140,16 @@ TEST_F(SmallModel, UpdatedMatricesAreHandSums) {
   EXPECT_THROW(model_.UpdatedDryMass(bad), InputError);
 }
 
+// DOFs that share a label's node part ("n1:ux", "n1:rz") share a node; a
+// label without ':' is its own node even when repeated.
+TEST(ParametrisedModel, DofNodesFromTheLabels) {
+  const Eigen::MatrixXd k = Eigen::MatrixXd::Identity(6, 6);
+  const ParametrisedModel model(Sparse(k), Sparse(k),
+                                {"n1:ux", "n1:uy", "n2:ux", "b", "n1:rz", "b"});
+  EXPECT_EQ(model.DofNodes(), (std::vector<int>{0, 0, 1, 2, 0, 3}));
+  EXPECT_TRUE(ParametrisedModel().DofNodes().empty());
+}
+
 TEST(ParametrisedModel, ConstructorRejectsBadMatrices) {
   const Eigen::Matrix2d k = (Eigen::Matrix2d() << 2, -1, -1, 1).finished();
   const Eigen::Matrix2d m = Eigen::Matrix2d::Identity();

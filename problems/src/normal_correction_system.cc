@@ -123,6 +123,7 @@ LinearProblem BuildNormalCorrectionSystem(const ParametrisedModel& model,
   SparseCholeskyOptions chol_options;
   chol_options.name = "model.mass";
   chol_options.threads = options.threads;
+  chol_options.groups = model.DofNodes();  // nested dissection of the node graph
   const SparseCholesky chol(model.mass(), chol_options);
 
   Eigen::MatrixXd g = Eigen::MatrixXd::Zero(p, p);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <unordered_map>
 
 #include "femup/core/enum_names.h"
 #include "femup/core/errors.h"
@@ -180,6 +181,19 @@ int ParametrisedModel::FindDof(const std::string& label) const {
     if (dof_labels_[i] == label) return i;
   }
   return -1;
+}
+
+std::vector<int> ParametrisedModel::DofNodes() const {
+  std::unordered_map<std::string, int> ids;
+  std::vector<int> node(dof_labels_.size());
+  for (std::size_t i = 0; i < dof_labels_.size(); ++i) {
+    const std::string& label = dof_labels_[i];
+    const std::size_t colon = label.find(':');
+    const std::string key = colon == std::string::npos ? label + "\n" + std::to_string(i)
+                                                       : label.substr(0, colon);
+    node[i] = ids.emplace(key, static_cast<int>(ids.size())).first->second;
+  }
+  return node;
 }
 
 void ParametrisedModel::CheckFactors(const Eigen::VectorXd& d) const {

@@ -60,6 +60,11 @@ class ParametrisedModel {
   std::vector<std::string> ParameterNames() const;
   // Index of the DOF labelled `label`, or -1.
   int FindDof(const std::string& label) const;
+  // The node of each DOF, numbered 0, 1, ... in order of first appearance: DOFs
+  // whose labels share the part before ':' ("n3:ux", "n3:rz") share a node; a
+  // label without ':' is a node of its own. Sparse factorisations order the
+  // node graph with it (SparseCholeskyOptions::groups).
+  std::vector<int> DofNodes() const;
 
   // Assembled matrices for a factor vector d (size num_parameters()).
   SparseMatrix UpdatedStiffness(const Eigen::VectorXd& d) const;

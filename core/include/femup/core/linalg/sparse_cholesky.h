@@ -28,6 +28,12 @@ struct SparseCholeskyOptions {
   Ordering ordering = Ordering::kNestedDissection;
   // Name used in error messages ("model.mass").
   std::string name = "matrix";
+  // Empty, or one group per row (0-based, e.g. the node a DOF belongs to):
+  // with nested dissection the ordering is then found on the graph of the
+  // groups (METIS on a graph 6 times smaller for a space frame's 6-DOF nodes)
+  // and each group's rows are eliminated together, in their own order. A size
+  // other than the matrix's or a negative group: InputError.
+  std::vector<int> groups;
   // Threads of the sparse half-solve with several columns (blocks of columns
   // on each): 0 = one per core. The result is the same bits for any count.
   // Negative: InputError.
