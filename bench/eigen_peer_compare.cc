@@ -299,6 +299,7 @@ int main(int argc, char** argv) {
   std::string markdown, keep;
   std::string peers_text = "default,symmetric";
   int threads = 0;
+  bool dof_ordering = false;
   app.add_option("--dofs", sizes_text,
                  "frames, comma-separated: 1e4, 1e5, 1e6 (docs/space_frame.md) or "
                  "BXxBYxLEVELS");
@@ -314,6 +315,9 @@ int main(int argc, char** argv) {
                  "scipy configurations, comma-separated: default (eigsh factorises "
                  "with SuperLU's defaults), symmetric (splu with a symmetric ordering "
                  "and no pivoting, as OPinv)");
+  app.add_flag(
+      "--dof-ordering", dof_ordering,
+      "order the DOF graph, not the node graph (EigenOptions::dof_groups empty)");
   app.add_option("--threads", threads,
                  "femup's EigenOptions::threads (M's check beside K - shift*M's "
                  "factorisation): 0 = one per core, 1 = one after the other")
@@ -359,12 +363,15 @@ int main(int argc, char** argv) {
     row.name = size.name;
     std::cerr << size.name << ": building the frame\n";
     femup::SparseMatrix K, M;
+    femup::EigenOptions size_options = options;
     {
       auto start = Clock::now();
       femup::ParametrisedModel model = femup::BuildSpaceFrame(size.spec);
       row.build_time = Seconds(start);
       K = model.stiffness();
       M = model.mass();
+      // The ordering on the node graph, as a caller with the model passes it.
+      if (!dof_ordering) size_options.dof_groups = model.DofNodes();
     }
     ::malloc_trim(0);  // the model's memory back to the system before the fork
     row.dofs = K.rows();
@@ -379,7 +386,7 @@ int main(int argc, char** argv) {
     row.write_time = Seconds(start);
 
     std::cerr << size.name << ": femup\n";
-    row.femup = RunInChild([&] { return SolveFemup(K, M, options); });
+    row.femup = RunInChild([&] { return SolveFemup(K, M, size_options); });
     if (!row.femup.error.empty())
       std::cerr << "  femup failed: " << row.femup.error << "\n";
     K.resize(0, 0);  // not needed any more: leave the memory to the peer
@@ -413,7 +420,10 @@ int main(int argc, char** argv) {
       << modes << " modes nearest above shift " << shift << ", tolerance " << tolerance
       << " on both sides; one run each. femup: SolveModes(kSparseShiftInvert) in a "
          "forked child (OMP_NUM_THREADS="
-      << (omp != nullptr ? omp : "unset") << ", EigenOptions::threads = " << threads
+      << (omp != nullptr ? omp : "unset") << ", "
+      << (dof_ordering ? "the DOF graph ordered (--dof-ordering)"
+                       : "the node graph ordered (EigenOptions::dof_groups)")
+      << ", EigenOptions::threads = " << threads
       << (threads == 0
               ? " (one per core: " + std::to_string(femup::DefaultThreadCount()) + ")"
               : std::string())

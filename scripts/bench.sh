@@ -17,6 +17,9 @@
 #   system_peer.md the linear correction-factor system of a 10^5-DOF frame with
 #                 10^3 factors and 10 measured modes, femup against scipy
 #                 (bench/system_peer_compare.cc), with the memory read bound
+#                 and the arithmetic floor; femup's half solves and G on
+#                 FEMUP_SYSTEM_THREADS threads (NormalCorrectionOptions::threads,
+#                 default 0: one per core)
 #   noise_peer.md the paper's noise study (11 levels x 1000 draws) in femup (1
 #                 and 2 threads) against the same computation in numpy
 #                 (bench/noise_peer_compare.cc), 5 interleaved rounds, with the
@@ -37,6 +40,7 @@ eigen_dofs=${FEMUP_EIGEN_PEER_DOFS:-1e5}
 eigen_peers=${FEMUP_EIGEN_PEERS:-default,symmetric}
 eigen_threads=${FEMUP_EIGEN_THREADS:-0}
 system_size=${FEMUP_SYSTEM_PEER_SIZE:-1e5}
+system_threads=${FEMUP_SYSTEM_THREADS:-0}
 noise_draws=${FEMUP_NOISE_PEER_DRAWS:-1000}
 
 # The compiler flags of the CI's Release build, so that a compiler cache (ccache,
@@ -61,6 +65,7 @@ mkdir -p "$out"
     git diff --quiet HEAD 2>/dev/null || echo ' plus uncommitted changes')"
   echo "command: scripts/bench.sh (FEMUP_BENCH_MIN_TIME=$min_time FEMUP_PEER_SIZES=$sizes" \
     "FEMUP_EIGEN_PEER_DOFS=$eigen_dofs FEMUP_SYSTEM_PEER_SIZE=$system_size" \
+    "FEMUP_EIGEN_THREADS=$eigen_threads FEMUP_SYSTEM_THREADS=$system_threads" \
     "FEMUP_NOISE_PEER_DRAWS=$noise_draws)"
 } > "$out/machine.txt"
 cat "$out/machine.txt"
@@ -85,7 +90,7 @@ OMP_NUM_THREADS=1 "$build/bench/femup_eigen_peer_compare" --dofs "$eigen_dofs" -
   --markdown "$out/eigen_peer.md"
 echo "== peer comparison (the linear correction-factor system, scipy)"
 OMP_NUM_THREADS=1 "$build/bench/femup_system_peer_compare" --size "$system_size" \
-  --markdown "$out/system_peer.md"
+  --threads "$system_threads" --markdown "$out/system_peer.md"
 echo "== peer comparison (the paper's noise study in numpy)"
 "$build/bench/femup_noise_peer_compare" --draws "$noise_draws" --repeat 5 --rounds 5 \
   --markdown "$out/noise_peer.md"

@@ -9,9 +9,11 @@
 #include <cstddef>
 #include <new>
 #include <string>
+#include <vector>
 
 #include "femup/core/errors.h"
 #include "femup/core/fe/model.h"
+#include "linalg/group_ordering.h"
 
 namespace femup {
 namespace internal {
@@ -57,6 +59,37 @@ class CholmodLlt : public Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower
                                std::to_string(cholmod().status) + ")");
     }
     std::copy_n(static_cast<const double*>(x_->x), factor->n, y);
+  }
+
+  // The symbolic analysis of `a` (its lower triangle) on a fill-reducing
+  // permutation from the graph of `groups` (group_ordering.h: METIS on the
+  // nodes rather than the DOFs); CHOLMOD's own ordering when `groups` is empty
+  // or METIS fails. Eigen's analyzePattern() with cholmod_analyze_p.
+  void AnalyzePatternByGroups(const SparseMatrix& a, const std::vector<int>& groups) {
+    const std::vector<int> perm =
+        groups.empty() ? std::vector<int>{} : GroupOrdering(a, groups, &cholmod());
+    if (perm.empty()) {
+      analyzePattern(a);
+      return;
+    }
+    if (m_cholmodFactor != nullptr) cholmod_free_factor(&m_cholmodFactor, &cholmod());
+    cholmod_sparse view = Eigen::viewAsCholmod(a.selfadjointView<Eigen::Lower>());
+    const int nmethods = cholmod().nmethods;
+    const int ordering = cholmod().method[0].ordering;
+    cholmod().nmethods = 1;
+    cholmod().method[0].ordering = CHOLMOD_GIVEN;
+    m_cholmodFactor =
+        cholmod_analyze_p(&view, const_cast<int*>(perm.data()), nullptr, 0, &cholmod());
+    cholmod().nmethods = nmethods;
+    cholmod().method[0].ordering = ordering;
+    if (m_cholmodFactor == nullptr) {
+      analyzePattern(a);
+      return;
+    }
+    m_isInitialized = true;
+    m_info = Eigen::Success;
+    m_analysisIsOk = true;
+    m_factorizationIsOk = false;
   }
 
   // Takes `other`'s symbolic analysis (ordering and pattern of L) as its own,

@@ -229,8 +229,12 @@ class CholmodShiftInvertOp {
   using Ldlt = Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower>;
 
   CholmodShiftInvertOp(const SparseMatrix& k_lower, const SparseMatrix& m_lower,
-                       double supernodal_switch)
-      : k_(k_lower), m_(m_lower), n_(k_lower.rows()), llt_(supernodal_switch) {}
+                       double supernodal_switch, const std::vector<int>& groups)
+      : k_(k_lower),
+        m_(m_lower),
+        n_(k_lower.rows()),
+        llt_(supernodal_switch),
+        groups_(groups) {}
 
   Eigen::Index rows() const { return n_; }
   Eigen::Index cols() const { return n_; }
@@ -284,7 +288,7 @@ class CholmodShiftInvertOp {
   // that pattern: Combine keeps the union of its operands').
   void Analyse(const SparseMatrix& a) {
     if (analysed_) return;
-    llt_.analyzePattern(a);
+    llt_.AnalyzePatternByGroups(a, groups_);
     analysed_ = true;
   }
 
@@ -376,6 +380,7 @@ class CholmodShiftInvertOp {
   std::string failure_;
   Eigen::Index num_below_shift_ = 0;
   CholmodLlt llt_;
+  const std::vector<int>& groups_;  // DOF groups for the ordering (may be empty)
   std::unique_ptr<Ldlt> ldlt_;
 };
 
@@ -435,7 +440,15 @@ Modes SolveModesSparse(const SparseMatrix& K, const SparseMatrix& M,
   // check (a factorisation of M) and K - shift*M's are independent, and run
   // side by side on large models when options.threads allows. The check's
   // InputError, the lower index, is the one rethrown when both fail.
-  CholmodShiftInvertOp op(K, M, supernodal_switch);
+  if (!options.dof_groups.empty() &&
+      (options.dof_groups.size() != static_cast<std::size_t>(n) ||
+       *std::min_element(options.dof_groups.begin(), options.dof_groups.end()) < 0)) {
+    throw InputError(kWhere, "dof_groups must be empty or one index >= 0 per DOF (" +
+                                 std::to_string(n) + "), got " +
+                                 std::to_string(options.dof_groups.size()) + " entries " +
+                                 Context(k, n, shift));
+  }
+  CholmodShiftInvertOp op(K, M, supernodal_switch, options.dof_groups);
   const auto check_mass = [&](const CholmodLlt& analysed) {
     if (const Eigen::Index dof = MassBreakdown(K, M, analysed, supernodal_switch);
         dof >= 0) {
