@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <string>
@@ -151,6 +152,25 @@ TEST(SparseEigenTest, RandomPencilMatchesDenseSolver) {
   options.num_modes = 12;
   const Modes modes = SolveModesSparse(K, M, options);
   ExpectMatchesDense(K, M, modes, 0, 12);
+}
+
+// The ordering on a graph of DOF groups (EigenOptions::dof_groups, as a model's
+// nodes): the dense solver's modes on a grid pencil with its DOFs in groups of
+// 5 consecutive ones (and a last group of another size); groups of the wrong
+// size or a negative group are refused by name before any work.
+TEST(SparseEigenTest, NodeGraphOrderingMatchesDenseSolver) {
+  SparseMatrix K, M;
+  RandomPencil(20, 25, 20261128u, &K, &M);
+  EigenOptions options;
+  options.num_modes = 10;
+  for (Eigen::Index i = 0; i < K.rows(); ++i)
+    options.dof_groups.push_back(static_cast<int>(std::min<Eigen::Index>(i / 5, 97)));
+  const Modes modes = SolveModesSparse(K, M, options);
+  ExpectMatchesDense(K, M, modes, 0, 10);
+  options.dof_groups.pop_back();
+  EXPECT_THROW(SolveModesSparse(K, M, options), InputError);
+  options.dof_groups.push_back(-1);
+  femup::testing::ExpectError([&] { SolveModesSparse(K, M, options); }, {"dof_groups"});
 }
 
 // CHOLMOD's simplicial and supernodal LL' (a switch of 0 flops per entry of L
