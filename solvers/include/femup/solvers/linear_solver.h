@@ -5,7 +5,9 @@
 //
 //   lstsq     least squares by SVD of the column-scaled matrix, refined with
 //             residuals in long double; minimum-norm when rank deficient. Fixed
-//             values and equalities (eliminated exactly).
+//             values and equalities (eliminated exactly). A large compressed
+//             problem (source_rows > 0) goes through its Gram matrix instead
+//             (gram_min_unknowns below).
 //   tsvd      truncated SVD; the truncation index given or chosen (GCV, L-curve,
 //             discrepancy). Fixed values and equalities.
 //   tikhonov  min ||A x - b||^2 + lambda^2 ||L (x - x0)||^2, L the identity or a
