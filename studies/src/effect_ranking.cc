@@ -12,6 +12,7 @@
 #include <string_view>
 
 #include "femup/core/errors.h"
+#include "femup/core/linalg/node_ordering.h"
 #include "femup/core/parallel.h"
 #include "femup/problems/effect_priors.h"
 #include "femup/problems/model_effect_pencil.h"
@@ -303,6 +304,8 @@ EffectRanking RankModelEffects(const Structure& structure_in,
   // evaluation at 600 DOF, and every fit evaluates hundreds of times.
   if (structure->type == "space_frame")
     fit.eigen.method = EigenOptions::Method::kSparseShiftInvert;
+  // A frame's sparse solves order its node graph (node_ordering.h).
+  fit.eigen = WithNodeOrdering(fit.eigen, structure->dof_labels);
   // The fits stop when the misfit changes by less than 1e-10 of itself: the
   // eigen-solver's tolerance (1e-10) puts a noise of about 1e-12 of the misfit
   // on every evaluation, so the solvers' default 1e-14 was never met and a

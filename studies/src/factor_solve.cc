@@ -11,6 +11,7 @@
 #include "femup/solvers/identifiability.h"
 #include "femup/solvers/nonlinear_solver.h"
 #include "femup/solvers/uncertainty.h"
+#include "femup/core/linalg/node_ordering.h"
 
 namespace femup {
 
@@ -46,7 +47,8 @@ Modes FemModesFor(const Study& study) {
                          "); use form: stacked without fem_modes (weighted by M^-1 "
                          "without the modes) or fewer system.fem_modes");
   }
-  return SolveModes(study.model.stiffness(), study.model.mass(), options);
+  return SolveModes(study.model.stiffness(), study.model.mass(),
+                    WithNodeOrdering(options, study.model.dof_labels()));
 }
 
 FactorSolve SolveFactors(const Study& study, const SolverSpec& spec,

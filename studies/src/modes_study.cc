@@ -1,4 +1,5 @@
 #include "femup/studies/modes_study.h"
+#include "femup/core/linalg/node_ordering.h"
 
 #include <iomanip>
 #include <nlohmann/json.hpp>
@@ -15,7 +16,8 @@ ModesResult RunModes(const Study& study, int num_modes) {
   EigenOptions options;
   const int n = study.model.num_dofs();
   options.num_modes = num_modes > 0 ? std::min(num_modes, n) : (n <= 1500 ? -1 : 10);
-  r.nominal = SolveModes(study.model.stiffness(), study.model.mass(), options);
+  r.nominal = SolveModes(study.model.stiffness(), study.model.mass(),
+                         WithNodeOrdering(options, study.model.dof_labels()));
   const SparseMatrix& k = study.model.stiffness();
   const SparseMatrix& m = study.model.mass();
   for (int j = 0; j < r.nominal.size(); ++j) {

@@ -17,6 +17,7 @@
 #include "femup/core/linalg/modal.h"
 #include "femup/core/sysid/expansion.h"
 #include "femup/studies/study.h"
+#include "femup/core/linalg/node_ordering.h"
 #include "modes_json.h"
 
 namespace femup {
@@ -147,7 +148,7 @@ void Expand(const Study& study, const MeasurementSpec& m, PreparedState* out) {
     eo.num_modes = std::min(wanted, model.num_dofs() - 1);
   Modes modes;
   try {
-    modes = SolveModes(k, mass, eo);
+    modes = SolveModes(k, mass, WithNodeOrdering(eo, model.dof_labels()));
   } catch (const InputError& e) {
     throw InputError(m.field + ".expansion", std::string("model modes: ") + e.what());
   }

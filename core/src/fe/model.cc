@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
-#include <unordered_map>
 
 #include "femup/core/enum_names.h"
 #include "femup/core/errors.h"
+#include "femup/core/linalg/node_ordering.h"
 
 namespace femup {
 
@@ -184,16 +184,7 @@ int ParametrisedModel::FindDof(const std::string& label) const {
 }
 
 std::vector<int> ParametrisedModel::DofNodes() const {
-  std::unordered_map<std::string, int> ids;
-  std::vector<int> node(dof_labels_.size());
-  for (std::size_t i = 0; i < dof_labels_.size(); ++i) {
-    const std::string& label = dof_labels_[i];
-    const std::size_t colon = label.find(':');
-    const std::string key = colon == std::string::npos ? label + "\n" + std::to_string(i)
-                                                       : label.substr(0, colon);
-    node[i] = ids.emplace(key, static_cast<int>(ids.size())).first->second;
-  }
-  return node;
+  return DofNodesFromLabels(dof_labels_);
 }
 
 void ParametrisedModel::CheckFactors(const Eigen::VectorXd& d) const {

@@ -6,6 +6,22 @@
 
 namespace femup::internal {
 
+cholmod_sparse CholmodLowerView(int rows, int* p, int* i, double* x) {
+  cholmod_sparse a{};
+  a.nrow = a.ncol = static_cast<std::size_t>(rows);
+  a.nzmax = std::max<std::size_t>(static_cast<std::size_t>(p[rows]), 1);
+  a.p = p;
+  a.i = i;
+  a.x = x;
+  a.stype = -1;
+  a.itype = CHOLMOD_INT;
+  a.xtype = x == nullptr ? CHOLMOD_PATTERN : CHOLMOD_REAL;
+  a.dtype = CHOLMOD_DOUBLE;
+  a.sorted = 1;
+  a.packed = 1;
+  return a;
+}
+
 std::vector<int> GroupOrdering(const SparseMatrix& lower, const std::vector<int>& groups,
                                cholmod_common* common) {
   const int n = static_cast<int>(lower.rows());
@@ -32,17 +48,7 @@ std::vector<int> GroupOrdering(const SparseMatrix& lower, const std::vector<int>
     i[e] = edges[e].first;
   }
   for (int c = 0; c < count; ++c) p[c + 1] += p[c];
-  cholmod_sparse graph{};
-  graph.nrow = graph.ncol = static_cast<std::size_t>(count);
-  graph.nzmax = std::max<std::size_t>(edges.size(), 1);
-  graph.p = p.data();
-  graph.i = i.data();
-  graph.stype = -1;
-  graph.itype = CHOLMOD_INT;
-  graph.xtype = CHOLMOD_PATTERN;
-  graph.dtype = CHOLMOD_DOUBLE;
-  graph.sorted = 1;
-  graph.packed = 1;
+  cholmod_sparse graph = CholmodLowerView(count, p.data(), i.data(), nullptr);
   std::vector<int> group_order(static_cast<std::size_t>(count));
   if (count == 0 || !cholmod_metis(&graph, nullptr, 0, 0, group_order.data(), common))
     return {};

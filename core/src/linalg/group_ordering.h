@@ -4,7 +4,8 @@
 // (sparse_eigen.cc). METIS on the group graph costs a fraction of METIS on
 // the rows (a 6-DOF node graph has 6 times fewer vertices and about 36 times
 // fewer edges), and the fill is about the same: a separator that cuts a node
-// takes all its DOFs anyway.
+// takes all its DOFs anyway. Also the CHOLMOD view of a lower triangle that the
+// ordering and the sparse Cholesky factor both hand to CHOLMOD.
 #pragma once
 
 #include <cholmod.h>
@@ -14,6 +15,11 @@
 #include "femup/core/fe/model.h"
 
 namespace femup::internal {
+
+// A CHOLMOD header (no copy) over the lower triangle of a symmetric matrix of
+// `rows` rows held as compressed columns: column pointers p (rows + 1), row
+// indices i, values x, or a pattern when x is null. CHOLMOD reads it in place.
+cholmod_sparse CholmodLowerView(int rows, int* p, int* i, double* x);
 
 // A fill-reducing permutation of the rows of the symmetric matrix whose lower
 // triangle `lower` holds (compressed), from a nested dissection of the graph

@@ -24,20 +24,8 @@ double Since(std::chrono::steady_clock::time_point t0) {
 
 // A CHOLMOD view (no copy) of the lower triangle held in `lower`.
 cholmod_sparse ViewLower(SparseMatrix& lower) {
-  cholmod_sparse a{};
-  a.nrow = static_cast<std::size_t>(lower.rows());
-  a.ncol = static_cast<std::size_t>(lower.cols());
-  a.nzmax = static_cast<std::size_t>(lower.nonZeros());
-  a.p = lower.outerIndexPtr();
-  a.i = lower.innerIndexPtr();
-  a.x = lower.valuePtr();
-  a.stype = -1;
-  a.itype = CHOLMOD_INT;
-  a.xtype = CHOLMOD_REAL;
-  a.dtype = CHOLMOD_DOUBLE;
-  a.sorted = 1;
-  a.packed = 1;
-  return a;
+  return internal::CholmodLowerView(static_cast<int>(lower.rows()), lower.outerIndexPtr(),
+                                    lower.innerIndexPtr(), lower.valuePtr());
 }
 
 // A CXSparse view (no copy) of compressed columns: rows x cols, column

@@ -5,6 +5,7 @@
 
 #include "femup/core/errors.h"
 #include "femup/core/linalg/modal.h"
+#include "femup/core/linalg/node_ordering.h"
 
 namespace femup {
 
@@ -142,7 +143,7 @@ ModalData PredictModes(const ParametrisedModel& model, const Eigen::VectorXd& d,
       immersion == Immersion::kWet ? model.UpdatedWetMass(d) : model.UpdatedDryMass(d);
   EigenOptions options;
   options.num_modes = num_modes;
-  const Modes modes = SolveModes(k, m, options);
+  const Modes modes = SolveModes(k, m, WithNodeOrdering(options, model.dof_labels()));
   ModalData out;
   out.state = state;
   out.immersion = immersion;
