@@ -1,5 +1,5 @@
 # The blind structure suites (validation/blind_structures): the independent
-# plane-frame code against closed forms, then a small shear-building suite end
+# plane- and space-frame codes against closed forms, then a small shear-building suite end
 # to end (cases, truths kept apart, diagnoses, scores, summary, plot).
 source "$(dirname "$0")/lib.sh"
 PY=""
@@ -8,7 +8,7 @@ for p in python3 /usr/bin/python3; do
 done
 [ -n "$PY" ] || fail "no python3 with numpy and scipy (scripts/setup.sh installs python3-numpy, python3-scipy)"
 SUITE="$ROOT/validation/blind_structures"
-(cd "$SUITE" && "$PY" -B -m unittest -q test_frame2d test_run_suite 2>&1) || fail "frame2d against closed forms, run_suite's scoring"
+(cd "$SUITE" && "$PY" -B -m unittest -q test_frame2d test_frame3d test_jacket3d test_run_suite 2>&1) || fail "frame2d and frame3d against closed forms, the jacket geometry, run_suite's scoring"
 
 "$PY" -B "$SUITE/run_suite.py" --suite shear_building --cases 8 --seed 7 --threads 2 \
   --femup "$FEMUP" -o blind > blind.txt 2> blind.err || { cat blind.err; fail "the suite did not run"; }
