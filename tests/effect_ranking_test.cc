@@ -643,6 +643,54 @@ TEST(EffectRanking, NamesADamagedBraceGroupOfAJacket) {
   EXPECT_EQ(attached, 4);
 }
 
+// A jacket on springs under its legs (the model's engineering estimate) whose
+// real foundation is three times softer in every direction: support
+// flexibility applies (it does not to a clamped space frame) and is named,
+// with the springs' compliance ratio near 2 (k / (1 + 2) = k / 3). The data are
+// the Timoshenko frame of four elements per member on the softer springs.
+TEST(EffectRanking, NamesASofterFoundationOfAJacketOnSprings) {
+  SpaceFrameSpec spec = SmallJacket();
+  spec.base.horizontal = 1e9;
+  spec.base.vertical = 1e9;
+  spec.base.rocking = 1e9;
+  const Structure nominal = BuildSpaceFrameStructure(spec);
+  ASSERT_EQ(nominal.supports.size(), 4u * 5u);
+  SpaceFrameSpec truth_spec = spec;
+  truth_spec.theory = BeamTheory::kTimoshenko;
+  truth_spec.elements_per_member = 4;
+  truth_spec.base.horizontal /= 3;
+  truth_spec.base.vertical /= 3;
+  truth_spec.base.rocking /= 3;
+  const ParametrisedModel truth = BuildSpaceFrame(truth_spec);
+  const Modes modes = SolveModes(truth.stiffness(), truth.mass());
+  ModalData d;
+  d.state = "air";
+  for (int node = 1; node <= 12; ++node) {
+    for (const char* c : {":ux", ":uy"})
+      d.sensor_dofs.push_back(truth.FindDof("n" + std::to_string(node) + c));
+  }
+  std::mt19937 rng(11);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  const int num_modes = 6;
+  d.frequencies_hz = modes.FrequenciesHz().head(num_modes);
+  d.shapes.resize(static_cast<Eigen::Index>(d.sensor_dofs.size()), num_modes);
+  for (int j = 0; j < num_modes; ++j) {
+    d.frequencies_hz[j] *= 1 + 0.002 * normal(rng);
+    for (std::size_t i = 0; i < d.sensor_dofs.size(); ++i)
+      d.shapes(static_cast<Eigen::Index>(i), j) = modes.shapes(d.sensor_dofs[i], j);
+    const double peak = d.shapes.col(j).cwiseAbs().maxCoeff();
+    for (Eigen::Index i = 0; i < d.shapes.rows(); ++i)
+      d.shapes(i, j) += 0.02 * peak * normal(rng);
+  }
+  const EffectRanking r = RankModelEffects(nominal, {d}, Options());
+  ASSERT_FALSE(r.classes.empty());
+  EXPECT_EQ(r.classes[0].kind, "support_flexibility");
+  EXPECT_GT(r.classes[0].probability, 0.9);
+  ASSERT_FALSE(r.classes[0].magnitudes.empty());
+  EXPECT_EQ(r.classes[0].magnitudes[0].name, "compliance_ratio");
+  EXPECT_NEAR(r.classes[0].magnitudes[0].value, 2.0, 0.5);
+}
+
 // Large models search each start on a Ritz basis and finish on the full model
 // (options.ritz_min_dofs). Forced on this 576-DOF frame, the ranking ends in
 // the full-model search's optima wherever the probability is: the same
@@ -694,6 +742,32 @@ TEST(EffectRanking, RitzSearchEndsInTheFullModelsOptima) {
 
 // femup diagnose runs on a space_frame study (it refused them before the
 // generator built a Structure of its groups).
+// A space frame's base springs from a study file (model.base), and their
+// errors named by field.
+TEST(StructureDiagnosis, SpaceFrameBaseSpringsFromAStudyFile) {
+  const std::string frame =
+      "name: jacket\nmodel:\n  type: space_frame\n  bays_x: 1\n  bays_y: 1\n"
+      "  levels: 2\n  elements_per_member: 1\n";
+  const Study study =
+      ParseStudyModel(frame + "  base: {vertical: 2e9, rocking: 4e9}\n", "jacket.yaml");
+  ASSERT_EQ(study.structure.supports.size(), 4u * 3u);
+  EXPECT_EQ(study.structure.supports[0].name, "base vertical at b1");
+  EXPECT_EQ(study.structure.supports[0].stiffness, 2e9);
+  EXPECT_EQ(study.model.dof_labels(), study.structure.dof_labels);
+  EXPECT_EQ(study.model.dof_labels().back(), "b4:ry");
+  for (const auto& [bad, field] : {std::pair<std::string, std::string>{
+                                       "  base: {rocking: -1}\n", "model.base.rocking"},
+                                   {"  base: {}\n", "model.base"},
+                                   {"  base: {rotation: 1}\n", "rotation"}}) {
+    try {
+      ParseStudyModel(frame + bad, "jacket.yaml");
+      ADD_FAILURE() << "accepted " << bad;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(StructureDiagnosis, RunsOnASpaceFrame) {
   const ModalData d = JacketMeasured("l2:braces1", 0.5, 4, 5);
   std::ostringstream hz;

@@ -20,22 +20,26 @@ TEST(NodeOrdering, NodesFromTheLabelsInOrderOfFirstAppearance) {
 }
 
 // A frame's labels (several DOFs to a node) set the groups and leave every
-// other option as it was; a chain's (one DOF to a node) and no labels leave
-// the options alone.
+// other option as it was; a chain's (one DOF to a node), no labels and fewer
+// labels than the size asked for leave the options alone.
 TEST(NodeOrdering, GroupsOnlyWhereANodeHoldsSeveralDofs) {
   EigenOptions base;
   base.num_modes = 4;
   base.shift = -2.5;
   base.tolerance = 1e-9;
   base.threads = 1;
-  const EigenOptions frame = WithNodeOrdering(base, {"n1:ux", "n1:uy", "n1:rz", "n2:ux"});
+  const std::vector<std::string> frame_labels = {"n1:ux", "n1:uy", "n1:rz", "n2:ux"};
+  const EigenOptions frame = WithNodeOrdering(base, frame_labels, 0);
   EXPECT_EQ(frame.dof_groups, (std::vector<int>{0, 0, 0, 1}));
   EXPECT_EQ(frame.num_modes, 4);
   EXPECT_EQ(frame.shift, -2.5);
   EXPECT_EQ(frame.tolerance, 1e-9);
   EXPECT_EQ(frame.threads, 1);
-  EXPECT_TRUE(WithNodeOrdering(base, {"x1", "x2", "x3"}).dof_groups.empty());
-  EXPECT_TRUE(WithNodeOrdering(base, {}).dof_groups.empty());
+  EXPECT_TRUE(WithNodeOrdering(base, {"x1", "x2", "x3"}, 0).dof_groups.empty());
+  EXPECT_TRUE(WithNodeOrdering(base, {}, 0).dof_groups.empty());
+  // Below the size where the node graph pays (the default): unchanged.
+  EXPECT_TRUE(WithNodeOrdering(base, frame_labels).dof_groups.empty());
+  EXPECT_TRUE(WithNodeOrdering(base, frame_labels, 5).dof_groups.empty());
 }
 
 // On a space frame (6 DOFs to a node) the node-ordered sparse solve gives the
@@ -50,7 +54,7 @@ TEST(NodeOrdering, SpaceFrameSolvedOnItsNodeGraphMatchesTheDenseSolver) {
   EigenOptions sparse;
   sparse.method = EigenOptions::Method::kSparseShiftInvert;
   sparse.num_modes = 8;
-  sparse = WithNodeOrdering(sparse, model.dof_labels());
+  sparse = WithNodeOrdering(sparse, model.dof_labels(), 0);
   ASSERT_EQ(sparse.dof_groups.size(), static_cast<std::size_t>(model.num_dofs()));
   const Modes by_nodes = SolveModes(model.stiffness(), model.mass(), sparse);
   EigenOptions dense;

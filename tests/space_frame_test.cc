@@ -704,6 +704,97 @@ TEST(SpaceFrameModes, SquareFrameSwaysEquallyInXAndY) {
   EXPECT_GT(gx, 0.3 * ux.dot(m.mass() * ux));
 }
 
+// Springs under the legs (SpaceFrameBase): each base joint "b<k>" gets the
+// sprung DOFs after every free node's, whose labels stay as on the clamped
+// frame; the springs are in K (not in any factor) and are the Structure's
+// supports. On a frame whose members are 10^4 times stiffer than steel the
+// structure moves as a rigid body on its springs: on horizontal springs alone
+// it sways at omega^2 = 4 k_h / M and on vertical springs alone it bounces at
+// 4 k_v / M (M the total mass, four legs), to the frame's own flexibility
+// (about 1e-6 here). Very stiff springs give the clamped frame's frequencies.
+TEST(SpaceFrameBuild, BaseSpringsAddDofsAndSupportTheLegs) {
+  SpaceFrameSpec spec = fixtures::SpaceFrame(2, 1, 1, 2, 10, 12, 12);
+  const ParametrisedModel clamped = BuildSpaceFrame(spec);
+  spec.base.horizontal = 2e8;
+  spec.base.rocking = 5e9;
+  const ParametrisedModel sprung = BuildSpaceFrame(spec);
+  ASSERT_EQ(sprung.num_dofs(), clamped.num_dofs() + 4 * 4);
+  EXPECT_EQ(SpaceFrameModelSize(spec).num_dofs, sprung.num_dofs());
+  for (int i = 0; i < clamped.num_dofs(); ++i)
+    EXPECT_EQ(sprung.dof_labels()[i], clamped.dof_labels()[i]);
+  const std::vector<std::string> b1(sprung.dof_labels().begin() + clamped.num_dofs(),
+                                    sprung.dof_labels().begin() + clamped.num_dofs() + 4);
+  EXPECT_EQ(b1, (std::vector<std::string>{"b1:ux", "b1:uy", "b1:rx", "b1:ry"}));
+  EXPECT_EQ(sprung.dof_labels().back(), "b4:ry");
+  EXPECT_EQ(sprung.num_parameters(), clamped.num_parameters());
+  // The Structure: the same K and M, the springs as supports, the base nodes.
+  const Structure s = BuildSpaceFrameStructure(spec);
+  EXPECT_EQ(s.dof_labels, sprung.dof_labels());
+  EXPECT_LT((Eigen::MatrixXd(s.stiffness) - Eigen::MatrixXd(sprung.stiffness())).norm(),
+            1e-9 * Eigen::MatrixXd(sprung.stiffness()).norm());
+  EXPECT_EQ(s.dof_positions.size(), s.dof_labels.size());
+  ASSERT_EQ(s.supports.size(), 16u);
+  EXPECT_EQ(s.supports[0].name, "base horizontal X at b1");
+  EXPECT_EQ(s.supports[0].unit, "N/m");
+  EXPECT_EQ(s.supports[3].name, "base rocking about Y at b1");
+  EXPECT_EQ(s.supports[3].unit, "N m/rad");
+  EXPECT_EQ(s.supports[3].stiffness, 5e9);
+  EXPECT_EQ(s.supports[3].dof, sprung.FindDof("b1:ry"));
+  EXPECT_NE(s.description.find("on base springs (horizontal 2e+08 N/m, rocking 5e+09"),
+            std::string::npos)
+      << s.description;
+  for (const LineSegment& g : s.segments) EXPECT_GE(g.node_a, 0);  // no clamped end
+  EXPECT_EQ(s.nodes.back().name, "b4");
+  EXPECT_TRUE(s.nodes.back().xyz.isApprox(Vector3d(12, 12, 0)));
+  ASSERT_EQ(s.form_variants.size(), 1u);
+  EXPECT_EQ(s.form_variants[0].stiffness.rows(), sprung.num_dofs());
+
+  // Softer springs lower every frequency; very stiff ones give the clamped
+  // frame's.
+  EigenOptions dense;
+  dense.method = EigenOptions::Method::kDense;
+  const Eigen::VectorXd f0 =
+      SolveModes(clamped.stiffness(), clamped.mass(), dense).FrequenciesHz();
+  const Eigen::VectorXd f1 =
+      SolveModes(sprung.stiffness(), sprung.mass(), dense).FrequenciesHz();
+  for (int j = 0; j < 8; ++j) EXPECT_LT(f1[j], f0[j]) << j;
+  spec.base.horizontal = spec.base.rocking = 1e17;
+  const ParametrisedModel stiff = BuildSpaceFrame(spec);
+  const Eigen::VectorXd f2 =
+      SolveModes(stiff.stiffness(), stiff.mass(), dense).FrequenciesHz();
+  for (int j = 0; j < 8; ++j) EXPECT_NEAR(f2[j] / f0[j], 1.0, 1e-6) << j;
+
+  // A rigid frame on horizontal, then on vertical springs.
+  for (const bool horizontal : {true, false}) {
+    SCOPED_TRACE(horizontal);
+    SpaceFrameSpec rigid = fixtures::SpaceFrame(2, 1, 1, 2, 10, 12, 12);
+    for (FrameSection3d* sec : {&rigid.legs, &rigid.braces, &rigid.horizontals})
+      sec->E *= 1e4;
+    const double k = 1e6;
+    (horizontal ? rigid.base.horizontal : rigid.base.vertical) = k;
+    const ParametrisedModel m = BuildSpaceFrame(rigid);
+    Eigen::VectorXd u = Eigen::VectorXd::Zero(m.num_dofs());
+    const std::string dir = horizontal ? ":ux" : ":uz";
+    for (int i = 0; i < m.num_dofs(); ++i)
+      if (m.dof_labels()[i].size() > 3 &&
+          m.dof_labels()[i].substr(m.dof_labels()[i].size() - 3) == dir)
+        u[i] = 1.0;
+    const double total_mass = u.dot(m.mass() * u);
+    const Modes modes = SolveModes(m.stiffness(), m.mass(), dense);
+    const double omega2 = 4 * k / total_mass;
+    // The lowest modes (x and y sway, of one eigenvalue, or the bounce) are
+    // the rigid body's: their eigenvalue, and they span its motion.
+    const int rigid_modes = horizontal ? 2 : 1;
+    double spanned = 0;
+    for (int j = 0; j < rigid_modes; ++j) {
+      EXPECT_NEAR(modes.eigenvalues[j] / omega2, 1.0, 1e-5) << j;
+      spanned += std::pow(modes.shapes.col(j).dot(m.mass() * u), 2) / total_mass;
+    }
+    EXPECT_NEAR(spanned, 1.0, 1e-5);
+    EXPECT_GT(modes.eigenvalues[rigid_modes], 100 * omega2);
+  }
+}
+
 TEST(SpaceFrameInput, BadSpecNamesTheField) {
   auto expect = [](const SpaceFrameSpec& spec, const std::string& field) {
     for (int call = 0; call < 3; ++call) {
@@ -755,6 +846,12 @@ TEST(SpaceFrameInput, BadSpecNamesTheField) {
   s = {};
   s.theory = static_cast<BeamTheory>(5);
   expect(s, "theory");
+  s = {};
+  s.base.rocking = -1;
+  expect(s, "base.rocking");
+  s = {};
+  s.base.vertical = NAN;
+  expect(s, "base.vertical");
   s = {};
   s.legs.Iy = 0;
   expect(s, "legs.Iy");

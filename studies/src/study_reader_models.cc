@@ -279,7 +279,7 @@ Structure ReadPlaneFrame(const Field& m) {
 ParametrisedModel ReadSpaceFrame(const Field& m, Structure* structure) {
   m.ExpectKeys({"type", "levels", "bays_x", "bays_y", "level_height", "bay_width_x",
                 "bay_width_y", "elements_per_member", "blocks_per_level", "bracing",
-                "water_depth", "theory", "legs", "braces", "horizontals"});
+                "water_depth", "theory", "legs", "braces", "horizontals", "base"});
   SpaceFrameSpec spec;
   if (m.Has("levels")) spec.levels = m["levels"].Int();
   if (m.Has("bays_x")) spec.bays_x = m["bays_x"].Int();
@@ -299,6 +299,17 @@ ParametrisedModel ReadSpaceFrame(const Field& m, Structure* structure) {
   if (m.Has("braces")) spec.braces = ReadTube(m["braces"], spec.braces);
   if (m.Has("horizontals"))
     spec.horizontals = ReadTube(m["horizontals"], spec.horizontals);
+  if (m.Has("base")) {
+    // Springs under every leg; a direction not given stays rigid.
+    const Field b = m["base"];
+    b.ExpectKeys({"horizontal", "vertical", "rocking", "torsion"});
+    if (b.Has("horizontal")) spec.base.horizontal = b["horizontal"].Positive();
+    if (b.Has("vertical")) spec.base.vertical = b["vertical"].Positive();
+    if (b.Has("rocking")) spec.base.rocking = b["rocking"].Positive();
+    if (b.Has("torsion")) spec.base.torsion = b["torsion"].Positive();
+    if (spec.base.rigid())
+      b.Fail("give at least one of horizontal, vertical, rocking, torsion");
+  }
   if (const Invalid bad = spec.Validate()) {
     // Located at the study's key: field "bays_x" -> model.bays_x: must be >= 1;
     // field "legs.Iy" -> model.legs: Iy: ...
@@ -349,6 +360,7 @@ ParametrisedModel ReadSpaceFrame(const Field& m, Structure* structure) {
   for (const Eigen::Vector3d& node : geometry.nodes) {
     for (int k = 0; k < 6; ++k) structure->dof_positions.push_back(node.z());
   }
+  structure->dof_positions.resize(model.dof_labels().size(), 0.0);  // base springs
   for (std::size_t k = 0; k < geometry.nodes.size(); ++k)
     structure->nodes.push_back({"n" + std::to_string(k + 1), geometry.nodes[k]});
   structure->length = spec.levels * spec.level_height;

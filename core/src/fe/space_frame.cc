@@ -6,6 +6,7 @@
 #include <cmath>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -46,13 +47,89 @@ int GroupOf(const SpaceFrameElement& e, int blocks) {
          static_cast<int>(e.member);
 }
 
-std::array<int, 12> DofsOf(const SpaceFrameElement& e) {
+// The DOFs of the base joints on springs (SpaceFrameBase): joint j of the
+// base (j = the level-1 joint above it, X line fastest) has dof[j][d] for
+// direction d = ux, uy, uz, rx, ry, rz, or -1 where that direction is rigid.
+// They are numbered from `first`, the first DOF after the free nodes'.
+struct BaseDofs {
+  std::vector<std::array<int, 6>> dof;
+  std::array<double, 6> stiffness{};
+  int count = 0;
+  double wx = 1, wy = 1;
+  int nx = 1;
+  // The base joint at `at` (a point of the base plane).
+  int JointAt(const Eigen::Vector3d& at) const {
+    return static_cast<int>(std::lround(at.y() / wy)) * nx +
+           static_cast<int>(std::lround(at.x() / wx));
+  }
+};
+
+BaseDofs BaseDofsOf(const SpaceFrameSpec& spec, int first) {
+  BaseDofs b;
+  b.nx = spec.bays_x + 1;
+  b.wx = spec.bay_width_x;
+  b.wy = spec.bay_width_y;
+  const SpaceFrameBase& k = spec.base;
+  b.stiffness = {k.horizontal, k.horizontal, k.vertical, k.rocking, k.rocking, k.torsion};
+  b.dof.assign(static_cast<std::size_t>(b.nx * (spec.bays_y + 1)),
+               {-1, -1, -1, -1, -1, -1});
+  if (k.rigid()) return b;
+  for (auto& joint : b.dof) {
+    for (int d = 0; d < 6; ++d)
+      if (b.stiffness[d] > 0) joint[d] = first + b.count++;
+  }
+  return b;
+}
+
+// The element's 12 DOFs; a base end's are its base joint's sprung DOFs (-1
+// where rigid).
+std::array<int, 12> DofsOf(const SpaceFrameElement& e, const BaseDofs& base) {
   std::array<int, 12> d;
+  const std::array<int, 6>* b1 = e.node1 < 0 ? &base.dof[base.JointAt(e.end1)] : nullptr;
+  const std::array<int, 6>* b2 = e.node2 < 0 ? &base.dof[base.JointAt(e.end2)] : nullptr;
   for (int i = 0; i < 6; ++i) {
-    d[i] = e.node1 < 0 ? -1 : 6 * e.node1 + i;
-    d[6 + i] = e.node2 < 0 ? -1 : 6 * e.node2 + i;
+    d[i] = b1 ? (*b1)[i] : 6 * e.node1 + i;
+    d[6 + i] = b2 ? (*b2)[i] : 6 * e.node2 + i;
   }
   return d;
+}
+
+// The springs' stiffness on the base joints' DOFs, added to the total K.
+SparseMatrix WithBaseSprings(SparseMatrix k, const BaseDofs& base) {
+  if (base.count == 0) return k;
+  Triplets t;
+  for (const auto& joint : base.dof) {
+    for (int d = 0; d < 6; ++d)
+      if (joint[d] >= 0) t.emplace_back(joint[d], joint[d], base.stiffness[d]);
+  }
+  return k + FromTriplets(static_cast<int>(k.rows()), t);
+}
+
+// The base joints' DOF labels, "b<k>:ux" ..., in DOF order.
+void AppendBaseLabels(const BaseDofs& base, std::vector<std::string>* labels) {
+  const char* const dirs[6] = {":ux", ":uy", ":uz", ":rx", ":ry", ":rz"};
+  for (std::size_t j = 0; j < base.dof.size(); ++j) {
+    for (int d = 0; d < 6; ++d)
+      if (base.dof[j][d] >= 0) labels->push_back("b" + std::to_string(j + 1) + dirs[d]);
+  }
+}
+
+// "on base springs (horizontal 1e+08 N/m, rocking 1e+10 N m/rad)".
+std::string BaseDescription(const SpaceFrameBase& b) {
+  std::ostringstream o;
+  o << "on base springs (";
+  bool first = true;
+  for (const auto& [name, k, unit] :
+       {std::tuple<const char*, double, const char*>{"horizontal", b.horizontal, "N/m"},
+        {"vertical", b.vertical, "N/m"},
+        {"rocking", b.rocking, "N m/rad"},
+        {"torsion", b.torsion, "N m/rad"}}) {
+    if (k == 0) continue;
+    o << (first ? "" : ", ") << name << " " << k << " " << unit;
+    first = false;
+  }
+  o << ")";
+  return o.str();
 }
 
 // Elements sorted by group (stable): group g is order[offset[g] .. offset[g+1]).
@@ -86,8 +163,8 @@ Grouping GroupElements(const std::vector<SpaceFrameElement>& elements, int group
 // triplets are a segment of it, so the sum costs no second copy.
 template <typename MatrixFn>
 SparseMatrix AssembleGroups(int n, const std::vector<SpaceFrameElement>& elements,
-                            const Grouping& g, MatrixFn matrix, bool total,
-                            std::vector<BasisMatrix>* bases) {
+                            const BaseDofs& base, const Grouping& g, MatrixFn matrix,
+                            bool total, std::vector<BasisMatrix>* bases) {
   const int groups = static_cast<int>(g.offset.size()) - 1;
   // With a total, all triplets at once; without, the biggest group's.
   std::size_t reserve = 0, group_reserve = 0;
@@ -110,7 +187,7 @@ SparseMatrix AssembleGroups(int n, const std::vector<SpaceFrameElement>& element
     const std::size_t start = t.size();
     for (int j = g.offset[k]; j < g.offset[k + 1]; ++j) {
       const SpaceFrameElement& e = elements[g.order[j]];
-      Scatter(matrix(e), DofsOf(e), &t);
+      Scatter(matrix(e), DofsOf(e, base), &t);
     }
     (*bases)[k] = BasisMatrix::FromTriplets(n, t.begin() + start, t.end());
     if (!total) t.clear();
@@ -166,6 +243,14 @@ Invalid SpaceFrameSpec::Validate() const {
     at("water_depth") << "must be >= 0 and finite";
   else if (theory != BeamTheory::kEulerBernoulli && theory != BeamTheory::kTimoshenko)
     at("theory") << "must be euler_bernoulli or timoshenko";
+  for (const auto& [name, k] :
+       {std::pair<const char*, double>{"base.horizontal", base.horizontal},
+        {"base.vertical", base.vertical},
+        {"base.rocking", base.rocking},
+        {"base.torsion", base.torsion}}) {
+    if (field.empty() && !(k >= 0 && std::isfinite(k)))
+      at(name) << "must be >= 0 and finite (0: rigid), got " << k;
+  }
   if (!field.empty()) return {field, msg.str()};
   // Sizes whose sparse matrices would overflow their int indices (about 18
   // stored entries per DOF).
@@ -335,7 +420,7 @@ SpaceFrameSize SpaceFrameModelSize(const SpaceFrameSpec& spec) {
   std::vector<char> stiff(groups, 0), wet(groups, 0);
   SpaceFrameSize size;
   size.num_nodes = static_cast<long long>(g.nodes.size());
-  size.num_dofs = 6 * size.num_nodes;
+  size.num_dofs = 6 * size.num_nodes + BaseDofsOf(spec, 0).count;
   size.num_elements = static_cast<long long>(g.elements.size());
   long long inner = 0;
   for (const SpaceFrameElement& e : g.elements) {
@@ -359,7 +444,8 @@ SpaceFrameSize SpaceFrameModelSize(const SpaceFrameSpec& spec) {
 ParametrisedModel BuildSpaceFrame(const SpaceFrameSpec& spec) {
   SpaceFrameGeometryData g = SpaceFrameGeometry(spec);
   const std::vector<SpaceFrameElement>& elements = g.elements;
-  const int n = 6 * static_cast<int>(g.nodes.size());
+  const BaseDofs base = BaseDofsOf(spec, 6 * static_cast<int>(g.nodes.size()));
+  const int n = 6 * static_cast<int>(g.nodes.size()) + base.count;
   const int blocks = spec.blocks_per_level;
   const int groups = spec.levels * blocks * kMemberKinds;
   const BeamTheory theory = spec.theory;
@@ -371,6 +457,7 @@ ParametrisedModel BuildSpaceFrame(const SpaceFrameSpec& spec) {
       labels.push_back(node + d);
     }
   }
+  AppendBaseLabels(base, &labels);
   g.nodes = {};  // only the elements are needed from here
 
   const Grouping by_group = GroupElements(
@@ -383,28 +470,29 @@ ParametrisedModel BuildSpaceFrame(const SpaceFrameSpec& spec) {
 
   std::vector<BasisMatrix> k_groups, m_levels, w_groups;
   SparseMatrix k = AssembleGroups(
-      n, elements, by_group,
+      n, elements, base, by_group,
       [&](const SpaceFrameElement& e) {
         return Frame3dStiffness(SectionOf(spec, e.member), e.end1, e.end2, e.reference,
                                 theory);
       },
       true, &k_groups);
   SparseMatrix m = AssembleGroups(
-      n, elements, by_level,
+      n, elements, base, by_level,
       [&](const SpaceFrameElement& e) {
         return Frame3dConsistentMass(SectionOf(spec, e.member), e.end1, e.end2,
                                      e.reference, theory);
       },
       true, &m_levels);
   AssembleGroups(
-      n, elements, wet_by_group,
+      n, elements, base, wet_by_group,
       [&](const SpaceFrameElement& e) {
         const FrameSection3d& s = SectionOf(spec, e.member);
         return Frame3dTransverseMass(s.rho * s.A, e.end1, e.end2, e.reference);
       },
       false, &w_groups);
 
-  ParametrisedModel model(std::move(k), std::move(m), std::move(labels));
+  ParametrisedModel model(WithBaseSprings(std::move(k), base), std::move(m),
+                          std::move(labels));
   auto add = [&](std::string name, ParameterKind kind, BasisMatrix* basis,
                  const Grouping& grouping, int group, std::vector<std::string> tags) {
     Parameter p;
@@ -447,7 +535,9 @@ ParametrisedModel BuildSpaceFrame(const SpaceFrameSpec& spec) {
 Structure BuildSpaceFrameStructure(const SpaceFrameSpec& spec) {
   const SpaceFrameGeometryData g = SpaceFrameGeometry(spec);
   const std::vector<SpaceFrameElement>& elements = g.elements;
-  const int n = 6 * static_cast<int>(g.nodes.size());
+  const int free_dofs = 6 * static_cast<int>(g.nodes.size());
+  const BaseDofs base = BaseDofsOf(spec, free_dofs);
+  const int n = free_dofs + base.count;
   const int blocks = spec.blocks_per_level;
   const int groups = spec.levels * blocks * kMemberKinds;
   const BeamTheory theory = spec.theory;
@@ -462,21 +552,22 @@ Structure BuildSpaceFrameStructure(const SpaceFrameSpec& spec) {
   std::vector<BasisMatrix> k_groups, m_groups, w_groups;
   Structure s;
   s.stiffness = AssembleGroups(
-      n, elements, by_group,
+      n, elements, base, by_group,
       [&](const SpaceFrameElement& e) {
         return Frame3dStiffness(SectionOf(spec, e.member), e.end1, e.end2, e.reference,
                                 theory);
       },
       true, &k_groups);
+  s.stiffness = WithBaseSprings(std::move(s.stiffness), base);
   s.mass = AssembleGroups(
-      n, elements, by_group,
+      n, elements, base, by_group,
       [&](const SpaceFrameElement& e) {
         return Frame3dConsistentMass(SectionOf(spec, e.member), e.end1, e.end2,
                                      e.reference, theory);
       },
       true, &m_groups);
   AssembleGroups(
-      n, elements, wet_by_group,
+      n, elements, base, wet_by_group,
       [&](const SpaceFrameElement& e) {
         const FrameSection3d& sec = SectionOf(spec, e.member);
         return Frame3dTransverseMass(sec.rho * sec.A, e.end1, e.end2, e.reference);
@@ -493,14 +584,15 @@ Structure BuildSpaceFrameStructure(const SpaceFrameSpec& spec) {
     FormVariant v;
     v.name = "shear deformation (Timoshenko members, the sections' shear areas)";
     v.stiffness = AssembleGroups(
-        n, elements, by_group,
+        n, elements, base, by_group,
         [&](const SpaceFrameElement& e) {
           return Frame3dStiffness(SectionOf(spec, e.member), e.end1, e.end2, e.reference,
                                   BeamTheory::kTimoshenko);
         },
         true, &unused);
+    v.stiffness = WithBaseSprings(std::move(v.stiffness), base);
     v.mass = AssembleGroups(
-        n, elements, by_group,
+        n, elements, base, by_group,
         [&](const SpaceFrameElement& e) {
           return Frame3dConsistentMass(SectionOf(spec, e.member), e.end1, e.end2,
                                        e.reference, BeamTheory::kTimoshenko);
@@ -513,6 +605,7 @@ Structure BuildSpaceFrameStructure(const SpaceFrameSpec& spec) {
   d << "space frame, " << spec.bays_x << " x " << spec.bays_y << " bays, " << spec.levels
     << " levels of " << spec.level_height << " m, " << ToString(spec.bracing)
     << " bracing, water " << spec.water_depth << " m";
+  if (!spec.base.rigid()) d << ", " << BaseDescription(spec.base);
   s.type = "space_frame";
   s.description = d.str();
   s.length = spec.levels * spec.level_height;
@@ -526,9 +619,34 @@ Structure BuildSpaceFrameStructure(const SpaceFrameSpec& spec) {
     }
     s.nodes.push_back({node, g.nodes[k]});
   }
+  // The base joints on springs: their DOFs, nodes (for sensors and segments)
+  // and the supports that support_flexibility softens.
+  const int first_base_node = static_cast<int>(s.nodes.size());
+  if (base.count > 0) {
+    AppendBaseLabels(base, &s.dof_labels);
+    s.dof_positions.resize(s.dof_labels.size(), 0.0);
+    const char* const names[6] = {"horizontal X",    "horizontal Y",    "vertical",
+                                  "rocking about X", "rocking about Y", "torsion"};
+    for (std::size_t j = 0; j < base.dof.size(); ++j) {
+      const std::string node = "b" + std::to_string(j + 1);
+      const int i = static_cast<int>(j) % base.nx, jy = static_cast<int>(j) / base.nx;
+      s.nodes.push_back({node, Eigen::Vector3d(i * base.wx, jy * base.wy, 0.0)});
+      for (int q = 0; q < 6; ++q) {
+        if (base.dof[j][q] < 0) continue;
+        s.supports.push_back({base.dof[j][q], base.stiffness[q],
+                              std::string("base ") + names[q] + " at " + node,
+                              q < 3 ? "N/m" : "N m/rad"});
+      }
+    }
+  }
   s.segments.reserve(g.elements.size());
+  // A base end is its base joint's node when the base is on springs.
+  auto node_of = [&](int node, const Eigen::Vector3d& end) {
+    return node >= 0 || base.count == 0 ? node : first_base_node + base.JointAt(end);
+  };
   for (const SpaceFrameElement& el : g.elements)
-    s.segments.push_back({el.node1, el.node2, el.end1, el.end2});
+    s.segments.push_back(
+        {node_of(el.node1, el.end1), node_of(el.node2, el.end2), el.end1, el.end2});
   // Shape plots: the sway (ux) of the corner leg at X = Y = 0, bottom to top.
   std::vector<std::pair<double, int>> leg;
   for (std::size_t k = 0; k < g.nodes.size(); ++k) {

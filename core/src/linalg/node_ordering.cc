@@ -21,7 +21,8 @@ std::vector<int> DofNodesFromLabels(const std::vector<std::string>& dof_labels) 
 }
 
 EigenOptions WithNodeOrdering(EigenOptions options,
-                              const std::vector<std::string>& dof_labels) {
+                              const std::vector<std::string>& dof_labels, int min_dofs) {
+  if (dof_labels.size() < static_cast<std::size_t>(std::max(min_dofs, 0))) return options;
   std::vector<int> nodes = DofNodesFromLabels(dof_labels);
   int distinct = 0;
   for (int n : nodes) distinct = std::max(distinct, n + 1);

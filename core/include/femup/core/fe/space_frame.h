@@ -65,6 +65,22 @@ const char* ToString(FaceBracing bracing);
 // Returns false when `text` names no bracing.
 bool FaceBracingFromString(const std::string& text, FaceBracing* bracing);
 
+// Springs to the ground under every leg (N/m, N/m, N m/rad, N m/rad): a pile
+// group's or a mudmat's flexibility. Zero: that direction is rigid (its DOF is
+// not in the model). With any spring, each leg's base joint "b<k>" (k = 1, 2,
+// ... in the order of the level-1 joints above them) has the sprung DOFs,
+// labelled "b<k>:ux" ...; they come after every "n<k>" DOF, whose labels stay
+// as on a clamped frame. support_flexibility softens these springs.
+struct SpaceFrameBase {
+  double horizontal = 0;  // along X and along Y (ux, uy)
+  double vertical = 0;    // along Z (uz)
+  double rocking = 0;     // about X and about Y (rx, ry)
+  double torsion = 0;     // about Z (rz)
+  bool rigid() const {
+    return horizontal == 0 && vertical == 0 && rocking == 0 && torsion == 0;
+  }
+};
+
 struct SpaceFrameSpec {
   int levels = 10;
   int bays_x = 2;
@@ -81,6 +97,7 @@ struct SpaceFrameSpec {
   FrameSection3d legs = CircularTube(1.2, 0.03, 210e9, 0.3, 7850);
   FrameSection3d braces = CircularTube(0.6, 0.015, 210e9, 0.3, 7850);
   FrameSection3d horizontals = CircularTube(0.6, 0.015, 210e9, 0.3, 7850);
+  SpaceFrameBase base;  // clamped by default
   // Ok when valid; otherwise the field and what is wrong (sections: field
   // "legs.Iy").
   Invalid Validate() const;
@@ -109,7 +126,7 @@ SpaceFrameGeometryData SpaceFrameGeometry(const SpaceFrameSpec& spec);
 
 struct SpaceFrameSize {
   long long num_nodes = 0;  // free nodes
-  long long num_dofs = 0;   // 6 per free node
+  long long num_dofs = 0;   // 6 per free node, and the base springs' DOFs
   long long num_elements = 0;
   long long num_wet_elements = 0;
   int num_mass_factors = 0;
