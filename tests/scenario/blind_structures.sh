@@ -37,6 +37,14 @@ grep -q "  base: {rotation: " frames/cases/plane_frame_000.yaml || fail "base sp
 json frames/summary.json 'j["stated_model_error"] == 0.01 and j["foundation"] == "springs"' \
   | grep -q True || fail "stated model error, foundation"
 
+# femup's jacket on springs under its legs against the numpy jacket of the
+# same formulation (jacket3d.py, written apart): the same frequencies to 1e-8.
+sed 's/^  horizontals: {diameter: 0.6, wall: 0.015}$/&\n  base: {horizontal: 1.0e+8, vertical: 5.0e+8, rocking: 2.0e+9}/' \
+  "$ROOT/examples/diagnosis/jacket.yaml" > jacket_on_springs.yaml
+grep -q "  base: {horizontal" jacket_on_springs.yaml || fail "the base-spring study"
+"$PY" -B "$SUITE/compare_jacket3d.py" --study jacket_on_springs.yaml --femup "$FEMUP" \
+  --modes 6 --check 1e-8 > jacket3d.txt 2>&1 || { cat jacket3d.txt; fail "femup's jacket on springs against jacket3d"; }
+
 # Bad arguments: a clear message, nothing run.
 if "$PY" -B "$SUITE/run_suite.py" --cases 0 --femup "$FEMUP" -o bad > /dev/null 2> bad.err; then
   fail "--cases 0 accepted"

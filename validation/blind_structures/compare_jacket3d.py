@@ -25,9 +25,13 @@ Rows:
   law), its simulated water-state frequencies. Only when the three sections
   give one r (same D / t), since the truth is set for all factors at once.
 
+A study whose model stands on springs (model.base) puts the same springs
+under the numpy jackets' legs (a rigid direction as a spring 1e20).
+
 Usage (from the repository root):
   /usr/bin/python3 validation/blind_structures/compare_jacket3d.py \
-      [--study examples/diagnosis/jacket.yaml] [--femup build/femup] [--modes 6]
+      [--study examples/diagnosis/jacket.yaml] [--femup build/femup] [--modes 6] \
+      [--check 1e-8]
 """
 import argparse
 import json
@@ -71,7 +75,10 @@ def femup_wet(femup, study, count, tmp, ratio):
 def mac_diagonal(jacket, labels, femup_shapes, shapes):
     """MAC of each numpy mode with femup's same-numbered mode over femup's DOFs."""
     S = femup_shapes.T if femup_shapes.shape[0] != len(labels) else femup_shapes
-    W = shapes[[jacket.dof(label) for label in labels]]
+    # Over the free nodes "n<k>" (a base on springs adds femup's "b<k>" DOFs).
+    keep = [r for r, label in enumerate(labels) if label.split(":")[0] in jacket.labels]
+    S = S[keep]
+    W = shapes[[jacket.dof(labels[r]) for r in keep]]
     k = min(S.shape[1], W.shape[1])
     S, W = S[:, :k], W[:, :k]
     return (S * W).sum(0) ** 2 / ((S * S).sum(0) * (W * W).sum(0))
@@ -82,16 +89,26 @@ def main():
     p.add_argument("--study", default="examples/diagnosis/jacket.yaml")
     p.add_argument("--femup", default="build/femup")
     p.add_argument("--modes", type=int, default=6)
+    p.add_argument("--check", type=float, default=None,
+                   help="exit 1 unless the like-for-like frequencies agree with femup's "
+                        "to this relative tolerance (e.g. 1e-8)")
     a = p.parse_args()
     n = a.modes
     with open(a.study) as fh:
         study = yaml.safe_load(fh)
-    model = study["model"]
+    model = dict(study["model"])
     assert model.get("type") == "space_frame", "a space_frame study"
+    # femup's springs under the legs (model.base) as jacket3d's six per foot.
+    base = model.pop("base", None)
+    if base:
+        h, v = float(base.get("horizontal", 0)), float(base.get("vertical", 0))
+        r, t = float(base.get("rocking", 0)), float(base.get("torsion", 0))
+        # 0 is rigid in femup; a spring far stiffer than the frame stands for it.
+        model["base_springs"] = tuple(k if k > 0 else 1e20 for k in (h, h, v, r, r, t))
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         f_eb, labels, s_eb = femup_modes(a.femup, a.study, n, tmp, "eb")
-        variant = dict(study, model=dict(model, theory="timoshenko", elements_per_member=4))
+        variant = dict(study, model=dict(study["model"], theory="timoshenko", elements_per_member=4))
         path = os.path.join(tmp, "timoshenko.yaml")
         with open(path, "w") as fh:
             yaml.safe_dump(variant, fh)
@@ -131,6 +148,12 @@ def main():
     print("MAC like-for-like vs femup, mode by mode (repeated frequencies mix): %s"
           % " ".join("%.4f" % x for x in mac))
     print("numpy DOFs: %d (femup: %d free)" % (like.frame.num_dofs(), len(labels)))
+    if a.check is not None:
+        worst = float(np.max(np.abs(f_like / f_eb - 1)))
+        print("like-for-like: largest relative difference %.2e (tolerance %.0e)"
+              % (worst, a.check))
+        if not worst <= a.check:
+            sys.exit(1)
 
 
 if __name__ == "__main__":
