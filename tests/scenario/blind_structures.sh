@@ -37,6 +37,19 @@ grep -q "  base: {rotation: " frames/cases/plane_frame_000.yaml || fail "base sp
 json frames/summary.json 'j["stated_model_error"] == 0.01 and j["foundation"] == "springs"' \
   | grep -q True || fail "stated model error, foundation"
 
+# The jacket suite (femup's space_frame, jacket3d's Timoshenko truth in water:
+# marine growth, one damaged brace, deck equipment, E, a softer foundation), its
+# generator's checks and 3 cases on springs end to end.
+(cd "$SUITE" && "$PY" -B -m unittest -q test_jacket_suite 2>&1) || fail "the jacket suite's generator"
+"$PY" -B "$SUITE/run_suite.py" --suite jacket --cases 3 --seed 3 --threads 2 \
+  --foundation springs --femup "$FEMUP" -o jackets > jackets.txt 2> jackets.err \
+  || { cat jackets.err; fail "the jacket suite did not run"; }
+[ "$(wc -l < jackets/results.jsonl)" = 3 ] || fail "3 scored jacket cases"
+grep -q "type: space_frame" jackets/cases/jacket_000.yaml || fail "a space_frame study"
+grep -q "  base: {horizontal: " jackets/cases/jacket_000.yaml || fail "springs under the legs"
+! grep -qiE "growth|brace_|deck|damage|soft|stiffness_loss|attached_mass" jackets/cases/*.yaml \
+  || fail "a jacket study names its effect"
+
 # femup's jacket on springs under its legs against the numpy jacket of the
 # same formulation (jacket3d.py, written apart): the same frequencies to 1e-8.
 sed 's/^  horizontals: {diameter: 0.6, wall: 0.015}$/&\n  base: {horizontal: 1.0e+8, vertical: 5.0e+8, rocking: 2.0e+9}/' \
@@ -58,6 +71,6 @@ if "$PY" -B "$SUITE/run_suite.py" --suite shear_building --foundation springs --
     --femup "$FEMUP" -o bad > /dev/null 2> bad.err; then
   fail "--foundation springs accepted on shear buildings"
 fi
-grep -q "only the plane_frame suite has column bases" bad.err || fail "--foundation message"
+grep -q "only the plane_frame and jacket suites have column bases" bad.err || fail "--foundation message"
 [ ! -e bad ] || fail "output written for bad arguments"
 echo "blind_structures: ok"

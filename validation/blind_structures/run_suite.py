@@ -23,6 +23,10 @@ Observational equivalence: on a chain, the ground spring's flexibility and the
 first storey's stiffness loss are the same change of the model; a verdict
 naming either, for a truth of either, is right (and counted apart as such).
 
+Suites: shear_building, plane_frame, jacket (femup's space_frame in water; see
+jacket.py for how its truths are made; --foundation springs stands every jacket
+on springs under its legs and adds soft_foundation).
+
 Usage:
   python3 validation/blind_structures/run_suite.py --suite shear_building \
       --cases 100 --seed 20261126 --femup build/femup -o out/blind_shear_building
@@ -39,10 +43,11 @@ import sys
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import jacket  # noqa: E402
 import plane_frame  # noqa: E402
 import shear_building  # noqa: E402
 
-SUITES = {"shear_building": shear_building, "plane_frame": plane_frame}
+SUITES = {"shear_building": shear_building, "plane_frame": plane_frame, "jacket": jacket}
 # Classes that these models cannot tell apart (kind, region) -> group name.
 EQUIVALENT = {
     ("support_flexibility", "supports"): "base",
@@ -143,6 +148,7 @@ def summarise(rows, args):
     s = dict(
         suite=args.suite, cases=len(rows), seed=args.seed, noise_free=args.noise_free,
         floors=args.floors, foundation=args.foundation, design=args.design,
+        jacket_water=getattr(args, "jacket_water", None) if args.suite == "jacket" else None,
         stated_model_error=args.stated_model_error,
         top1_kind=fraction(rows, "kind_right"), top1_class=fraction(rows, "class_right"),
         informative_cases=len(inf), top1_kind_informative=fraction(inf, "kind_right"),
@@ -276,8 +282,12 @@ def main():
     ap.add_argument("--floors", default="flexible", choices=["flexible", "stiff"],
                     help="shear_building: beam-to-column stiffness 10-100 or 1000-10000")
     ap.add_argument("--foundation", default="clamped", choices=["clamped", "springs"],
-                    help="plane_frame: column bases clamped (default), or on rotational "
-                         "springs in model and truth, with soft_foundation among the kinds")
+                    help="plane_frame, jacket: bases clamped (default), or on springs in "
+                         "model and truth, with soft_foundation among the kinds")
+    ap.add_argument("--jacket-water", default="as_model", choices=["as_model", "full"],
+                    help="jacket: the truth's clean-tube water left out as femup's dry "
+                         "nominal model leaves it out (default), or in every truth "
+                         "(potential flow, Ca 1); see jacket.py")
     ap.add_argument("--noise-free", action="store_true",
                     help="draw the noise but do not add it (the studies state it)")
     ap.add_argument("--stated-model-error", type=float, default=0.0,
@@ -290,8 +300,9 @@ def main():
     args = ap.parse_args()
     if args.cases < 1:
         ap.error("--cases must be at least 1")
-    if args.foundation != "clamped" and args.suite != "plane_frame":
-        ap.error("--foundation springs: only the plane_frame suite has column bases")
+    if args.foundation != "clamped" and args.suite not in ("plane_frame", "jacket"):
+        ap.error("--foundation springs: only the plane_frame and jacket suites have "
+                 "column bases")
     if not (0 <= args.stated_model_error < 1):
         ap.error("--stated-model-error must be in [0, 1)")
     if not (os.path.isfile(args.femup) and os.access(args.femup, os.X_OK)):
@@ -304,8 +315,9 @@ def main():
     truths = []
     for i in range(args.cases):
         name = "%s_%03d" % (args.suite, i)
+        extra = dict(water=args.jacket_water) if args.suite == "jacket" else {}
         study, truth = gen.make_case(rng, name, args.design, args.noise_free, args.floors,
-                                     args.foundation)
+                                     args.foundation, **extra)
         if args.stated_model_error > 0:
             study["frequency_noise"] = math.hypot(study["frequency_noise"],
                                                   args.stated_model_error)
