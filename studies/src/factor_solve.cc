@@ -5,13 +5,13 @@
 #include <limits>
 
 #include "femup/core/errors.h"
+#include "femup/core/linalg/node_ordering.h"
 #include "femup/problems/correction_system.h"
 #include "femup/problems/eigen_sensitivity.h"
 #include "femup/problems/normal_correction_system.h"
 #include "femup/solvers/identifiability.h"
 #include "femup/solvers/nonlinear_solver.h"
 #include "femup/solvers/uncertainty.h"
-#include "femup/core/linalg/node_ordering.h"
 
 namespace femup {
 

@@ -1,9 +1,10 @@
 #include "femup/studies/modes_study.h"
-#include "femup/core/linalg/node_ordering.h"
 
 #include <iomanip>
 #include <nlohmann/json.hpp>
 #include <sstream>
+
+#include "femup/core/linalg/node_ordering.h"
 
 namespace femup {
 

@@ -15,9 +15,9 @@
 #include "femup/core/io/uff.h"
 #include "femup/core/io/uff_modes.h"
 #include "femup/core/linalg/modal.h"
+#include "femup/core/linalg/node_ordering.h"
 #include "femup/core/sysid/expansion.h"
 #include "femup/studies/study.h"
-#include "femup/core/linalg/node_ordering.h"
 #include "modes_json.h"
 
 namespace femup {
