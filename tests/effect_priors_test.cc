@@ -12,6 +12,7 @@
 #include "femup/core/errors.h"
 #include "femup/core/fe/builders.h"
 #include "femup/core/fe/plane_frame.h"
+#include "femup/core/fe/space_frame.h"
 #include "prior_builders.h"
 #include "structure_specs.h"
 
@@ -213,6 +214,41 @@ TEST(EffectPriors, RegionsKeepTheNamedElementsAndNodes) {
     EXPECT_NE(k->region().name.find("n7"), std::string::npos) << k->region().name;
     EXPECT_EQ(k->Parameters().size(), 2u);
   }
+}
+
+// A space frame's stiffness loss acts on its groups and on each member
+// (Structure::members): a member is named by its label, a group keeps itself
+// and its members, and a member named for a family that does not act on
+// members is refused as such.
+TEST(EffectPriors, RegionsNameTheMembersOfASpaceFrame) {
+  SpaceFrameSpec spec = fixtures::SpaceFrame(2, 1, 1, 2, 10, 12, 12);
+  spec.bracing = FaceBracing::kX;
+  const Structure s = BuildSpaceFrameStructure(spec);
+  auto all = CreateModelEffects("stiffness_loss", s);
+  ASSERT_EQ(all.size(), s.elements.size() + s.members.size());
+  auto kept = KeepStatedRegions(CreateModelEffects("stiffness_loss", s), s,
+                                Prior("stiffness_loss", {}, {"brace n1-n13"}));
+  ASSERT_EQ(kept.size(), 1u);
+  EXPECT_EQ(kept[0]->region().name, "member brace n1-n13");
+  kept = KeepStatedRegions(CreateModelEffects("stiffness_loss", s), s,
+                           Prior("stiffness_loss", {}, {"l1:legs1"}));
+  ASSERT_EQ(kept.size(), 1u + 4u);
+  EXPECT_EQ(kept[0]->region().name, "element l1:legs1");
+  EXPECT_EQ(kept[1]->region().name, "member leg b1-n1");
+  std::string where;
+  const std::string msg = ErrorOf(
+      [&] {
+        KeepStatedRegions(CreateModelEffects("attached_mass", s), s,
+                          Prior("attached_mass", {}, {"brace n1-n13"}));
+      },
+      &where);
+  EXPECT_EQ(where, "regions[1]");
+  EXPECT_TRUE(Has(msg, "names a member, but attached_mass acts at places such as"))
+      << msg;
+  // Fewer members allowed than the frame has: the groups alone.
+  ModelEffectOptions few;
+  few.max_members = 3;
+  EXPECT_EQ(CreateModelEffects("stiffness_loss", s, few).size(), s.elements.size());
 }
 
 TEST(EffectPriors, RegionsThatNameNoPlaceOfTheFamilyAreRefused) {

@@ -632,7 +632,8 @@ ModalData JacketMeasured(const std::string& damaged, double loss, int num_modes,
 }
 
 // The ranking on a space frame's Structure names a damaged brace group from
-// data made with Timoshenko elements on a finer mesh.
+// data made with Timoshenko elements on a finer mesh, the group's members
+// tried one by one as well.
 TEST(EffectRanking, NamesADamagedBraceGroupOfAJacket) {
   const Structure nominal = BuildSpaceFrameStructure(SmallJacket());
   const ModalData d = JacketMeasured("l1:braces1", 0.5, 6, 3);
@@ -642,16 +643,119 @@ TEST(EffectRanking, NamesADamagedBraceGroupOfAJacket) {
   EXPECT_EQ(r.classes[0].region, "element l1:braces1");
   EXPECT_GT(r.classes[0].probability, 0.9);
   EXPECT_NEAR(r.classes[0].magnitudes[0].value, 0.5, 0.1);
-  // Attached masses only at the four top joints (n9..n12), not at every node.
-  int attached = 0;
+  // Attached masses only at the four top joints (n9..n12), not at every node,
+  // and between them on the top horizontals' 8 segments.
+  int attached = 0, between = 0;
   for (const RankedClass& c : r.classes) {
     if (c.kind != "attached_mass") continue;
+    if (c.region.rfind("node ", 0) != 0) {
+      ++between;
+      continue;
+    }
     ++attached;
     EXPECT_TRUE(c.region == "node n9" || c.region == "node n10" ||
                 c.region == "node n11" || c.region == "node n12")
         << c.region;
   }
   EXPECT_EQ(attached, 4);
+  EXPECT_EQ(between, 8);
+}
+
+// One damaged brace (half of an X, 60 % of its stiffness lost) is not its
+// group's loss: the ranking tries each member on its own
+// (EffectRankingOptions::max_members) and names that brace, with its loss.
+// The data are the Timoshenko frame of four elements per member with the
+// brace softened, through the finer Structure's own member matrix. With fewer
+// members allowed than the frame has, only the groups are tried and a note
+// says so; naming the group under the stated regions tries its members again.
+TEST(EffectRanking, NamesOneDamagedBraceOfAJacket) {
+  const Structure nominal = BuildSpaceFrameStructure(SmallJacket());
+  SpaceFrameSpec truth_spec = SmallJacket();
+  truth_spec.theory = BeamTheory::kTimoshenko;
+  truth_spec.elements_per_member = 4;
+  const Structure fine = BuildSpaceFrameStructure(truth_spec);
+  const auto brace =
+      std::find_if(fine.members.begin(), fine.members.end(),
+                   [](const ElementMember& m) { return m.label == "brace n1-n17"; });
+  ASSERT_NE(brace, fine.members.end());
+  const SparseMatrix k = fine.stiffness - 0.6 * brace->stiffness.ToSparse();
+  const ModalData d = JacketData(BuildSpaceFrame(truth_spec), k, fine.mass, 6, 7);
+  const EffectRanking r = RankModelEffects(nominal, {d}, Options());
+  ASSERT_FALSE(r.classes.empty());
+  EXPECT_EQ(r.classes[0].kind, "stiffness_loss");
+  EXPECT_EQ(r.classes[0].region, "member brace n1-n17");
+  EXPECT_GT(r.classes[0].probability, 0.9);
+  EXPECT_NEAR(r.classes[0].magnitudes[0].value, 0.6, 0.1);
+  EXPECT_TRUE(r.notes.empty());
+
+  EffectRankingOptions few = Options();
+  few.kinds = {"stiffness_loss"};
+  few.max_members = 10;
+  const EffectRanking groups = RankModelEffects(nominal, {d}, few);
+  for (const RankedClass& c : groups.classes)
+    EXPECT_EQ(c.region.rfind("member ", 0), std::string::npos) << c.region;
+  ASSERT_EQ(groups.notes.size(), 1u);
+  EXPECT_NE(groups.notes[0].find("not on each of the 72 members"), std::string::npos)
+      << groups.notes[0];
+  EXPECT_NE(groups.notes[0].find("diagnosis.priors.stiffness_loss.regions"),
+            std::string::npos);
+  few.priors.families.push_back(fixtures::Prior("stiffness_loss", {}, {"l2:braces1"}));
+  const EffectRanking stated = RankModelEffects(nominal, {d}, few);
+  EXPECT_TRUE(stated.notes.empty());
+  // The group and its 16 half braces.
+  EXPECT_EQ(stated.classes.size(), 1u + 1u + 16u);
+  EXPECT_EQ(stated.classes[0].region, "member brace n1-n17");
+}
+
+// A deck's equipment sits on the top level's horizontals as often as on its
+// joints: the attached-mass family tries the horizontals' element segments
+// with the mass's position fitted (Structure::attached_mass_segments). 20 t at
+// a quarter of the horizontal n9-n10 (a node of the Timoshenko truth's finer
+// mesh, on its three translations) is named on that horizontal's first
+// segment, near its position, with its mass. Stiffness loss (its groups) is
+// the competing family.
+TEST(EffectRanking, NamesADeckMassBetweenTheTopJointsOfAJacket) {
+  const Structure nominal = BuildSpaceFrameStructure(SmallJacket());
+  ASSERT_EQ(nominal.attached_mass_segments.size(), 4u * 2u);
+  SpaceFrameSpec truth_spec = SmallJacket();
+  truth_spec.theory = BeamTheory::kTimoshenko;
+  truth_spec.elements_per_member = 4;
+  const Structure fine = BuildSpaceFrameStructure(truth_spec);
+  const ParametrisedModel truth = BuildSpaceFrame(truth_spec);
+  const auto quarter = std::find_if(
+      fine.nodes.begin(), fine.nodes.end(),
+      [](const ModelNode& node) { return node.xyz.isApprox(Eigen::Vector3d(3, 0, 30)); });
+  ASSERT_NE(quarter, fine.nodes.end());
+  std::vector<Eigen::Triplet<double>> t;
+  for (const char* c : {":ux", ":uy", ":uz"})
+    t.emplace_back(truth.FindDof(quarter->name + c), truth.FindDof(quarter->name + c),
+                   2e4);
+  SparseMatrix point(fine.mass.rows(), fine.mass.cols());
+  point.setFromTriplets(t.begin(), t.end());
+  const SparseMatrix m = fine.mass + point;
+  const ModalData d = JacketData(truth, fine.stiffness, m, 6, 17);
+  EffectRankingOptions options = Options();
+  options.kinds = {"attached_mass", "stiffness_loss"};
+  options.max_members = 0;
+  const EffectRanking r = RankModelEffects(nominal, {d}, options);
+  ASSERT_FALSE(r.classes.empty());
+  const RankedClass& v = r.classes[0];
+  EXPECT_EQ(v.kind, "attached_mass");
+  // n9-n10's inner node in the model: after the 12 joints and 12 X centres,
+  // one per member, and that horizontal is member 53 (24 per level; the top
+  // level's 4 legs, then its horizontals along X): n(24 + 53).
+  EXPECT_EQ(v.region, "n9-n77") << v.region;
+  EXPECT_GT(v.probability, 0.5);
+  ASSERT_EQ(v.magnitudes.size(), 3u);
+  EXPECT_NEAR(v.magnitudes[0].value, 2e4, 0.2 * 2e4);
+  EXPECT_NEAR(v.magnitudes[2].value, 3.0, 1.0);  // m from n9
+  int nodes = 0, segments = 0;
+  for (const RankedClass& c : r.classes) {
+    if (c.kind != "attached_mass") continue;
+    ++(c.region.rfind("node ", 0) == 0 ? nodes : segments);
+  }
+  EXPECT_EQ(nodes, 4);
+  EXPECT_EQ(segments, 8);
 }
 
 // A jacket on springs under its legs (the model's engineering estimate) whose
@@ -674,7 +778,9 @@ TEST(EffectRanking, NamesASofterFoundationOfAJacketOnSprings) {
   truth_spec.base.rocking /= 3;
   const ParametrisedModel truth = BuildSpaceFrame(truth_spec);
   const ModalData d = JacketData(truth, truth.stiffness(), truth.mass(), 6, 11);
-  const EffectRanking r = RankModelEffects(nominal, {d}, Options());
+  EffectRankingOptions options = Options();
+  options.max_members = 0;  // the groups alone: the members add 72 fits, not the point
+  const EffectRanking r = RankModelEffects(nominal, {d}, options);
   ASSERT_FALSE(r.classes.empty());
   EXPECT_EQ(r.classes[0].kind, "support_flexibility");
   EXPECT_GT(r.classes[0].probability, 0.9);
@@ -700,6 +806,7 @@ TEST(EffectRanking, RitzSearchEndsInTheFullModelsOptima) {
   EffectRankingOptions full = Options(), ritz = Options();
   full.ritz_min_dofs = -1;
   ritz.ritz_min_dofs = 0;
+  full.max_members = ritz.max_members = 0;  // the groups (the classes measured above)
   const EffectRanking a = RankModelEffects(nominal, {d}, full);
   const EffectRanking b = RankModelEffects(nominal, {d}, ritz);
   ASSERT_EQ(a.classes.size(), b.classes.size());

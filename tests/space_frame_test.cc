@@ -704,6 +704,71 @@ TEST(SpaceFrameModes, SquareFrameSwaysEquallyInXAndY) {
   EXPECT_GT(gx, 0.3 * ux.dot(m.mass() * ux));
 }
 
+// Each member of the frame, on its own (Structure::members): what a stiffness
+// loss of one brace acts on. The members of a group sum to its stiffness, are
+// named by kind and end joints, and each one's stiffness is its own: an axial
+// stretch of an inclined brace (its nodes moved along its axis in proportion
+// to their distance from its first end, no rotation) stores E A d^2 / L, and a
+// rigid translation stores nothing.
+TEST(SpaceFrameStructure, MembersSumToTheirGroupsAndStretchAsBars) {
+  SpaceFrameSpec spec = fixtures::SpaceFrame(3, 1, 1, 2, 10, 12, 12);
+  spec.bracing = FaceBracing::kX;
+  const Structure s = BuildSpaceFrameStructure(spec);
+  // Per level: 4 legs, 4 horizontals and 4 faces of 4 half braces.
+  ASSERT_EQ(s.members.size(), 3u * 24u);
+  std::set<std::string> labels;
+  std::vector<SparseMatrix> sum(s.elements.size(),
+                                SparseMatrix(s.stiffness.rows(), s.stiffness.cols()));
+  for (const ElementMember& m : s.members) {
+    EXPECT_TRUE(labels.insert(m.label).second) << m.label;
+    ASSERT_GE(m.element, 0);
+    sum[static_cast<std::size_t>(m.element)] += m.stiffness.ToSparse();
+    EXPECT_LE(m.x0, m.x1);
+  }
+  for (std::size_t e = 0; e < s.elements.size(); ++e) {
+    const Eigen::MatrixXd d = Eigen::MatrixXd(sum[e] - s.elements[e].stiffness);
+    EXPECT_LT(d.cwiseAbs().maxCoeff(),
+              1e-12 * Eigen::MatrixXd(s.elements[e].stiffness).cwiseAbs().maxCoeff())
+        << s.elements[e].label;
+  }
+  EXPECT_TRUE(labels.count("leg b1-n1"));  // from the base joint b1, clamped
+  EXPECT_TRUE(labels.count("horizontal n1-n2"));
+  EXPECT_TRUE(labels.count("brace b1-n13"));  // the level-1 X's bottom corners to
+  EXPECT_TRUE(labels.count("brace b2-n13"));  // its centre
+  EXPECT_TRUE(labels.count("brace n1-n17"));
+  EXPECT_TRUE(labels.count("brace n17-n6"));  // the centre to a top corner
+  const auto brace =
+      std::find_if(s.members.begin(), s.members.end(),
+                   [](const ElementMember& m) { return m.label == "brace n1-n17"; });
+  ASSERT_NE(brace, s.members.end());
+  EXPECT_EQ(s.elements[static_cast<std::size_t>(brace->element)].label, "l2:braces1");
+  EXPECT_DOUBLE_EQ(brace->x0, 10.0);
+  EXPECT_DOUBLE_EQ(brace->x1, 15.0);
+  // n1 = (0, 0, 10), n17 = the centre of the face y = 0 = (6, 0, 15).
+  const Vector3d a(0, 0, 10), b(6, 0, 15);
+  const double length = (b - a).norm(), d = 1e-3;
+  const int n = static_cast<int>(s.stiffness.rows());
+  Eigen::VectorXd stretch = Eigen::VectorXd::Zero(n), shift = Eigen::VectorXd::Zero(n);
+  for (std::size_t k = 0; k < s.nodes.size(); ++k) {
+    const Vector3d& p = s.nodes[k].xyz;
+    const double t = (p - a).dot(b - a) / (length * length);
+    const bool on = (p - a - t * (b - a)).norm() < 1e-9 && t > -1e-9 && t < 1 + 1e-9;
+    if (!on) continue;
+    stretch.segment<3>(6 * static_cast<Eigen::Index>(k)) = t * d * (b - a) / length;
+    shift.segment<3>(6 * static_cast<Eigen::Index>(k)) = Vector3d(1, 2, 3);
+  }
+  const SparseMatrix k = brace->stiffness.ToSparse();
+  const double ea = spec.braces.E * spec.braces.A;
+  EXPECT_NEAR(stretch.dot(k * stretch), ea * d * d / length, 1e-9 * ea * d * d / length);
+  EXPECT_LT(std::abs(shift.dot(k * shift)), 1e-9 * ea / length);
+  // On base springs, the same names.
+  spec.base.horizontal = 1e9;
+  const Structure sprung = BuildSpaceFrameStructure(spec);
+  ASSERT_EQ(sprung.members.size(), s.members.size());
+  for (std::size_t i = 0; i < s.members.size(); ++i)
+    EXPECT_EQ(sprung.members[i].label, s.members[i].label);
+}
+
 // Springs under the legs (SpaceFrameBase): each base joint "b<k>" gets the
 // sprung DOFs after every free node's, whose labels stay as on the clamped
 // frame; the springs are in K (not in any factor) and are the Structure's

@@ -518,6 +518,19 @@ TEST(Study, BaggingCopiesAreReadAndChecked) {
               {"diagnosis.bagging_copies"});
 }
 
+// diagnosis.max_members: how many members stiffness loss tries one by one
+// (effect_ranking.h), 200 unless stated, -1 for all of them.
+TEST(Study, MaxMembersIsReadAndChecked) {
+  EXPECT_EQ(LoadStudy(Write("mm_default.yaml", kShear)).diagnosis->max_members, 200);
+  EXPECT_EQ(LoadStudy(Write("mm_all.yaml", kShear + std::string("  max_members: -1\n")))
+                .diagnosis->max_members,
+            -1);
+  ExpectError("mm_negative.yaml", kShear + std::string("  max_members: -2\n"),
+              {"diagnosis.max_members", "expected >= 0, or -1 for every member"});
+  ExpectError("mm_text.yaml", kShear + std::string("  max_members: some\n"),
+              {"diagnosis.max_members"});
+}
+
 // The cantilever's effects are placed by a fitted height: regions are refused
 // (x_m states where), and the sampled evidence takes uniform priors only.
 TEST(Study, CantileverPriorsUseHeights) {

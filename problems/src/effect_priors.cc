@@ -277,7 +277,9 @@ std::vector<std::unique_ptr<ModelEffect>> KeepStatedRegions(
     bool found = false;
     for (std::size_t i = 0; i < instances.size(); ++i) {
       const EffectRegion& r = instances[i]->region();
-      bool match = false;
+      // A member by its label ("brace n8-n24"), or the elements and nodes it
+      // lies in.
+      bool match = r.name == "member " + name;
       for (int e : r.elements) match = match || NamesElement(s.elements[e], name);
       for (int d : r.dofs) match = match || NodeOf(s.dof_labels[d]) == name;
       if (match) keep[i] = found = true;
@@ -289,15 +291,21 @@ std::vector<std::unique_ptr<ModelEffect>> KeepStatedRegions(
     const bool node =
         std::any_of(s.dof_labels.begin(), s.dof_labels.end(),
                     [&](const std::string& label) { return NodeOf(label) == name; });
+    const bool member =
+        std::any_of(s.members.begin(), s.members.end(),
+                    [&](const ElementMember& m) { return m.label == name; });
     const std::string first = instances.front()->region().name;
     std::string why;
-    if (element) {
+    if (member) {
+      why =
+          "names a member, but " + prior.kind + " acts at places such as '" + first + "'";
+    } else if (element) {
       why = "names an element, but " + prior.kind + " acts at places such as '" + first +
             "'";
     } else if (node) {
       why = "names a node, but " + prior.kind + " acts at places such as '" + first + "'";
     } else {
-      why = "names no element (1-based id or label) or node of this model";
+      why = "names no element (1-based id or label), member or node of this model";
     }
     throw InputError("regions[" + std::to_string(k + 1) + "]", "'" + name + "' " + why);
   }

@@ -90,10 +90,23 @@ class MaterialScaling : public Base {
   SparseMatrix sum_;
 };
 
-// One element's stiffness times 1 - loss, loss = exp(theta_0).
+// One element's stiffness (or one member's of a group element) times 1 - loss,
+// loss = exp(theta_0).
 class StiffnessLoss : public Base {
  public:
-  using Base::Base;
+  // An element's: its own stiffness matrix, kept by reference.
+  StiffnessLoss(const Structure& s, EffectRegion region, const ElementMatrices& element)
+      : Base(s, std::move(region)),
+        stiffness_(&element.stiffness),
+        x0_(element.x0),
+        x1_(element.x1) {}
+  // A member's: its stiffness held here.
+  StiffnessLoss(const Structure& s, EffectRegion region, const ElementMember& member)
+      : Base(s, std::move(region)),
+        own_(member.stiffness.ToSparse()),
+        stiffness_(&own_),
+        x0_(member.x0),
+        x1_(member.x1) {}
   std::string kind() const override { return "stiffness_loss"; }
   std::vector<EffectParameter> Parameters() const override {
     return {LogQuantity({"ln_loss", "ln(fraction of the stiffness lost)", std::log(3e-3),
@@ -104,15 +117,15 @@ class StiffnessLoss : public Base {
     return {VectorOf({std::log(0.03)}), VectorOf({std::log(0.3)})};
   }
   ModelChange Change(const Eigen::VectorXd& t, Immersion) const override {
-    return {-std::exp(t[0]) * Element().stiffness, {}};
+    return {-std::exp(t[0]) * *stiffness_, {}};
   }
   ModelChange Derivative(const Eigen::VectorXd& t, int, Immersion) const override {
-    return {-std::exp(t[0]) * Element().stiffness, {}};
+    return {-std::exp(t[0]) * *stiffness_, {}};
   }
   EffectLocation Location(const Eigen::VectorXd&) const override {
     EffectLocation l;
-    l.x0 = Element().x0;
-    l.x1 = Element().x1;
+    l.x0 = x0_;
+    l.x1 = x1_;
     l.x = 0.5 * (l.x0 + l.x1);
     return l;
   }
@@ -121,7 +134,9 @@ class StiffnessLoss : public Base {
   }
 
  private:
-  const ElementMatrices& Element() const { return s_.elements[region_.elements.front()]; }
+  SparseMatrix own_;
+  const SparseMatrix* stiffness_;
+  double x0_, x1_;
 };
 
 // A point mass m = m_ref exp(theta_0) on one node's translational DOFs.
@@ -438,7 +453,16 @@ std::vector<std::unique_ptr<ModelEffect>> CreateModelEffects(
   } else if (kind == "stiffness_loss") {
     for (int e = 0; e < num_elements; ++e) {
       out.push_back(std::make_unique<StiffnessLoss>(
-          s, EffectRegion{"element " + s.elements[e].label, {e}, {}}));
+          s, EffectRegion{"element " + s.elements[e].label, {e}, {}}, s.elements[e]));
+    }
+    // And each member of a group on its own, up to the stated number.
+    const int num_members = static_cast<int>(s.members.size());
+    if (options.max_members < 0 || num_members <= options.max_members) {
+      for (const ElementMember& m : s.members) {
+        EffectRegion r{"member " + m.label, {}, {}};
+        if (m.element >= 0) r.elements.push_back(m.element);
+        out.push_back(std::make_unique<StiffnessLoss>(s, std::move(r), m));
+      }
     }
   } else if (kind == "attached_mass") {
     // One instance per node with translational DOFs, in DOF order (only the
@@ -465,10 +489,11 @@ std::vector<std::unique_ptr<ModelEffect>> CreateModelEffects(
       out.push_back(std::make_unique<AttachedMass>(
           s, EffectRegion{"node " + node, {}, dofs[node]}, m_ref, position[node]));
     }
-    // Between the nodes, where the model has line elements and does not name
-    // its few candidate nodes: one instance per element segment, its position
-    // fitted. The region is the member it belongs to, so a stated region that
-    // names a member keeps its segments and one that names a node its node.
+    // Between the nodes, where the model has line elements: one instance per
+    // element segment (only the structure's attached_mass_segments where it
+    // names its few candidate nodes), its position fitted. The region is the member it
+    // belongs to, so a stated region that names a member keeps its segments and one that
+    // names a node its node.
     std::vector<Eigen::Vector3d> axes;
     for (int k = 0; k < 3; ++k) {
       const std::string tail = std::string(":u") + "xyz"[k];
@@ -480,8 +505,12 @@ std::vector<std::unique_ptr<ModelEffect>> CreateModelEffects(
         }
       }
     }
-    for (const LineSegment& g :
-         s.attached_mass_nodes.empty() ? s.segments : std::vector<LineSegment>()) {
+    std::vector<LineSegment> between = s.segments;
+    if (!s.attached_mass_nodes.empty()) {
+      between.clear();
+      for (int i : s.attached_mass_segments) between.push_back(s.segments.at(i));
+    }
+    for (const LineSegment& g : between) {
       if (g.node_a < 0 && g.node_b < 0) continue;
       const std::string a = g.node_a >= 0 ? s.nodes[g.node_a].name : "the support";
       const std::string b = g.node_b >= 0 ? s.nodes[g.node_b].name : "the support";

@@ -71,6 +71,7 @@ void WriteStructureDiagnosisOutputs(const StructureDiagnosisResult& r, bool plot
     j["classes"].push_back(cj);
   }
   j["not_applicable"] = k.skipped;
+  j["notes"] = k.notes;
   j["stated_priors"] = StatedPriorsJson(r.priors);
   out->WriteText("diagnosis.json", j.dump(2) + "\n");
   if (!plots) return;
@@ -150,6 +151,7 @@ std::string StructureDiagnosisReport(const StructureDiagnosisResult& r) {
     o << "\n";
   }
   for (const std::string& s : k.skipped) o << "not applicable: " << s << "\n";
+  for (const std::string& s : k.notes) o << "note: " << s << "\n";
   return o.str();
 }
 

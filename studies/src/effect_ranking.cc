@@ -227,6 +227,7 @@ Invalid EffectRankingOptions::Validate() const {
   if (!(shape_sigma > 0) || !std::isfinite(shape_sigma))
     return {"shape_sigma", "must be positive and finite"};
   if (threads < 0) return {"threads", "must be >= 0 (0: every core)"};
+  if (max_members < -1) return {"max_members", "must be >= 0, or -1 for every member"};
   if (bagging_copies < 0)
     return {"bagging_copies", "must be >= 0 (0: the Laplace posterior alone)"};
   const auto names = AvailableNonlinearSolvers();
@@ -279,10 +280,26 @@ EffectRanking RankModelEffects(const Structure& structure_in,
   // Every family's instances with their stated priors, made (and checked)
   // before any fit.
   std::vector<std::vector<std::unique_ptr<ModelEffect>>> instances;
+  effect_options.max_members = options.max_members;
   for (const std::string& kind : kinds) {
+    const FamilyPrior* prior = options.priors.Find(kind);
+    // Stated regions pick their places among every member.
+    ModelEffectOptions kind_options = effect_options;
+    if (prior && !prior->regions.empty()) kind_options.max_members = -1;
     std::vector<std::unique_ptr<ModelEffect>> made =
-        CreateModelEffects(kind, *structure, effect_options);
-    if (const FamilyPrior* prior = options.priors.Find(kind)) {
+        CreateModelEffects(kind, *structure, kind_options);
+    if (kind == "stiffness_loss" && kind_options.max_members >= 0 &&
+        static_cast<int>(structure->members.size()) > kind_options.max_members) {
+      out.notes.push_back("stiffness_loss was tried on the " +
+                          std::to_string(structure->elements.size()) +
+                          " groups, not on each of the " +
+                          std::to_string(structure->members.size()) +
+                          " members (more than diagnosis.max_members = " +
+                          std::to_string(kind_options.max_members) +
+                          "); name the groups or members to look in under "
+                          "diagnosis.priors.stiffness_loss.regions");
+    }
+    if (prior) {
       const std::string field = "diagnosis.priors." + kind;
       try {
         made = KeepStatedRegions(std::move(made), *structure, *prior);

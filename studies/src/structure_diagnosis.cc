@@ -46,6 +46,7 @@ StructureDiagnosisResult RunStructureDiagnosis(const Study& study) {
   options.priors = spec.priors;
   options.formulation_error = spec.formulation_error;
   options.bagging_copies = spec.bagging_copies;
+  options.max_members = spec.max_members;
   r.priors = spec.priors;
   // A named family that does not apply is the study's error, before any fit.
   for (const std::string& kind : options.kinds) {

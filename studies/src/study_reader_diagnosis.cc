@@ -179,9 +179,9 @@ void ReadStatedPriors(const Field& f, const Study& study, DiagnosisSpec* d) {
 
 DiagnosisSpec ReadDiagnosis(const Field& f, const Study& study) {
   f.ExpectKeys({"noise", "candidates", "max_effects", "held_out", "use_shapes",
-                "mesh_error", "formulation_error", "bagging_copies", "form_error",
-                "localise", "solver", "confidence", "evidence", "evidence_samples",
-                "priors", "weights"});
+                "mesh_error", "formulation_error", "bagging_copies", "max_members",
+                "form_error", "localise", "solver", "confidence", "evidence",
+                "evidence_samples", "priors", "weights"});
   DiagnosisSpec d;
   if (f.Has("noise")) {
     const Field n = f["noise"];
@@ -240,6 +240,13 @@ DiagnosisSpec ReadDiagnosis(const Field& f, const Study& study) {
       f["bagging_copies"].Fail(
           "bootstrap copies of the residuals: expected 0 (Laplace probabilities alone) "
           "to 100000");
+  }
+  if (f.Has("max_members")) {
+    d.max_members = f["max_members"].Int();
+    if (d.max_members < -1)
+      f["max_members"].Fail(
+          "members tried one by one for stiffness loss: expected >= 0, or -1 for every "
+          "member");
   }
   if (f.Has("form_error")) {
     d.form_error = f["form_error"].Num();

@@ -2,8 +2,9 @@
 # femup diagnose on a jacket (model.type space_frame, examples/diagnosis/jacket.yaml):
 # the model is Euler-Bernoulli with 2 elements per member, the "measured" modes
 # come from the generator's Timoshenko elements, 4 per member, with the braces
-# of level 2 softened by 40 %. The verdict names that brace group; attached
-# masses are tried at the four top joints only; the report says which family
+# of level 2 softened by 40 %. The verdict names that brace group, tried with
+# each of the 72 members on its own; attached masses are tried at the four top
+# joints and between them on the top horizontals; the report says which family
 # does not apply.
 source "$(dirname "$0")/lib.sh"
 "$FEMUP" diagnose "$ROOT/examples/diagnosis/jacket.yaml" -o out --no-plots > stdout.txt
@@ -13,8 +14,12 @@ grep -q "verdict: stiffness_loss at element l2:braces1" stdout.txt \
 [ "$(json out/diagnosis.json "j['model_type']")" = space_frame ] || fail "model_type"
 [ "$(json out/diagnosis.json "j['verdict']['region']")" = "element l2:braces1" ] || fail "region"
 [ "$(json out/diagnosis.json "j['verdict']['probability'] > 0.9")" = True ] || fail "probability"
-[ "$(json out/diagnosis.json "sorted(c['region'] for c in j['classes'] if c['kind']=='attached_mass')")" \
+[ "$(json out/diagnosis.json "sorted(c['region'] for c in j['classes'] if c['kind']=='attached_mass' and c['region'].startswith('node'))")" \
   = "['node n10', 'node n11', 'node n12', 'node n9']" ] || fail "attached-mass candidates"
+[ "$(json out/diagnosis.json "sum(c['kind']=='attached_mass' and not c['region'].startswith('node') for c in j['classes'])")" \
+  = 8 ] || fail "attached masses between the top joints: not the 8 segments of the top horizontals"
+[ "$(json out/diagnosis.json "sum(c['region'].startswith('member ') for c in j['classes'])")" \
+  = 72 ] || fail "stiffness loss not tried on each of the 72 members"
 [ "$(json out/diagnosis.json "any(c['kind']=='added_mass' for c in j['classes'])")" = True ] \
   || fail "added mass on the wet groups not tried"
 grep -q "not applicable: support_flexibility" stdout.txt || fail "support_flexibility not named"

@@ -44,12 +44,14 @@ The effects (none is exactly a change femup's families make):
                     stiffness (E times 1 - a) over 1 or 2 of its 4 elements
                     (25 or 50 % of its length: a dent or crack zone), or, in a
                     quarter of these cases, is severed-like (a = 0.9 over that
-                    zone whatever the drawn shift): stiffness_loss of the group
-                    that brace belongs to, "element l<k>:braces1";
+                    zone whatever the drawn shift): stiffness_loss of that
+                    brace, "member brace n<a>-n<b>" (femup's name), or of the
+                    group it belongs to, "element l<k>:braces1";
   deck_mass         a piece of equipment (a point mass with rotary inertia
                     m b^2 / 6, b 3-8 m) on the top level, at a leg joint or at
                     a quarter point of a top horizontal: attached_mass at that
-                    joint, or at either end joint of that horizontal;
+                    joint, or at either end joint of that horizontal or
+                    between its nodes (femup's segments "n<a>-n<inner>");
   material_scaling  E of every member times s (G, the shear and torsion
                     modulus, kept): material_scaling, "all elements";
   none.
@@ -257,11 +259,33 @@ class Effect:
         if self.kind == "marine_growth":
             return ["wet elements"]
         if self.kind == "brace_damage":
-            return ["element l%d:braces1" % self.level]
+            # Its level's brace group, or the member itself by femup's name
+            # (a base end is its base joint "b<k>", clamped or on springs).
+            m = self._level_members(j, "braces", self.level)[self.brace]
+            lab, p = label_of(j), truth.p
+
+            def name(n):
+                if n in lab:
+                    return lab[n]
+                x, y, _ = j.frame.xyz[n]
+                return "b%d" % (round(y / p["bay_width_y"]) * (p["bays_x"] + 1) +
+                                round(x / p["bay_width_x"]) + 1)
+            return ["element l%d:braces1" % self.level,
+                    "member brace %s-%s" % (name(m[0]["n1"]), name(m[-1]["n2"]))]
         if self.kind == "deck_mass":
             lab = label_of(j)
             _, ends = self._deck_node_and_ends(j)
-            return ["node " + lab[n] for n in ends]
+            out = ["node " + lab[n] for n in ends]
+            if not self.at_joint:
+                # Or a mass between the nodes of that horizontal in femup's
+                # model: its two segments, to and from its inner node (the
+                # model's one inner node per member is numbered after the
+                # joints and X centres, member by member, as in jacket3d).
+                m = self._level_members(j, "horizontals", self.p_levels)[self.horizontal]
+                index = next(i for i, x in enumerate(members(j)) if x[0] is m[0])
+                inner = "n%d" % (len(j.joints) + len(j.centres) + index + 1)
+                out += ["%s-%s" % (lab[ends[0]], inner), "%s-%s" % (inner, lab[ends[1]])]
+            return out
         if self.kind == "material_scaling":
             return ["all elements"]
         if self.kind == "soft_foundation":

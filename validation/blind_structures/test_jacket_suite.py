@@ -172,12 +172,24 @@ class JacketSuiteTest(unittest.TestCase):
                 self.assertRegex(truth["region"], r"^element l[1-4]:braces1$")
                 self.assertEqual(truth["region"],
                                  "element l%d:braces1" % truth["detail"]["level"])
+                # Or the damaged member itself, by femup's name.
+                self.assertEqual(len(truth["regions"]), 2)
+                self.assertRegex(truth["regions"][1], r"^member brace [nb]\d+-n\d+$")
             if kind == "deck_mass":
                 top = {"node n%d" % k for k in range(4 * study["p"]["levels"] - 3,
                                                      4 * study["p"]["levels"] + 1)}
-                self.assertTrue(set(truth["regions"]) <= top)
-                self.assertEqual(len(truth["regions"]),
-                                 1 if truth["detail"]["at_joint"] else 2)
+                nodes = [r for r in truth["regions"] if r.startswith("node ")]
+                self.assertTrue(set(nodes) <= top)
+                at_joint = truth["detail"]["at_joint"]
+                self.assertEqual(len(nodes), 1 if at_joint else 2)
+                # Between the joints: also that horizontal's two segments in
+                # femup's model, through its inner node (after the 8 joints
+                # and X centres per level, one per member).
+                self.assertEqual(len(truth["regions"]), 1 if at_joint else 4)
+                for r in truth["regions"][len(nodes):]:
+                    a, b = r.split("-")
+                    inner = b if a in {n[5:] for n in nodes} else a
+                    self.assertGreater(int(inner[1:]), 8 * study["p"]["levels"])
             # A verdict naming the truth's family and any of its regions is right;
             # another family is not.
             for region in truth["regions"]:

@@ -383,7 +383,8 @@ SpaceFrameGeometryData SpaceFrameGeometry(const SpaceFrameSpec& spec) {
   const int e = spec.elements_per_member;
   g.elements.reserve(members.size() * e);
   g.nodes.reserve(g.nodes.size() + members.size() * (e - 1));
-  for (const Member& mb : members) {
+  for (std::size_t id = 0; id < members.size(); ++id) {
+    const Member& mb = members[id];
     int prev = mb.a;
     Eigen::Vector3d p = mb.pa;
     for (int s = 1; s <= e; ++s) {
@@ -404,6 +405,7 @@ SpaceFrameGeometryData SpaceFrameGeometry(const SpaceFrameSpec& spec) {
       el.member = mb.kind;
       el.level = mb.level;
       el.block = mb.block;
+      el.member_id = static_cast<int>(id);
       el.wet = 0.5 * (p.z() + q.z()) < spec.water_depth;
       g.elements.push_back(el);
       prev = next;
@@ -661,6 +663,17 @@ Structure BuildSpaceFrameStructure(const SpaceFrameSpec& spec) {
   const int per_level = (spec.bays_x + 1) * (spec.bays_y + 1);
   for (int k = (spec.levels - 1) * per_level; k < spec.levels * per_level; ++k)
     s.attached_mass_nodes.push_back("n" + std::to_string(k + 1));
+  // And between them, on the top level's horizontals (a deck's beams), where
+  // they have at most kMaxDeckSegments element segments: each is a fit of two
+  // unknowns, and the 10^4-DOF jacket's 48 would double its diagnosis time.
+  constexpr std::size_t kMaxDeckSegments = 24;
+  for (std::size_t k = 0; k < g.elements.size(); ++k) {
+    const SpaceFrameElement& e = g.elements[k];
+    if (e.level == spec.levels && e.member == SpaceFrameMember::kHorizontal)
+      s.attached_mass_segments.push_back(static_cast<int>(k));
+  }
+  if (s.attached_mass_segments.size() > kMaxDeckSegments)
+    s.attached_mass_segments.clear();
 
   const double h = spec.level_height;
   std::vector<int> element_of_group(static_cast<std::size_t>(groups), -1);
@@ -687,6 +700,38 @@ Structure BuildSpaceFrameStructure(const SpaceFrameSpec& spec) {
   for (std::size_t k = 0; k < s.segments.size(); ++k) {
     s.segments[k].element =
         element_of_group[static_cast<std::size_t>(GroupOf(g.elements[k], blocks))];
+  }
+  // The members inside the groups, each with its own stiffness (its elements
+  // are consecutive in the builder's order), named by its kind and end joints.
+  const char* const singular[kMemberKinds] = {"leg", "brace", "horizontal"};
+  auto end_name = [&](int node, const Eigen::Vector3d& end) {
+    if (node >= 0) return s.nodes[static_cast<std::size_t>(node)].name;
+    return "b" + std::to_string(base.JointAt(end) + 1);  // clamped or on springs
+  };
+  Triplets t;
+  for (std::size_t first = 0; first < g.elements.size();) {
+    std::size_t last = first;
+    while (last + 1 < g.elements.size() &&
+           g.elements[last + 1].member_id == g.elements[first].member_id)
+      ++last;
+    const SpaceFrameElement& a = g.elements[first];
+    const SpaceFrameElement& b = g.elements[last];
+    t.clear();
+    for (std::size_t k = first; k <= last; ++k) {
+      const SpaceFrameElement& e = g.elements[k];
+      Scatter(Frame3dStiffness(SectionOf(spec, e.member), e.end1, e.end2, e.reference,
+                               theory),
+              DofsOf(e, base), &t);
+    }
+    ElementMember m;
+    m.label = std::string(singular[static_cast<int>(a.member)]) + " " +
+              end_name(a.node1, a.end1) + "-" + end_name(b.node2, b.end2);
+    m.element = element_of_group[static_cast<std::size_t>(GroupOf(a, blocks))];
+    m.stiffness = BasisMatrix::FromTriplets(n, t.begin(), t.end());
+    m.x0 = std::min(a.end1.z(), b.end2.z());
+    m.x1 = std::max(a.end1.z(), b.end2.z());
+    s.members.push_back(std::move(m));
+    first = last + 1;
   }
   return s;
 }

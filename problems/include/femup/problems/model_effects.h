@@ -17,13 +17,18 @@
 //                       dK = (s - 1) sum_e K_e. Region: all elements.
 //   stiffness_loss      ln(loss fraction): one element's stiffness (a chain's
 //                       spring: a storey; a beam element) times 1 - loss;
-//                       dK = -loss K_e. One instance per element.
+//                       dK = -loss K_e. One instance per element, and where
+//                       the elements are groups of members (a space frame's
+//                       levels; Structure::members), one per member as well,
+//                       up to ModelEffectOptions::max_members of them.
 //   attached_mass       ln(m / m_ref): a point mass on one node's translational
 //                       DOFs (sensors, cables, equipment); m_ref is the
 //                       structure's total mass (m_ref below). One instance per
 //                       node with translational DOFs; and, where the model has
-//                       line elements and names no candidate nodes, one per
-//                       element segment with its position xi in [0.05, 0.95]
+//                       line elements, one per element segment (where it names
+//                       its candidate nodes, its attached_mass_segments only:
+//                       a space frame's top horizontals) with its position
+//                       xi in [0.05, 0.95]
 //                       fitted: a point mass between the nodes, read through
 //                       the element's shape functions (femup/sensor.h).
 //   added_mass          ln(ratio) [, level]: the elements' added-mass bases
@@ -92,6 +97,10 @@ struct ModelEffectOptions {
   // Added mass acts in wet states only (the study has wet states); otherwise in
   // every state.
   bool wet_only_added_mass = false;
+  // Stiffness loss tries each member of a group on its own when the structure
+  // has at most this many members (each is one more fit; the 10^4-DOF jacket
+  // has 530); -1: all of them, however many.
+  int max_members = 200;
 };
 
 // The kinds model_effects knows, in a fixed order.

@@ -91,6 +91,11 @@ struct EffectRankingOptions {
   // Bootstrap copies of the residuals the probabilities are averaged over
   // (above); 0: the Laplace posterior alone.
   int bagging_copies = 400;
+  // Stiffness loss tries each member of a group on its own (a space frame's
+  // braces, legs, horizontals) where the model has at most this many members
+  // (-1: however many), or where the study states its regions: each member is
+  // one more fit.
+  int max_members = 200;
   // What the study states about the families (empty: their defaults). Each
   // family it names must be among those tried.
   StatedPriors priors;
@@ -134,7 +139,8 @@ struct EffectRanking {
   double best_chi2_p_value = 1;
   int bagging_copies = 0;  // the probabilities' bootstrap copies (0: Laplace)
   int num_residuals = 0;
-  std::vector<std::string> skipped;             // "<kind>: why it does not apply"
+  std::vector<std::string> skipped;  // "<kind>: why it does not apply"
+  std::vector<std::string> notes;    // what was left untried, and how to try it
   std::vector<FormErrorAllowance> form_errors;  // allowed for, one per variant
 };
 

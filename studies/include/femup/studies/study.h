@@ -154,6 +154,9 @@ struct DiagnosisSpec {
   // bagged posterior, effect_ranking.h); 0: the Laplace posterior alone. Not
   // used by the cantilever's own pipeline.
   int bagging_copies = 400;
+  // Stiffness loss on each member of a group where the model has at most this
+  // many (-1: every member); EffectRankingOptions::max_members.
+  int max_members = 200;
   // The candidate families' form error, as a fraction of the nominal model's
   // misfit per frequency and shape entry, added to the noise in quadrature: a
   // family of a few parameters describes a real effect only to some fraction

@@ -110,8 +110,9 @@ struct SpaceFrameElement {
   Eigen::Vector3d end1, end2;  // coordinates (m)
   Eigen::Vector3d reference;   // sets local y (frame3d.h)
   SpaceFrameMember member = SpaceFrameMember::kLeg;
-  int level = 1;  // from 1
-  int block = 1;  // from 1
+  int level = 1;      // from 1
+  int member_id = 0;  // the member it is part of (from 0, in the builder's order)
+  int block = 1;      // from 1
   bool wet = false;
 };
 
@@ -157,7 +158,12 @@ ParametrisedModel BuildSpaceFrame(const SpaceFrameSpec& spec);
 // added-mass basis of "added_mass[...]" (else an empty n x n matrix); x0, x1
 // are the bounds of the group's level (m). stiffness and mass are the model's
 // K and M. Nodes: every free node "n<k>" with its coordinates; no supports
-// (the base is clamped). attached_mass_nodes: the joints of the top level.
+// (the base is clamped). attached_mass_nodes: the joints of the top level;
+// attached_mass_segments: the segments of its horizontals, where at most 24.
+// members: every member of the frame in the builder's order, labelled by its
+// kind and end joints ("brace n8-n24"; an end at the base is its base joint
+// "b<k>", clamped or on springs), with its stiffness; a group's members sum to
+// its stiffness.
 // Every group is held as n x n sparse matrices (n = 6 x free nodes), so the
 // memory grows with groups x n: meant for models up to about 10^5 DOF.
 // Throws as BuildSpaceFrame.

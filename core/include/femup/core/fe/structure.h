@@ -22,6 +22,16 @@ struct ElementMatrices {
   double x0 = 0, x1 = 0;          // position along the structure (m), where it applies
 };
 
+// A member inside an element, where the model's elements are groups of members
+// (a space frame's level groups): what a local change, such as one damaged
+// brace, acts on when it does not act on its whole group.
+struct ElementMember {
+  std::string label;      // "brace n8-n24", "leg b1-n1": its kind and end joints
+  int element = -1;       // the Structure::elements entry (group) it belongs to
+  BasisMatrix stiffness;  // its part of that element's stiffness, on its DOFs
+  double x0 = 0, x1 = 0;  // its extent along the structure (m), as the elements'
+};
+
 // A node of a model with geometry.
 struct ModelNode {
   std::string name;  // the prefix of its DOF labels: "n3" of "n3:ux"
@@ -80,12 +90,19 @@ struct Structure {
   // or space frame); empty for a chain or a Matrix Market model. Sensors and
   // attached masses between nodes are placed on them.
   std::vector<LineSegment> segments;
+  // The members inside the elements, where an element is a group of them (a
+  // space frame); empty where each element is one member or finite element.
+  std::vector<ElementMember> members;
   // Supports that are springs in the model (rigid supports have no DOF here).
   std::vector<SupportSpring> supports;
   // The nodes (ModelNode::name) where the diagnosis looks for an attached
   // mass; empty: every node with translational DOFs. Large models name a few
   // (a space frame: the joints of its top level), not thousands of fits.
   std::vector<std::string> attached_mass_nodes;
+  // Where attached_mass_nodes names them, the segments (indices into segments)
+  // where a mass between nodes is looked for too (a space frame: its top
+  // level's horizontals); otherwise unused.
+  std::vector<int> attached_mass_segments;
   // Richer formulations of this model (see FormVariant); empty: none known.
   std::vector<FormVariant> form_variants;
   // Index of the element with the given id, or -1.
