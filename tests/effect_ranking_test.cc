@@ -632,12 +632,15 @@ ModalData JacketMeasured(const std::string& damaged, double loss, int num_modes,
 }
 
 // The ranking on a space frame's Structure names a damaged brace group from
-// data made with Timoshenko elements on a finer mesh, the group's members
-// tried one by one as well.
+// data made with Timoshenko elements on a finer mesh. The groups alone: with
+// the 72 members (NamesOneDamagedBraceOfAJacket) this test took 475 s under
+// the sanitizers, and the same group was named.
 TEST(EffectRanking, NamesADamagedBraceGroupOfAJacket) {
   const Structure nominal = BuildSpaceFrameStructure(SmallJacket());
   const ModalData d = JacketMeasured("l1:braces1", 0.5, 6, 3);
-  const EffectRanking r = RankModelEffects(nominal, {d}, Options());
+  EffectRankingOptions options = Options();
+  options.max_members = 0;
+  const EffectRanking r = RankModelEffects(nominal, {d}, options);
   ASSERT_FALSE(r.classes.empty());
   EXPECT_EQ(r.classes[0].kind, "stiffness_loss");
   EXPECT_EQ(r.classes[0].region, "element l1:braces1");
