@@ -668,7 +668,9 @@ TEST(EffectRanking, NamesADamagedBraceGroupOfAJacket) {
 // group's loss: the ranking tries each member on its own
 // (EffectRankingOptions::max_members) and names that brace, with its loss.
 // The data are the Timoshenko frame of four elements per member with the
-// brace softened, through the finer Structure's own member matrix. With fewer
+// brace softened, through the finer Structure's own member matrix. Of the 72
+// members, the 12 a linearised step ranks best are fitted
+// (EffectRankingOptions::members_fitted), and a note says so. With fewer
 // members allowed than the frame has, only the groups are tried and a note
 // says so; naming the group under the stated regions tries its members again.
 TEST(EffectRanking, NamesOneDamagedBraceOfAJacket) {
@@ -689,7 +691,13 @@ TEST(EffectRanking, NamesOneDamagedBraceOfAJacket) {
   EXPECT_EQ(r.classes[0].region, "member brace n1-n17");
   EXPECT_GT(r.classes[0].probability, 0.9);
   EXPECT_NEAR(r.classes[0].magnitudes[0].value, 0.6, 0.1);
-  EXPECT_TRUE(r.notes.empty());
+  int members = 0;
+  for (const RankedClass& c : r.classes) members += c.region.rfind("member ", 0) == 0;
+  EXPECT_EQ(members, 12);
+  ASSERT_EQ(r.notes.size(), 1u);
+  EXPECT_NE(r.notes[0].find("fitted on 12 of the 72 members"), std::string::npos)
+      << r.notes[0];
+  EXPECT_NE(r.notes[0].find("diagnosis.members_fitted"), std::string::npos);
 
   EffectRankingOptions few = Options();
   few.kinds = {"stiffness_loss"};
@@ -703,10 +711,13 @@ TEST(EffectRanking, NamesOneDamagedBraceOfAJacket) {
   EXPECT_NE(groups.notes[0].find("diagnosis.priors.stiffness_loss.regions"),
             std::string::npos);
   few.priors.families.push_back(fixtures::Prior("stiffness_loss", {}, {"l2:braces1"}));
+  few.members_fitted = 4;
   const EffectRanking stated = RankModelEffects(nominal, {d}, few);
-  EXPECT_TRUE(stated.notes.empty());
-  // The group and its 16 half braces.
-  EXPECT_EQ(stated.classes.size(), 1u + 1u + 16u);
+  // The group and 4 of its 16 half braces, after the screen.
+  ASSERT_EQ(stated.notes.size(), 1u);
+  EXPECT_NE(stated.notes[0].find("fitted on 4 of the 16 members"), std::string::npos)
+      << stated.notes[0];
+  EXPECT_EQ(stated.classes.size(), 1u + 1u + 4u);
   EXPECT_EQ(stated.classes[0].region, "member brace n1-n17");
 }
 

@@ -519,7 +519,9 @@ TEST(Study, BaggingCopiesAreReadAndChecked) {
 }
 
 // diagnosis.max_members: how many members stiffness loss tries one by one
-// (effect_ranking.h), 200 unless stated, -1 for all of them.
+// (effect_ranking.h), 200 unless stated, -1 for all of them; and
+// diagnosis.members_fitted: how many of them are fitted after the screen, 12
+// unless stated, -1 for all.
 TEST(Study, MaxMembersIsReadAndChecked) {
   EXPECT_EQ(LoadStudy(Write("mm_default.yaml", kShear)).diagnosis->max_members, 200);
   EXPECT_EQ(LoadStudy(Write("mm_all.yaml", kShear + std::string("  max_members: -1\n")))
@@ -529,6 +531,13 @@ TEST(Study, MaxMembersIsReadAndChecked) {
               {"diagnosis.max_members", "expected >= 0, or -1 for every member"});
   ExpectError("mm_text.yaml", kShear + std::string("  max_members: some\n"),
               {"diagnosis.max_members"});
+  EXPECT_EQ(LoadStudy(Write("mf_default.yaml", kShear)).diagnosis->members_fitted, 12);
+  EXPECT_EQ(
+      LoadStudy(Write("mf_all.yaml", kShear + std::string("  members_fitted: -1\n")))
+          .diagnosis->members_fitted,
+      -1);
+  ExpectError("mf_negative.yaml", kShear + std::string("  members_fitted: -3\n"),
+              {"diagnosis.members_fitted", "expected >= 0, or -1 to fit every member"});
 }
 
 // The cantilever's effects are placed by a fitted height: regions are refused

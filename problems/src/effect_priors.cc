@@ -295,18 +295,14 @@ std::vector<std::unique_ptr<ModelEffect>> KeepStatedRegions(
         std::any_of(s.members.begin(), s.members.end(),
                     [&](const ElementMember& m) { return m.label == name; });
     const std::string first = instances.front()->region().name;
-    std::string why;
-    if (member) {
-      why =
-          "names a member, but " + prior.kind + " acts at places such as '" + first + "'";
-    } else if (element) {
-      why = "names an element, but " + prior.kind + " acts at places such as '" + first +
-            "'";
-    } else if (node) {
-      why = "names a node, but " + prior.kind + " acts at places such as '" + first + "'";
-    } else {
-      why = "names no element (1-based id or label), member or node of this model";
-    }
+    const char* what = member    ? "a member"
+                       : element ? "an element"
+                       : node    ? "a node"
+                                 : "";
+    const std::string why =
+        *what ? std::string("names ") + what + ", but " + prior.kind +
+                    " acts at places such as '" + first + "'"
+              : "names no element (1-based id or label), member or node of this model";
     throw InputError("regions[" + std::to_string(k + 1) + "]", "'" + name + "' " + why);
   }
   std::vector<std::unique_ptr<ModelEffect>> out;

@@ -107,6 +107,10 @@ class StiffnessLoss : public Base {
         stiffness_(&own_),
         x0_(member.x0),
         x1_(member.x1) {}
+  // A member's instance points at its own matrix: a copy would point at the
+  // original's.
+  StiffnessLoss(const StiffnessLoss&) = delete;
+  StiffnessLoss& operator=(const StiffnessLoss&) = delete;
   std::string kind() const override { return "stiffness_loss"; }
   std::vector<EffectParameter> Parameters() const override {
     return {LogQuantity({"ln_loss", "ln(fraction of the stiffness lost)", std::log(3e-3),
@@ -459,7 +463,8 @@ std::vector<std::unique_ptr<ModelEffect>> CreateModelEffects(
     const int num_members = static_cast<int>(s.members.size());
     if (options.max_members < 0 || num_members <= options.max_members) {
       for (const ElementMember& m : s.members) {
-        EffectRegion r{"member " + m.label, {}, {}};
+        EffectRegion r{
+            "member " + m.label, {}, {}, static_cast<int>(&m - s.members.data())};
         if (m.element >= 0) r.elements.push_back(m.element);
         out.push_back(std::make_unique<StiffnessLoss>(s, std::move(r), m));
       }

@@ -7,8 +7,10 @@
 #include <boost/math/special_functions/gamma.hpp>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <map>
 #include <memory>
+#include <numeric>
 #include <string_view>
 
 #include "femup/core/errors.h"
@@ -135,6 +137,36 @@ Fit FitInstance(const std::shared_ptr<const Structure>& structure,
   return best;
 }
 
+// The least misfit (data and stated priors) that one linearised step from any
+// of the instance's starts predicts, the step kept inside the parameters'
+// ranges: a screen of the instance in one evaluation per start. Infinite where
+// no start can be evaluated.
+double ScreenedMisfit(const std::shared_ptr<const Structure>& structure,
+                      const std::shared_ptr<const ModelEffect>& effect,
+                      const std::vector<ModalData>& states,
+                      const EigenSensitivityOptions& options) {
+  const std::vector<EffectParameter> params = effect->Parameters();
+  Eigen::VectorXd lower(params.size()), upper(params.size());
+  for (std::size_t i = 0; i < params.size(); ++i) {
+    lower[static_cast<Eigen::Index>(i)] = params[i].lower;
+    upper[static_cast<Eigen::Index>(i)] = params[i].upper;
+  }
+  double best = std::numeric_limits<double>::infinity();
+  for (const Eigen::VectorXd& start : effect->Starts()) {
+    const NonlinearProblem problem = WithPriorResiduals(
+        BuildModelEffectFitProblem(structure, {effect}, states, options, start), params);
+    Eigen::VectorXd r;
+    Eigen::MatrixXd j;
+    std::string why;
+    if (!problem.evaluate(start, &r, &j, &why) || !r.allFinite() || !j.allFinite())
+      continue;
+    const Eigen::VectorXd step = j.completeOrthogonalDecomposition().solve(-r);
+    const Eigen::VectorXd to = (start + step).cwiseMax(lower).cwiseMin(upper);
+    best = std::min({best, r.squaredNorm(), (r + j * (to - start)).squaredNorm()});
+  }
+  return best;
+}
+
 // The residuals of the nominal model (no effect), and which of them are
 // eigenvalue (frequency) rows, from the engine's own row labels.
 struct Nominal {
@@ -228,6 +260,8 @@ Invalid EffectRankingOptions::Validate() const {
     return {"shape_sigma", "must be positive and finite"};
   if (threads < 0) return {"threads", "must be >= 0 (0: every core)"};
   if (max_members < -1) return {"max_members", "must be >= 0, or -1 for every member"};
+  if (members_fitted < -1)
+    return {"members_fitted", "must be >= 0, or -1 to fit every member"};
   if (bagging_copies < 0)
     return {"bagging_copies", "must be >= 0 (0: the Laplace posterior alone)"};
   const auto names = AvailableNonlinearSolvers();
@@ -372,10 +406,44 @@ EffectRanking RankModelEffects(const Structure& structure_in,
       effect_kind.push_back(k);
     }
   }
+  // Members screened (EffectRankingOptions::members_fitted): the rest are
+  // not fitted and take no part in the ranking, though they keep their share
+  // of the prior.
+  std::vector<int> to_fit(effects.size());
+  std::iota(to_fit.begin(), to_fit.end(), 0);
+  std::vector<int> members;
+  for (std::size_t e = 0; e < effects.size(); ++e)
+    if (effects[e]->region().member >= 0) members.push_back(static_cast<int>(e));
+  if (options.members_fitted >= 0 &&
+      static_cast<int>(members.size()) > options.members_fitted) {
+    std::vector<double> screened(members.size());
+    ParallelFor(static_cast<int>(members.size()), options.threads, [&](int i) {
+      const auto m = static_cast<std::size_t>(i);
+      screened[m] = ScreenedMisfit(
+          structure, effects[static_cast<std::size_t>(members[m])], states, fit);
+    });
+    std::vector<std::size_t> order(members.size());
+    std::iota(order.begin(), order.end(), std::size_t{0});
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return screened[a] < screened[b];
+    });
+    std::vector<char> dropped(effects.size(), 0);
+    for (std::size_t k = static_cast<std::size_t>(options.members_fitted);
+         k < order.size(); ++k)
+      dropped[static_cast<std::size_t>(members[order[k]])] = 1;
+    to_fit.clear();
+    for (std::size_t e = 0; e < effects.size(); ++e)
+      if (!dropped[e]) to_fit.push_back(static_cast<int>(e));
+    out.notes.push_back(
+        "stiffness_loss was fitted on " + std::to_string(options.members_fitted) +
+        " of the " + std::to_string(members.size()) +
+        " members, those one linearised step from their starts predicted to fit best; "
+        "set diagnosis.members_fitted to -1 to fit every member");
+  }
   std::vector<Fit> fits(effects.size());
-  ParallelFor(static_cast<int>(effects.size()), options.threads, [&](int i) {
-    fits[static_cast<std::size_t>(i)] = FitInstance(
-        structure, effects[static_cast<std::size_t>(i)], states, fit, *solver, ritz);
+  ParallelFor(static_cast<int>(to_fit.size()), options.threads, [&](int i) {
+    const auto e = static_cast<std::size_t>(to_fit[static_cast<std::size_t>(i)]);
+    fits[e] = FitInstance(structure, effects[e], states, fit, *solver, ritz);
   });
   for (std::size_t e = 0; e < effects.size(); ++e) {
     const std::size_t k = effect_kind[e];

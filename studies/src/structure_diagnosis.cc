@@ -47,6 +47,7 @@ StructureDiagnosisResult RunStructureDiagnosis(const Study& study) {
   options.formulation_error = spec.formulation_error;
   options.bagging_copies = spec.bagging_copies;
   options.max_members = spec.max_members;
+  options.members_fitted = spec.members_fitted;
   r.priors = spec.priors;
   // A named family that does not apply is the study's error, before any fit.
   for (const std::string& kind : options.kinds) {

@@ -180,8 +180,8 @@ void ReadStatedPriors(const Field& f, const Study& study, DiagnosisSpec* d) {
 DiagnosisSpec ReadDiagnosis(const Field& f, const Study& study) {
   f.ExpectKeys({"noise", "candidates", "max_effects", "held_out", "use_shapes",
                 "mesh_error", "formulation_error", "bagging_copies", "max_members",
-                "form_error", "localise", "solver", "confidence", "evidence",
-                "evidence_samples", "priors", "weights"});
+                "members_fitted", "form_error", "localise", "solver", "confidence",
+                "evidence", "evidence_samples", "priors", "weights"});
   DiagnosisSpec d;
   if (f.Has("noise")) {
     const Field n = f["noise"];
@@ -247,6 +247,12 @@ DiagnosisSpec ReadDiagnosis(const Field& f, const Study& study) {
       f["max_members"].Fail(
           "members tried one by one for stiffness loss: expected >= 0, or -1 for every "
           "member");
+  }
+  if (f.Has("members_fitted")) {
+    d.members_fitted = f["members_fitted"].Int();
+    if (d.members_fitted < -1)
+      f["members_fitted"].Fail(
+          "members fitted after the screen: expected >= 0, or -1 to fit every member");
   }
   if (f.Has("form_error")) {
     d.form_error = f["form_error"].Num();

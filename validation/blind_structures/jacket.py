@@ -280,10 +280,12 @@ class Effect:
                 # Or a mass between the nodes of that horizontal in femup's
                 # model: its two segments, to and from its inner node (the
                 # model's one inner node per member is numbered after the
-                # joints and X centres, member by member, as in jacket3d).
+                # labelled joints, which are not the base's, and the X
+                # centres, member by member, as in jacket3d).
                 m = self._level_members(j, "horizontals", self.p_levels)[self.horizontal]
                 index = next(i for i, x in enumerate(members(j)) if x[0] is m[0])
-                inner = "n%d" % (len(j.joints) + len(j.centres) + index + 1)
+                joints = sum(1 for key in j.joints if key[2] > 0)
+                inner = "n%d" % (joints + len(j.centres) + index + 1)
                 out += ["%s-%s" % (lab[ends[0]], inner), "%s-%s" % (inner, lab[ends[1]])]
             return out
         if self.kind == "material_scaling":

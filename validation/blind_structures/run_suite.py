@@ -120,6 +120,17 @@ def score(truth, d):
         laplace_class_right=lap_class_right)
 
 
+def with_diagnosis_keys(text, keys):
+    """A study file's text with (key, value) pairs added at the top of its
+    diagnosis section (run_suite --diagnosis)."""
+    if not keys:
+        return text
+    if "\ndiagnosis:\n" not in text:
+        raise ValueError("the study file has no diagnosis section for --diagnosis")
+    lines = "".join("  %s: %s\n" % kv for kv in keys)
+    return text.replace("\ndiagnosis:\n", "\ndiagnosis:\n" + lines, 1)
+
+
 def fraction(rows, key):
     return (sum(1 for r in rows if r[key]) / len(rows)) if rows else float("nan")
 
@@ -149,7 +160,7 @@ def summarise(rows, args):
         suite=args.suite, cases=len(rows), seed=args.seed, noise_free=args.noise_free,
         floors=args.floors, foundation=args.foundation, design=args.design,
         jacket_water=getattr(args, "jacket_water", None) if args.suite == "jacket" else None,
-        stated_model_error=args.stated_model_error,
+        stated_model_error=args.stated_model_error, diagnosis_keys=list(getattr(args, "diagnosis", [])),
         top1_kind=fraction(rows, "kind_right"), top1_class=fraction(rows, "class_right"),
         informative_cases=len(inf), top1_kind_informative=fraction(inf, "kind_right"),
         top1_class_informative=fraction(inf, "class_right"),
@@ -227,7 +238,8 @@ def table(s):
             s["suite"], s["cases"], s["seed"], s["design"],
             ", %s floors" % s["floors"] if s["suite"] == "shear_building" else "",
             ", noise-free" if s["noise_free"] else "") + (
-            ", stated model error %g" % s["stated_model_error"] if s["stated_model_error"] else ""),
+            ", stated model error %g" % s["stated_model_error"] if s["stated_model_error"] else "") + (
+            ", diagnosis " + ", ".join(s["diagnosis_keys"]) if s.get("diagnosis_keys") else ""),
         "",
         "| figure | femup diagnose | Laplace posterior, same fits | flat BIC |",
         "|---|---|---|---|",
@@ -294,6 +306,9 @@ def main():
                     help="the relative frequency error the engineer states for the model's "
                     "idealisation (e.g. 0.01), added in quadrature to the stated frequency "
                     "noise of every study file (the noise drawn stays the measurement's)")
+    ap.add_argument("--diagnosis", action="append", default=[], metavar="KEY=VALUE",
+                    help="a key of the study files' diagnosis section, e.g. "
+                    "members_fitted=-1 (repeatable), to compare settings on the same cases")
     ap.add_argument("--femup", default="build/femup")
     ap.add_argument("--threads", type=int, default=os.cpu_count() or 2)
     ap.add_argument("-o", "--out", default=None)
@@ -307,6 +322,12 @@ def main():
         ap.error("--stated-model-error must be in [0, 1)")
     if not (os.path.isfile(args.femup) and os.access(args.femup, os.X_OK)):
         ap.error("--femup %s: not an executable file (build femup first)" % args.femup)
+    extra_keys = []
+    for kv in args.diagnosis:
+        key, sep, value = kv.partition("=")
+        if not sep or not key.strip() or not value.strip():
+            ap.error("--diagnosis %r: expected KEY=VALUE" % kv)
+        extra_keys.append((key.strip(), value.strip()))
     out = args.out or os.path.join("out", "blind_" + args.suite)
     for sub in ("cases", "truth", "runs"):
         os.makedirs(os.path.join(out, sub), exist_ok=True)
@@ -322,7 +343,7 @@ def main():
             study["frequency_noise"] = math.hypot(study["frequency_noise"],
                                                   args.stated_model_error)
         with open(os.path.join(out, "cases", name + ".yaml"), "w") as f:
-            f.write(gen.study_yaml(study))
+            f.write(with_diagnosis_keys(gen.study_yaml(study), extra_keys))
         with open(os.path.join(out, "truth", name + ".json"), "w") as f:
             json.dump(truth, f, indent=1)
         truths.append(truth)

@@ -160,6 +160,28 @@ class JacketSuiteTest(unittest.TestCase):
         # and the torsion, is kept; a torsional mode moves less).
         self.assertTrue(np.all(np.abs(r[:2] - np.sqrt(1 + 0.2 * e.sign)) < 0.01))
 
+    def test_a_deck_mass_between_joints_names_femups_segments(self):
+        # femup numbers a 1 x 1 bay jacket's free nodes: 4 leg joints per
+        # level, 4 X centres per storey, then one inner node per member, 24
+        # members per level (4 legs, 2 X and 2 Y horizontals, 16 half
+        # braces). The top horizontal n9-n10 of 3 levels is member 53, inner
+        # node n77, as femup itself names it (EffectRanking.
+        # NamesADeckMassBetweenTheTopJointsOfAJacket, "n9-n77").
+        rng = np.random.default_rng(5)
+        for levels in (3, 4):
+            p = dict(jacket.random_jacket(rng), levels=levels)
+            truth = jacket.Truth(p)
+            top = ["n%d" % k for k in range(4 * levels - 3, 4 * levels + 1)]
+            order = [(top[0], top[1]), (top[2], top[3]), (top[0], top[2]), (top[1], top[3])]
+            for h in range(4):
+                e = jacket.Effect("deck_mass", rng, p)
+                e.at_joint, e.horizontal, e.quarter = False, h, 1
+                regions = e.regions(truth)
+                a, b = order[h]
+                inner = "n%d" % (8 * levels + 24 * (levels - 1) + 4 + h + 1)
+                self.assertEqual(regions, ["node " + a, "node " + b, "%s-%s" % (a, inner),
+                                           "%s-%s" % (inner, b)])
+
     def test_scoring_maps_each_effect_to_its_family_and_region(self):
         want = {"none": ("none", ""), "marine_growth": ("added_mass", "wet elements"),
                 "material_scaling": ("material_scaling", "all elements")}

@@ -92,6 +92,17 @@ class ScoreTest(unittest.TestCase):
             "informative"])
 
 
+class DiagnosisKeysTest(unittest.TestCase):
+    def test_keys_go_at_the_top_of_the_diagnosis_section(self):
+        text = "model:\n  type: chain\ndiagnosis:\n  use_shapes: true\n"
+        self.assertEqual(run_suite.with_diagnosis_keys(text, [("members_fitted", "-1")]),
+                         "model:\n  type: chain\ndiagnosis:\n  members_fitted: -1\n"
+                         "  use_shapes: true\n")
+        self.assertEqual(run_suite.with_diagnosis_keys(text, []), text)
+        with self.assertRaises(ValueError):
+            run_suite.with_diagnosis_keys("model:\n  type: chain\n", [("a", "1")])
+
+
 class SummaryTest(unittest.TestCase):
     def test_figures_and_reliability_bins(self):
         rows = []

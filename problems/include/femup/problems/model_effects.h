@@ -72,6 +72,7 @@ struct EffectRegion {
   std::string name;           // "all elements", "element 3", "node n7", "support"
   std::vector<int> elements;  // indices into Structure::elements
   std::vector<int> dofs;  // indices into the structure's DOFs (attached mass, support)
+  int member = -1;        // index into Structure::members where it is one member
 };
 
 class ModelEffect {

@@ -157,6 +157,9 @@ struct DiagnosisSpec {
   // Stiffness loss on each member of a group where the model has at most this
   // many (-1: every member); EffectRankingOptions::max_members.
   int max_members = 200;
+  // Of more members than this, only the ones a linearised screen ranks best
+  // are fitted (-1: all); EffectRankingOptions::members_fitted.
+  int members_fitted = 12;
   // The candidate families' form error, as a fraction of the nominal model's
   // misfit per frequency and shape entry, added to the noise in quadrature: a
   // family of a few parameters describes a real effect only to some fraction
