@@ -670,7 +670,8 @@ TEST(EffectRanking, NamesADamagedBraceGroupOfAJacket) {
 // The data are the Timoshenko frame of four elements per member with the
 // brace softened, through the finer Structure's own member matrix. Of the 72
 // members, the 12 a linearised step ranks best are fitted
-// (EffectRankingOptions::members_fitted), and a note says so. With fewer
+// (EffectRankingOptions::members_fitted), the others ranked at their screen's
+// step, and a note says so. With fewer
 // members allowed than the frame has, only the groups are tried and a note
 // says so; naming the group under the stated regions tries its members again.
 TEST(EffectRanking, NamesOneDamagedBraceOfAJacket) {
@@ -691,9 +692,22 @@ TEST(EffectRanking, NamesOneDamagedBraceOfAJacket) {
   EXPECT_EQ(r.classes[0].region, "member brace n1-n17");
   EXPECT_GT(r.classes[0].probability, 0.9);
   EXPECT_NEAR(r.classes[0].magnitudes[0].value, 0.6, 0.1);
-  int members = 0;
-  for (const RankedClass& c : r.classes) members += c.region.rfind("member ", 0) == 0;
-  EXPECT_EQ(members, 12);
+  // Every member is ranked: the 12 fitted first, then the 60 others on their
+  // screen's step (RankedClass::fitted), still of the family.
+  int members = 0, fitted = 0;
+  bool screened_seen = false;
+  for (const RankedClass& c : r.classes) {
+    if (c.region.rfind("member ", 0) != 0) continue;
+    ++members;
+    fitted += c.fitted;
+    EXPECT_EQ(c.kind, "stiffness_loss");
+    EXPECT_FALSE(c.fitted && screened_seen) << c.region << " listed after a screened class";
+    screened_seen = screened_seen || !c.fitted;
+    EXPECT_TRUE(std::isfinite(c.evidence.log_evidence)) << c.region;
+    EXPECT_EQ(c.theta.size(), 1);
+  }
+  EXPECT_EQ(members, 72);
+  EXPECT_EQ(fitted, 12);
   ASSERT_EQ(r.notes.size(), 1u);
   EXPECT_NE(r.notes[0].find("fitted on 12 of the 72 members"), std::string::npos)
       << r.notes[0];
@@ -717,8 +731,11 @@ TEST(EffectRanking, NamesOneDamagedBraceOfAJacket) {
   ASSERT_EQ(stated.notes.size(), 1u);
   EXPECT_NE(stated.notes[0].find("fitted on 4 of the 16 members"), std::string::npos)
       << stated.notes[0];
-  EXPECT_EQ(stated.classes.size(), 1u + 1u + 4u);
+  EXPECT_EQ(stated.classes.size(), 1u + 1u + 16u);
   EXPECT_EQ(stated.classes[0].region, "member brace n1-n17");
+  EXPECT_EQ(std::count_if(stated.classes.begin(), stated.classes.end(),
+                          [](const RankedClass& c) { return !c.fitted; }),
+            12);
 }
 
 // A deck's equipment sits on the top level's horizontals as often as on its

@@ -59,6 +59,7 @@ void WriteStructureDiagnosisOutputs(const StructureDiagnosisResult& r, bool plot
                          {"log_occam", c.evidence.log_occam},
                          {"log_prior", c.log_prior},
                          {"converged", c.converged},
+                         {"fitted", c.fitted},
                          {"equivalent", c.equivalent},
                          {"group_probability", c.group_probability}};
     cj["parameters"] = nlohmann::json::array();
@@ -138,6 +139,7 @@ std::string StructureDiagnosisReport(const StructureDiagnosisResult& r) {
     o << "  " << std::left << std::setw(40) << Label(c) << std::right << " P "
       << std::fixed << std::setprecision(3) << c.probability << "  chi2 "
       << std::setprecision(1) << c.chi2;
+    if (!c.fitted) o << "  (screened, not fitted)";
     for (const EffectMagnitude& m : c.magnitudes) {
       o << "  " << m.name << " " << std::setprecision(4) << std::defaultfloat << m.value;
       if (!m.unit.empty() && m.unit.front() != '1') o << " " << m.unit;

@@ -33,6 +33,7 @@ struct Fit {
   Eigen::MatrixXd jacobian;
   Eigen::VectorXd residual;
   double chi2 = 0;
+  bool fitted = true;  // false: one linearised step's end (ScreenInstance)
 };
 
 // True when the column spaces of a and b coincide: same rank and every cosine
@@ -130,39 +131,51 @@ Fit FitInstance(const std::shared_ptr<const Structure>& structure,
     if (!best.ok || misfit < best_misfit) {
       const Eigen::VectorXd residual = sol.residual.head(rows);
       best = {true,     sol.summary.usable(),  sol.x, sol.jacobian.topRows(rows),
-              residual, residual.squaredNorm()};
+              residual, residual.squaredNorm(), true};
       best_misfit = misfit;
     }
   }
   return best;
 }
 
-// The least misfit (data and stated priors) that one linearised step from any
-// of the instance's starts predicts, the step kept inside the parameters'
-// ranges: a screen of the instance in one evaluation per start. Infinite where
-// no start can be evaluated.
-double ScreenedMisfit(const std::shared_ptr<const Structure>& structure,
+// One linearised step from each of the instance's starts, kept inside the
+// parameters' ranges: a screen of the instance in one evaluation per start.
+// `misfit` is the least misfit (data and stated priors) the steps predict,
+// infinite where no start can be evaluated; `fit` is that step's end, with the
+// data's predicted residual and the Jacobian at its start (not fitted).
+struct Screen {
+  double misfit = std::numeric_limits<double>::infinity();
+  Fit fit;
+};
+
+Screen ScreenInstance(const std::shared_ptr<const Structure>& structure,
                       const std::shared_ptr<const ModelEffect>& effect,
                       const std::vector<ModalData>& states,
                       const EigenSensitivityOptions& options) {
   const std::vector<EffectParameter> params = effect->Parameters();
-  Eigen::VectorXd lower(params.size()), upper(params.size());
-  for (std::size_t i = 0; i < params.size(); ++i) {
-    lower[static_cast<Eigen::Index>(i)] = params[i].lower;
-    upper[static_cast<Eigen::Index>(i)] = params[i].upper;
-  }
-  double best = std::numeric_limits<double>::infinity();
+  Screen best;
   for (const Eigen::VectorXd& start : effect->Starts()) {
-    const NonlinearProblem problem = WithPriorResiduals(
-        BuildModelEffectFitProblem(structure, {effect}, states, options, start), params);
+    const NonlinearProblem data =
+        BuildModelEffectFitProblem(structure, {effect}, states, options, start);
+    const NonlinearProblem problem = WithPriorResiduals(data, params);
     Eigen::VectorXd r;
     Eigen::MatrixXd j;
     std::string why;
     if (!problem.evaluate(start, &r, &j, &why) || !r.allFinite() || !j.allFinite())
       continue;
+    // The fit problem's own ranges (the effect pencil's), kept by the priors.
     const Eigen::VectorXd step = j.completeOrthogonalDecomposition().solve(-r);
-    const Eigen::VectorXd to = (start + step).cwiseMax(lower).cwiseMin(upper);
-    best = std::min({best, r.squaredNorm(), (r + j * (to - start)).squaredNorm()});
+    const Eigen::VectorXd to =
+        (start + step).cwiseMax(problem.lower).cwiseMin(problem.upper);
+    const Eigen::VectorXd predicted = r + j * (to - start);
+    const double misfit = std::min(r.squaredNorm(), predicted.squaredNorm());
+    if (!(misfit < best.misfit)) continue;
+    best.misfit = misfit;
+    const bool stepped = predicted.squaredNorm() < r.squaredNorm();
+    const Eigen::Index rows = data.num_residuals;
+    const Eigen::VectorXd residual = (stepped ? predicted : r).head(rows);
+    best.fit = {true,     false, stepped ? to : start, j.topRows(rows),
+                residual, residual.squaredNorm(), false};
   }
   return best;
 }
@@ -407,8 +420,9 @@ EffectRanking RankModelEffects(const Structure& structure_in,
     }
   }
   // Members screened (EffectRankingOptions::members_fitted): the rest are
-  // not fitted and take no part in the ranking, though they keep their share
-  // of the prior.
+  // not fitted; their evidence is the Laplace one at the end of their screen's
+  // linearised step, so the family keeps the weight of every member it has.
+  std::vector<Fit> fits(effects.size());
   std::vector<int> to_fit(effects.size());
   std::iota(to_fit.begin(), to_fit.end(), 0);
   std::vector<int> members;
@@ -416,31 +430,34 @@ EffectRanking RankModelEffects(const Structure& structure_in,
     if (effects[e]->region().member >= 0) members.push_back(static_cast<int>(e));
   if (options.members_fitted >= 0 &&
       static_cast<int>(members.size()) > options.members_fitted) {
-    std::vector<double> screened(members.size());
+    std::vector<Screen> screens(members.size());
     ParallelFor(static_cast<int>(members.size()), options.threads, [&](int i) {
       const auto m = static_cast<std::size_t>(i);
-      screened[m] = ScreenedMisfit(
+      screens[m] = ScreenInstance(
           structure, effects[static_cast<std::size_t>(members[m])], states, fit);
     });
     std::vector<std::size_t> order(members.size());
     std::iota(order.begin(), order.end(), std::size_t{0});
     std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-      return screened[a] < screened[b];
+      return screens[a].misfit < screens[b].misfit;
     });
     std::vector<char> dropped(effects.size(), 0);
     for (std::size_t k = static_cast<std::size_t>(options.members_fitted);
-         k < order.size(); ++k)
-      dropped[static_cast<std::size_t>(members[order[k]])] = 1;
+         k < order.size(); ++k) {
+      const auto e = static_cast<std::size_t>(members[order[k]]);
+      dropped[e] = 1;
+      fits[e] = screens[order[k]].fit;
+    }
     to_fit.clear();
     for (std::size_t e = 0; e < effects.size(); ++e)
       if (!dropped[e]) to_fit.push_back(static_cast<int>(e));
     out.notes.push_back(
         "stiffness_loss was fitted on " + std::to_string(options.members_fitted) +
         " of the " + std::to_string(members.size()) +
-        " members, those one linearised step from their starts predicted to fit best; "
+        " members, those one linearised step from their starts predicted to fit best "
+        "(the others' evidence is that step's); "
         "set diagnosis.members_fitted to -1 to fit every member");
   }
-  std::vector<Fit> fits(effects.size());
   ParallelFor(static_cast<int>(to_fit.size()), options.threads, [&](int i) {
     const auto e = static_cast<std::size_t>(to_fit[static_cast<std::size_t>(i)]);
     fits[e] = FitInstance(structure, effects[e], states, fit, *solver, ritz);
@@ -462,6 +479,7 @@ EffectRanking RankModelEffects(const Structure& structure_in,
       c.chi2 = f.chi2;
       c.log_prior = log_prior;
       c.converged = f.converged;
+      c.fitted = f.fitted;
       c.location = effect->Location(f.theta);
       c.magnitudes = effect->Magnitudes(f.theta);
       Eigen::VectorXd lower(c.names.size()), upper(c.names.size());
@@ -526,10 +544,12 @@ EffectRanking RankModelEffects(const Structure& structure_in,
 
   // Noise temperatures from the best fit, one for the frequencies and one for
   // the shapes: a model's form error shows in its frequencies first, and one
-  // temperature for both would be diluted by shape residuals that fit.
+  // temperature for both would be diluted by shape residuals that fit. A
+  // screened class's residual is a linear prediction, not a fit: not used.
   std::size_t best = 0;
   for (std::size_t i = 1; i < classes.size(); ++i)
-    if (residuals[i].squaredNorm() < residuals[best].squaredNorm()) best = i;
+    if (classes[i].fitted && residuals[i].squaredNorm() < residuals[best].squaredNorm())
+      best = i;
   int num_frequencies = 0;
   double chi2_f = 0, chi2_s = 0;
   for (int r = 0; r < out.num_residuals; ++r) {
@@ -610,12 +630,25 @@ EffectRanking RankModelEffects(const Structure& structure_in,
   // The most probable family first ("none" is a family of one class), and
   // within it the most probable class: the verdict answers which effect before
   // where, so a family whose probability is shared among many places is not
-  // outranked by a single class that has less.
+  // outranked by a single class that has less. Within a family the fitted
+  // classes come before the screened ones, whose place and size are one
+  // linearised step's: a screened class that is more probable than every
+  // fitted one is said in a note.
+  std::map<std::string, double> best_fitted;
+  for (const RankedClass& c : classes)
+    if (c.fitted) best_fitted[c.kind] = std::max(best_fitted[c.kind], c.probability);
+  for (const RankedClass& c : classes) {
+    if (c.fitted || !(c.probability > best_fitted[c.kind])) continue;
+    out.notes.push_back(label(c) + " was screened, not fitted, and is more probable (" +
+                        std::to_string(c.probability) + ") than every fitted " + c.kind +
+                        "; raise diagnosis.members_fitted to fit it");
+  }
   std::stable_sort(classes.begin(), classes.end(),
                    [&by_kind](const RankedClass& a, const RankedClass& b) {
                      const double ka = by_kind.at(a.kind), kb = by_kind.at(b.kind);
                      if (ka != kb) return ka > kb;
                      if (a.kind != b.kind) return a.kind < b.kind;
+                     if (a.fitted != b.fitted) return a.fitted;
                      return a.probability > b.probability;
                    });
   out.classes = std::move(classes);

@@ -100,8 +100,9 @@ struct EffectRankingOptions {
   // misfit one linearised (Gauss-Newton) step from each of its starts
   // predicts, its step kept in range: two evaluations where a fit takes tens.
   // Only the members the screen ranks best, this many, are then fitted; the
-  // others keep their share of the prior and are reported as unfitted (a
-  // note). -1: every member is fitted.
+  // others are ranked on the Laplace evidence at the end of their screen's
+  // step, listed after their family's fitted classes (RankedClass::fitted),
+  // and a note says so. -1: every member is fitted.
   int members_fitted = 12;
   // What the study states about the families (empty: their defaults). Each
   // family it names must be among those tried.
@@ -121,6 +122,10 @@ struct RankedClass {
   double probability = 0;          // bagged (above), or Laplace where bagging is off
   double laplace_probability = 0;  // from the Laplace evidences alone
   bool converged = true;
+  // False for a member left out of the fits by the screen
+  // (EffectRankingOptions::members_fitted): theta, chi2 and the evidence are
+  // at the end of one linearised step from its best start.
+  bool fitted = true;
   // "<kind> at <region>" of the classes observationally equivalent to this one
   // (see above), and the probability of the group (this class's included).
   std::vector<std::string> equivalent;
