@@ -701,7 +701,8 @@ TEST(EffectRanking, NamesOneDamagedBraceOfAJacket) {
     ++members;
     fitted += c.fitted;
     EXPECT_EQ(c.kind, "stiffness_loss");
-    EXPECT_FALSE(c.fitted && screened_seen) << c.region << " listed after a screened class";
+    EXPECT_FALSE(c.fitted && screened_seen)
+        << c.region << " listed after a screened class";
     screened_seen = screened_seen || !c.fitted;
     EXPECT_TRUE(std::isfinite(c.evidence.log_evidence)) << c.region;
     EXPECT_EQ(c.theta.size(), 1);

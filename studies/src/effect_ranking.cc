@@ -130,7 +130,7 @@ Fit FitInstance(const std::shared_ptr<const Structure>& structure,
     const double misfit = sol.residual.squaredNorm();
     if (!best.ok || misfit < best_misfit) {
       const Eigen::VectorXd residual = sol.residual.head(rows);
-      best = {true,     sol.summary.usable(),  sol.x, sol.jacobian.topRows(rows),
+      best = {true,     sol.summary.usable(),   sol.x, sol.jacobian.topRows(rows),
               residual, residual.squaredNorm(), true};
       best_misfit = misfit;
     }
@@ -174,8 +174,13 @@ Screen ScreenInstance(const std::shared_ptr<const Structure>& structure,
     const bool stepped = predicted.squaredNorm() < r.squaredNorm();
     const Eigen::Index rows = data.num_residuals;
     const Eigen::VectorXd residual = (stepped ? predicted : r).head(rows);
-    best.fit = {true,     false, stepped ? to : start, j.topRows(rows),
-                residual, residual.squaredNorm(), false};
+    best.fit = {true,
+                false,
+                stepped ? to : start,
+                j.topRows(rows),
+                residual,
+                residual.squaredNorm(),
+                false};
   }
   return best;
 }
