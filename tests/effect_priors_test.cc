@@ -216,25 +216,32 @@ TEST(EffectPriors, RegionsKeepTheNamedElementsAndNodes) {
   }
 }
 
-// A space frame's stiffness loss acts on its groups and on each member
-// (Structure::members): a member is named by its label, a group keeps itself
-// and its members, and a member named for a family that does not act on
-// members is refused as such.
+// A space frame's stiffness loss acts on its groups, on each member
+// (Structure::members) and on each member's finite elements: a member is named
+// by its label and keeps its parts, a group keeps itself and its members, and
+// a member named for a family that does not act on members is refused as such.
 TEST(EffectPriors, RegionsNameTheMembersOfASpaceFrame) {
   SpaceFrameSpec spec = fixtures::SpaceFrame(2, 1, 1, 2, 10, 12, 12);
   spec.bracing = FaceBracing::kX;
   const Structure s = BuildSpaceFrameStructure(spec);
+  // Each member and each of its two finite elements (MemberPartName).
   auto all = CreateModelEffects("stiffness_loss", s);
-  ASSERT_EQ(all.size(), s.elements.size() + s.members.size());
+  ASSERT_EQ(all.size(), s.elements.size() + 3 * s.members.size());
   auto kept = KeepStatedRegions(CreateModelEffects("stiffness_loss", s), s,
                                 Prior("stiffness_loss", {}, {"brace n1-n13"}));
-  ASSERT_EQ(kept.size(), 1u);
+  ASSERT_EQ(kept.size(), 3u);
   EXPECT_EQ(kept[0]->region().name, "member brace n1-n13");
+  EXPECT_EQ(kept[1]->region().name, "member brace n1-n13 (0.00-0.50)");
+  EXPECT_EQ(kept[2]->region().name, "member brace n1-n13 (0.50-1.00)");
+  EXPECT_EQ(kept[0]->region().part, -1);
+  EXPECT_EQ(kept[2]->region().part, 1);
+  EXPECT_EQ(kept[2]->region().member, kept[0]->region().member);
   kept = KeepStatedRegions(CreateModelEffects("stiffness_loss", s), s,
                            Prior("stiffness_loss", {}, {"l1:legs1"}));
-  ASSERT_EQ(kept.size(), 1u + 4u);
+  ASSERT_EQ(kept.size(), 1u + 4u * 3u);
   EXPECT_EQ(kept[0]->region().name, "element l1:legs1");
   EXPECT_EQ(kept[1]->region().name, "member leg b1-n1");
+  EXPECT_EQ(kept[2]->region().name, "member leg b1-n1 (0.00-0.50)");
   std::string where;
   const std::string msg = ErrorOf(
       [&] {

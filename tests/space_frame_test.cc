@@ -704,6 +704,41 @@ TEST(SpaceFrameModes, SquareFrameSwaysEquallyInXAndY) {
   EXPECT_GT(gx, 0.3 * ux.dot(m.mass() * ux));
 }
 
+// A member's finite elements (ElementMember::parts): what damage over part of
+// its length acts on. Their spans tile the member from its first joint, their
+// stiffnesses sum to the member's, and their heights are their elements'. A
+// member of one element has no parts.
+TEST(SpaceFrameStructure, MemberPartsTileTheirMember) {
+  SpaceFrameSpec spec = fixtures::SpaceFrame(3, 1, 1, 2, 10, 12, 12);
+  spec.bracing = FaceBracing::kX;
+  const Structure s = BuildSpaceFrameStructure(spec);
+  for (const ElementMember& m : s.members) {
+    ASSERT_EQ(m.parts.size(), 2u) << m.label;
+    EXPECT_NEAR(m.parts[0].from, 0.0, 1e-12);
+    EXPECT_NEAR(m.parts[0].to, 0.5, 1e-12);
+    EXPECT_NEAR(m.parts[1].from, 0.5, 1e-12);
+    EXPECT_NEAR(m.parts[1].to, 1.0, 1e-12);
+    const Eigen::MatrixXd whole = Eigen::MatrixXd(m.stiffness.ToSparse());
+    const Eigen::MatrixXd d = Eigen::MatrixXd(m.parts[0].stiffness.ToSparse() +
+                                              m.parts[1].stiffness.ToSparse()) -
+                              whole;
+    EXPECT_LT(d.cwiseAbs().maxCoeff(), 1e-12 * whole.cwiseAbs().maxCoeff()) << m.label;
+    EXPECT_GT(m.parts[0].stiffness.ToSparse().norm(), 0.0);
+  }
+  // brace n1-n17 runs from n1 (z 10) to the face centre n17 (z 15).
+  const auto brace =
+      std::find_if(s.members.begin(), s.members.end(),
+                   [](const ElementMember& m) { return m.label == "brace n1-n17"; });
+  ASSERT_NE(brace, s.members.end());
+  EXPECT_DOUBLE_EQ(brace->parts[0].x0, 10.0);
+  EXPECT_DOUBLE_EQ(brace->parts[0].x1, 12.5);
+  EXPECT_DOUBLE_EQ(brace->parts[1].x0, 12.5);
+  EXPECT_DOUBLE_EQ(brace->parts[1].x1, 15.0);
+  spec.elements_per_member = 1;
+  for (const ElementMember& m : BuildSpaceFrameStructure(spec).members)
+    EXPECT_TRUE(m.parts.empty()) << m.label;
+}
+
 // Each member of the frame, on its own (Structure::members): what a stiffness
 // loss of one brace acts on. The members of a group sum to its stiffness, are
 // named by kind and end joints, and each one's stiffness is its own: an axial

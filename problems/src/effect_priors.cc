@@ -277,9 +277,11 @@ std::vector<std::unique_ptr<ModelEffect>> KeepStatedRegions(
     bool found = false;
     for (std::size_t i = 0; i < instances.size(); ++i) {
       const EffectRegion& r = instances[i]->region();
-      // A member by its label ("brace n8-n24"), or the elements and nodes it
-      // lies in.
-      bool match = r.name == "member " + name;
+      // A member by its label ("brace n8-n24"; its parts too), or the elements
+      // and nodes it lies in.
+      bool match =
+          r.name == "member " + name ||
+          (r.member >= 0 && s.members[static_cast<std::size_t>(r.member)].label == name);
       for (int e : r.elements) match = match || NamesElement(s.elements[e], name);
       for (int d : r.dofs) match = match || NodeOf(s.dof_labels[d]) == name;
       if (match) keep[i] = found = true;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 
 #include "femup/core/errors.h"
@@ -433,6 +434,12 @@ std::vector<FamilyApplicability> ApplicableModelEffects(const Structure& s) {
   return out;
 }
 
+std::string MemberPartName(const ElementMember& member, const MemberPart& part) {
+  char span[32];
+  std::snprintf(span, sizeof span, " (%.2f-%.2f)", part.from, part.to);
+  return "member " + member.label + span;
+}
+
 std::vector<std::unique_ptr<ModelEffect>> CreateModelEffects(
     const std::string& kind, const Structure& s, const ModelEffectOptions& options) {
   const std::vector<std::string> kinds = ModelEffectKinds();
@@ -463,10 +470,18 @@ std::vector<std::unique_ptr<ModelEffect>> CreateModelEffects(
     const int num_members = static_cast<int>(s.members.size());
     if (options.max_members < 0 || num_members <= options.max_members) {
       for (const ElementMember& m : s.members) {
-        EffectRegion r{
-            "member " + m.label, {}, {}, static_cast<int>(&m - s.members.data())};
+        const int index = static_cast<int>(&m - s.members.data());
+        EffectRegion r{"member " + m.label, {}, {}, index};
         if (m.element >= 0) r.elements.push_back(m.element);
-        out.push_back(std::make_unique<StiffnessLoss>(s, std::move(r), m));
+        out.push_back(std::make_unique<StiffnessLoss>(s, r, m));
+        // And each of its finite elements: a loss over part of its length.
+        for (const MemberPart& part : m.parts) {
+          EffectRegion pr = r;
+          pr.name = MemberPartName(m, part);
+          pr.part = static_cast<int>(&part - m.parts.data());
+          ElementMember piece{m.label, m.element, part.stiffness, part.x0, part.x1, {}};
+          out.push_back(std::make_unique<StiffnessLoss>(s, std::move(pr), piece));
+        }
       }
     }
   } else if (kind == "attached_mass") {

@@ -456,12 +456,17 @@ EffectRanking RankModelEffects(const Structure& structure_in,
     to_fit.clear();
     for (std::size_t e = 0; e < effects.size(); ++e)
       if (!dropped[e]) to_fit.push_back(static_cast<int>(e));
+    const auto parts = std::count_if(members.begin(), members.end(), [&](int e) {
+      return effects[static_cast<std::size_t>(e)]->region().part >= 0;
+    });
     out.notes.push_back(
         "stiffness_loss was fitted on " + std::to_string(options.members_fitted) +
-        " of the " + std::to_string(members.size()) +
-        " members, those one linearised step from their starts predicted to fit best "
-        "(the others' evidence is that step's); "
-        "set diagnosis.members_fitted to -1 to fit every member");
+        " of its " + std::to_string(members.size()) + " places on single members (" +
+        std::to_string(members.size() - static_cast<std::size_t>(parts)) +
+        " members and " + std::to_string(parts) +
+        " of their finite elements), those one linearised step from their starts "
+        "predicted to fit best (the others' evidence is that step's); set "
+        "diagnosis.members_fitted to -1 to fit them all");
   }
   ParallelFor(static_cast<int>(to_fit.size()), options.threads, [&](int i) {
     const auto e = static_cast<std::size_t>(to_fit[static_cast<std::size_t>(i)]);

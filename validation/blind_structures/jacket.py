@@ -89,6 +89,7 @@ EXPECTED_KIND = {"none": "none", "marine_growth": "added_mass",
 # femup's base spring directions, and jacket3d's six DOFs each one sets.
 BASE_DIRECTIONS = {"horizontal": (0, 1), "vertical": (2,), "rocking": (3, 4), "torsion": (5,)}
 PARTS = 4  # truth elements per member
+MODEL_PARTS = 2  # femup's elements per member in the study files (study_yaml)
 RHO_W, CA = 1025.0, 1.0
 
 
@@ -270,8 +271,14 @@ class Effect:
                 x, y, _ = j.frame.xyz[n]
                 return "b%d" % (round(y / p["bay_width_y"]) * (p["bays_x"] + 1) +
                                 round(x / p["bay_width_x"]) + 1)
-            return ["element l%d:braces1" % self.level,
-                    "member brace %s-%s" % (name(m[0]["n1"]), name(m[-1]["n2"]))]
+            member = "member brace %s-%s" % (name(m[0]["n1"]), name(m[-1]["n2"]))
+            # Or the part of it (femup's finite elements of the member, named by
+            # their span from its first joint) that holds the damaged zone.
+            z0, z1 = self.zone[0] / PARTS, self.zone[1] / PARTS
+            parts = ["%s (%.2f-%.2f)" % (member, k / MODEL_PARTS, (k + 1) / MODEL_PARTS)
+                     for k in range(MODEL_PARTS)
+                     if z0 < (k + 1) / MODEL_PARTS and z1 > k / MODEL_PARTS]
+            return ["element l%d:braces1" % self.level, member] + parts
         if self.kind == "deck_mass":
             lab = label_of(j)
             _, ends = self._deck_node_and_ends(j)
@@ -416,7 +423,7 @@ def study_yaml(s):
         "  level_height: %.10g" % p["level_height"],
         "  bay_width_x: %.10g" % p["bay_width_x"],
         "  bay_width_y: %.10g" % p["bay_width_y"],
-        "  elements_per_member: 2",
+        "  elements_per_member: %d" % MODEL_PARTS,
         "  blocks_per_level: 1",
         "  bracing: x",
         "  water_depth: %.10g" % p["water_depth"],

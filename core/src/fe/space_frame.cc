@@ -717,13 +717,26 @@ Structure BuildSpaceFrameStructure(const SpaceFrameSpec& spec) {
     const SpaceFrameElement& a = g.elements[first];
     const SpaceFrameElement& b = g.elements[last];
     t.clear();
+    ElementMember m;
+    const int count = static_cast<int>(last - first + 1);
     for (std::size_t k = first; k <= last; ++k) {
       const SpaceFrameElement& e = g.elements[k];
+      const std::size_t before = t.size();
       Scatter(Frame3dStiffness(SectionOf(spec, e.member), e.end1, e.end2, e.reference,
                                theory),
               DofsOf(e, base), &t);
+      if (count == 1) continue;
+      // Its finite elements, each a part of the member.
+      const double length = (b.end2 - a.end1).norm();
+      MemberPart part;
+      part.from = (e.end1 - a.end1).norm() / length;
+      part.to = (e.end2 - a.end1).norm() / length;
+      part.stiffness =
+          BasisMatrix::FromTriplets(n, t.begin() + static_cast<long>(before), t.end());
+      part.x0 = std::min(e.end1.z(), e.end2.z());
+      part.x1 = std::max(e.end1.z(), e.end2.z());
+      m.parts.push_back(std::move(part));
     }
-    ElementMember m;
     m.label = std::string(singular[static_cast<int>(a.member)]) + " " +
               end_name(a.node1, a.end1) + "-" + end_name(b.node2, b.end2);
     m.element = element_of_group[static_cast<std::size_t>(GroupOf(a, blocks))];

@@ -73,6 +73,7 @@ struct EffectRegion {
   std::vector<int> elements;  // indices into Structure::elements
   std::vector<int> dofs;  // indices into the structure's DOFs (attached mass, support)
   int member = -1;        // index into Structure::members where it is one member
+  int part = -1;          // and into its parts where it is one of them
 };
 
 class ModelEffect {
@@ -98,11 +99,17 @@ struct ModelEffectOptions {
   // Added mass acts in wet states only (the study has wet states); otherwise in
   // every state.
   bool wet_only_added_mass = false;
-  // Stiffness loss tries each member of a group on its own when the structure
-  // has at most this many members (each is one more fit; the 10^4-DOF jacket
-  // has 530); -1: all of them, however many.
+  // Stiffness loss tries each member of a group on its own, and each of a
+  // member's finite elements (MemberPartName), when the structure has at most
+  // this many members (each is one more fit; the 10^4-DOF jacket has 530); -1:
+  // all of them, however many.
   int max_members = 200;
 };
+
+// The region name of stiffness loss on part of a member (one of its finite
+// elements): "member brace n8-n24 (0.50-1.00)", the span in fractions of its
+// length from the first joint named.
+std::string MemberPartName(const ElementMember& member, const MemberPart& part);
 
 // The kinds model_effects knows, in a fixed order.
 std::vector<std::string> ModelEffectKinds();

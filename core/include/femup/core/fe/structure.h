@@ -22,14 +22,23 @@ struct ElementMatrices {
   double x0 = 0, x1 = 0;          // position along the structure (m), where it applies
 };
 
+// One finite element of a member that has several: what damage over part of
+// a member's length (a dent, a crack at one end) acts on.
+struct MemberPart {
+  double from = 0, to = 1;  // its span along the member, fractions from the first joint
+  BasisMatrix stiffness;    // its finite element's stiffness, on its DOFs
+  double x0 = 0, x1 = 0;    // its extent along the structure (m), as the elements'
+};
+
 // A member inside an element, where the model's elements are groups of members
 // (a space frame's level groups): what a local change, such as one damaged
 // brace, acts on when it does not act on its whole group.
 struct ElementMember {
-  std::string label;      // "brace n8-n24", "leg b1-n1": its kind and end joints
-  int element = -1;       // the Structure::elements entry (group) it belongs to
-  BasisMatrix stiffness;  // its part of that element's stiffness, on its DOFs
-  double x0 = 0, x1 = 0;  // its extent along the structure (m), as the elements'
+  std::string label;              // "brace n8-n24", "leg b1-n1": its kind and end joints
+  int element = -1;               // the Structure::elements entry (group) it belongs to
+  BasisMatrix stiffness;          // its part of that element's stiffness, on its DOFs
+  double x0 = 0, x1 = 0;          // its extent along the structure (m), as the elements'
+  std::vector<MemberPart> parts;  // its finite elements, where it has more than one
 };
 
 // A node of a model with geometry.
