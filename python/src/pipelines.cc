@@ -407,6 +407,7 @@ void BindDiagnosis(py::module_& m) {
       .def_readonly("evidence", &femup::RankedClass::evidence)
       .def_readonly("log_prior", &femup::RankedClass::log_prior)
       .def_readonly("converged", &femup::RankedClass::converged)
+      .def_readonly("fitted", &femup::RankedClass::fitted)
       .def_readonly("location", &femup::RankedClass::location)
       .def_readonly("magnitudes", &femup::RankedClass::magnitudes)
       .def("__repr__", [](const femup::RankedClass& c) {

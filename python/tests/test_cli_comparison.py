@@ -127,6 +127,7 @@ def test_structure_diagnosis_matches_diagnosis_json(run_cli):
         close(c.chi2, e["chi2"], rel=1e-9)
         close(c.evidence.log_evidence, e["log_evidence"], rel=1e-9)
         assert c.equivalent == e["equivalent"]
+        assert c.fitted == e["fitted"]
         for m, em in zip(c.magnitudes, e["magnitudes"]):
             assert m.name == em["name"] and m.unit == em["unit"]
             close(m.value, em["value"], rel=1e-9)
