@@ -642,16 +642,23 @@ EffectRanking RankModelEffects(const Structure& structure_in,
   // where, so a family whose probability is shared among many places is not
   // outranked by a single class that has less. Within a family the fitted
   // classes come before the screened ones, whose place and size are one
-  // linearised step's: a screened class that is more probable than every
-  // fitted one is said in a note.
+  // linearised step's: screened classes more probable than every fitted one
+  // of their family are said in one note per family, the most probable named.
   std::map<std::string, double> best_fitted;
   for (const RankedClass& c : classes)
     if (c.fitted) best_fitted[c.kind] = std::max(best_fitted[c.kind], c.probability);
+  std::map<std::string, std::pair<int, const RankedClass*>> above;  // kind -> count, most
   for (const RankedClass& c : classes) {
     if (c.fitted || !(c.probability > best_fitted[c.kind])) continue;
-    out.notes.push_back(label(c) + " was screened, not fitted, and is more probable (" +
-                        std::to_string(c.probability) + ") than every fitted " + c.kind +
-                        "; raise diagnosis.members_fitted to fit it");
+    auto& [count, most] = above[c.kind];
+    ++count;
+    if (most == nullptr || c.probability > most->probability) most = &c;
+  }
+  for (const auto& [kind, a] : above) {
+    out.notes.push_back(std::to_string(a.first) + " screened, unfitted places of " +
+                        kind + " are more probable than every fitted one (the most: " +
+                        label(*a.second) + ", " + std::to_string(a.second->probability) +
+                        "); raise diagnosis.members_fitted to fit them");
   }
   std::stable_sort(classes.begin(), classes.end(),
                    [&by_kind](const RankedClass& a, const RankedClass& b) {
