@@ -756,6 +756,28 @@ TEST(EffectRanking, NamesOneDamagedBraceOfAJacket) {
   EXPECT_EQ(std::count_if(stated.classes.begin(), stated.classes.end(),
                           [](const RankedClass& c) { return !c.fitted; }),
             44);
+
+  // No place fitted after the screen: the group is the family's only fitted
+  // class, the brace's screened places come out more probable than it, and
+  // the most probable of them is fitted (one per round) before the ranking is
+  // said; once fitted, it outranks every screened place and no second round
+  // is needed.
+  few.members_fitted = 0;
+  const EffectRanking refit = RankModelEffects(nominal, {d}, few);
+  ASSERT_FALSE(refit.classes.empty());
+  EXPECT_EQ(refit.classes[0].region.rfind("member brace n1-n17", 0), 0u)
+      << refit.classes[0].region;
+  EXPECT_TRUE(refit.classes[0].fitted);
+  EXPECT_EQ(std::count_if(refit.classes.begin(), refit.classes.end(),
+                          [](const RankedClass& c) { return !c.fitted; }),
+            47);
+  ASSERT_FALSE(refit.notes.empty());
+  EXPECT_NE(refit.notes[0].find("fitted on 1 of its 48 places"), std::string::npos)
+      << refit.notes[0];
+  EXPECT_NE(refit.notes[0].find("1 whose step came out more probable than every fitted "
+                                "place"),
+            std::string::npos)
+      << refit.notes[0];
 }
 
 // A deck's equipment sits on the top level's horizontals as often as on its

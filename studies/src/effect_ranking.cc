@@ -25,6 +25,9 @@ namespace femup {
 
 namespace {
 
+// FEMUP_NO_FORM_STEP=1 leaves the classes at their raw fits (for comparison).
+bool StepsInForm() { return std::getenv("FEMUP_NO_FORM_STEP") == nullptr; }
+
 // One instance's best fit over its starts.
 struct Fit {
   bool ok = false;
@@ -409,11 +412,6 @@ EffectRanking RankModelEffects(const Structure& structure_in,
   out.num_residuals = static_cast<int>(nominal.size());
   none.chi2 = nominal.squaredNorm();
   none.log_prior = log_family_prior("none");
-  std::vector<RankedClass> classes = {none};
-  std::vector<Eigen::MatrixXd> jacobians = {Eigen::MatrixXd(out.num_residuals, 0)};
-  std::vector<Eigen::VectorXd> residuals = {nominal};
-  std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>> boxes = {{}};
-  std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>> normals = {{}};
   // Every instance's fit, in parallel (each writes its own slot), then the
   // classes in the families' and instances' order.
   std::vector<std::shared_ptr<const ModelEffect>> effects;
@@ -433,6 +431,7 @@ EffectRanking RankModelEffects(const Structure& structure_in,
   std::vector<int> members;
   for (std::size_t e = 0; e < effects.size(); ++e)
     if (effects[e]->region().member >= 0) members.push_back(static_cast<int>(e));
+  int screened = 0, screened_parts = 0;  // places screened, of which parts
   if (options.members_fitted >= 0 &&
       static_cast<int>(members.size()) > options.members_fitted) {
     std::vector<Screen> screens(members.size());
@@ -456,28 +455,93 @@ EffectRanking RankModelEffects(const Structure& structure_in,
     to_fit.clear();
     for (std::size_t e = 0; e < effects.size(); ++e)
       if (!dropped[e]) to_fit.push_back(static_cast<int>(e));
-    const auto parts = std::count_if(members.begin(), members.end(), [&](int e) {
-      return effects[static_cast<std::size_t>(e)]->region().part >= 0;
-    });
-    out.notes.push_back(
-        "stiffness_loss was fitted on " + std::to_string(options.members_fitted) +
-        " of its " + std::to_string(members.size()) + " places on single members (" +
-        std::to_string(members.size() - static_cast<std::size_t>(parts)) +
-        " members and " + std::to_string(parts) +
-        " of their finite elements), those one linearised step from their starts "
-        "predicted to fit best (the others' evidence is that step's); set "
-        "diagnosis.members_fitted to -1 to fit them all");
+    screened = static_cast<int>(members.size());
+    screened_parts =
+        static_cast<int>(std::count_if(members.begin(), members.end(), [&](int e) {
+          return effects[static_cast<std::size_t>(e)]->region().part >= 0;
+        }));
   }
   ParallelFor(static_cast<int>(to_fit.size()), options.threads, [&](int i) {
     const auto e = static_cast<std::size_t>(to_fit[static_cast<std::size_t>(i)]);
     fits[e] = FitInstance(structure, effects[e], states, fit, *solver, ritz);
   });
-  for (std::size_t e = 0; e < effects.size(); ++e) {
-    const std::size_t k = effect_kind[e];
-    const std::string& kind = kinds[k];
-    const double log_prior =
-        log_family_prior(kind) - std::log(static_cast<double>(instances[k].size()));
-    {
+
+  // The model's own form error (Structure::form_variants): each variant moves
+  // the nominal frequencies by u_j (in noise units); the frequencies' noise
+  // becomes I + sum_j u_j u_j', one standard deviation of model-form error
+  // along each variant's change, and every class's frequency residuals and
+  // Jacobian rows are whitened by it. A change the model's own formulation can
+  // make (all modes softer alike, for shear deformation) then costs little,
+  // and no family is named for it alone.
+  std::vector<int> frequency_rows;
+  for (int r = 0; r < out.num_residuals; ++r)
+    if (is_frequency[r]) frequency_rows.push_back(r);
+  const bool whitened = options.formulation_error && !structure->form_variants.empty() &&
+                        !frequency_rows.empty();
+  Eigen::MatrixXd factor;
+  Eigen::MatrixXd form_basis;  // orthonormal basis of the variants' changes
+  if (whitened) {
+    std::vector<Eigen::VectorXd> directions;
+    for (const FormVariant& v : structure->form_variants) {
+      const Eigen::VectorXd change = FormVariantChange(*structure, v, states, fit);
+      Eigen::VectorXd u(frequency_rows.size());
+      for (std::size_t k = 0; k < frequency_rows.size(); ++k)
+        u[k] = change[frequency_rows[k]];
+      // Relative frequency change: a lambda row is in units of 2 sigma_f.
+      out.form_errors.push_back(
+          {v.name, u.cwiseAbs().maxCoeff() * options.frequency_sigma, u.norm()});
+      directions.push_back(std::move(u));
+    }
+    factor = FormErrorFactor(directions, static_cast<int>(frequency_rows.size()));
+    Eigen::MatrixXd u(frequency_rows.size(), directions.size());
+    for (std::size_t j = 0; j < directions.size(); ++j)
+      u.col(static_cast<Eigen::Index>(j)) = directions[j];
+    const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(u);
+    form_basis = qr.householderQ() * Eigen::MatrixXd::Identity(
+                                         u.rows(), std::max<Eigen::Index>(qr.rank(), 1));
+  }
+  auto whiten = [&](Eigen::VectorXd* r, Eigen::MatrixXd* j) {
+    Eigen::VectorXd rf(frequency_rows.size());
+    Eigen::MatrixXd jf(frequency_rows.size(), j->cols());
+    for (std::size_t k = 0; k < frequency_rows.size(); ++k) {
+      rf[k] = (*r)[frequency_rows[k]];
+      jf.row(k) = j->row(frequency_rows[k]);
+    }
+    rf = factor.triangularView<Eigen::Lower>().solve(rf);
+    // "none" has no unknowns: Eigen's triangular solve of an empty
+    // right-hand side reads its first coefficient (UBSan: a null reference).
+    if (jf.cols() > 0) jf = factor.triangularView<Eigen::Lower>().solve(jf);
+    for (std::size_t k = 0; k < frequency_rows.size(); ++k) {
+      (*r)[frequency_rows[k]] = rf[k];
+      j->row(frequency_rows[k]) = jf.row(k);
+    }
+  };
+
+  // The classes and their probabilities, from the fits. Screened places whose
+  // linearised step comes out more probable than every fitted place of their
+  // family are then fitted (the most probable first, members_fitted of them
+  // per round, up to kRefitRounds rounds) and everything is ranked again: a
+  // step's prediction is a lower bound of the misfit only to first order, and
+  // on a jacket it was optimistic for a hundred places or more at once.
+  constexpr int kRefitRounds = 2;
+  int refitted = 0;
+  std::vector<RankedClass> classes;
+  std::vector<Eigen::MatrixXd> jacobians, raw_jacobians;
+  std::vector<Eigen::VectorXd> residuals;
+  std::map<std::string, double> by_kind;
+  Eigen::VectorXd row_scale;  // 1 / sqrt(noise temperature) per residual
+  for (int round = 0;; ++round) {
+    classes = {none};
+    jacobians = {Eigen::MatrixXd(out.num_residuals, 0)};
+    residuals = {nominal};
+    std::vector<std::size_t> class_effect = {effects.size()};  // none: no effect
+    std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>> boxes = {{}};
+    std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>> normals = {{}};
+    for (std::size_t e = 0; e < effects.size(); ++e) {
+      const std::size_t k = effect_kind[e];
+      const std::string& kind = kinds[k];
+      const double log_prior =
+          log_family_prior(kind) - std::log(static_cast<double>(instances[k].size()));
       const std::shared_ptr<const ModelEffect>& effect = effects[e];
       const Fit& f = fits[e];
       if (!f.ok) continue;
@@ -505,123 +569,164 @@ EffectRanking RankModelEffects(const Structure& structure_in,
       residuals.push_back(f.residual);
       boxes.push_back({lower, upper});
       normals.push_back({normal_mean, normal_sigma});
+      class_effect.push_back(e);
     }
-  }
-
-  // The model's own form error (Structure::form_variants): each variant moves
-  // the nominal frequencies by u_j (in noise units); the frequencies' noise
-  // becomes I + sum_j u_j u_j', one standard deviation of model-form error
-  // along each variant's change, and every class's frequency residuals and
-  // Jacobian rows are whitened by it. A change the model's own formulation can
-  // make (all modes softer alike, for shear deformation) then costs little,
-  // and no family is named for it alone.
-  std::vector<int> frequency_rows;
-  for (int r = 0; r < out.num_residuals; ++r)
-    if (is_frequency[r]) frequency_rows.push_back(r);
-  if (options.formulation_error && !structure->form_variants.empty() &&
-      !frequency_rows.empty()) {
-    std::vector<Eigen::VectorXd> directions;
-    for (const FormVariant& v : structure->form_variants) {
-      const Eigen::VectorXd change = FormVariantChange(*structure, v, states, fit);
-      Eigen::VectorXd u(frequency_rows.size());
-      for (std::size_t k = 0; k < frequency_rows.size(); ++k)
-        u[k] = change[frequency_rows[k]];
-      // Relative frequency change: a lambda row is in units of 2 sigma_f.
-      out.form_errors.push_back(
-          {v.name, u.cwiseAbs().maxCoeff() * options.frequency_sigma, u.norm()});
-      directions.push_back(std::move(u));
-    }
-    const Eigen::MatrixXd factor =
-        FormErrorFactor(directions, static_cast<int>(frequency_rows.size()));
-    auto whiten = [&](Eigen::VectorXd* r, Eigen::MatrixXd* j) {
-      Eigen::VectorXd rf(frequency_rows.size());
-      Eigen::MatrixXd jf(frequency_rows.size(), j->cols());
-      for (std::size_t k = 0; k < frequency_rows.size(); ++k) {
-        rf[k] = (*r)[frequency_rows[k]];
-        jf.row(k) = j->row(frequency_rows[k]);
+    raw_jacobians = jacobians;
+    if (whitened) {
+      for (std::size_t i = 0; i < classes.size(); ++i) {
+        const Eigen::VectorXd raw = residuals[i];
+        whiten(&residuals[i], &jacobians[i]);
+        // The fits minimised the raw misfit; the evidence is the whitened
+        // one's, whose mode lies elsewhere where the fit took up the model's
+        // form error. One Gauss-Newton step on the whitened misfit (the stated
+        // normal priors' rows with it), kept in range, moves the class there.
+        const Eigen::MatrixXd& j = jacobians[i];
+        if (j.cols() == 0 || !StepsInForm()) continue;
+        RankedClass& c = classes[i];
+        const Eigen::Index n = j.cols(), m = j.rows();
+        const Eigen::VectorXd& mean = normals[i].first;
+        const Eigen::VectorXd& sigma = normals[i].second;
+        Eigen::MatrixXd a = Eigen::MatrixXd::Zero(m + n, n);
+        Eigen::VectorXd b = Eigen::VectorXd::Zero(m + n);
+        a.topRows(m) = j;
+        b.head(m) = -residuals[i];
+        for (Eigen::Index q = 0; q < sigma.size(); ++q) {
+          if (!(sigma[q] > 0)) continue;
+          a(m + q, q) = 1.0 / sigma[q];
+          b[m + q] = -(c.theta[q] - mean[q]) / sigma[q];
+        }
+        const Eigen::VectorXd step = a.completeOrthogonalDecomposition().solve(b);
+        const Eigen::VectorXd to =
+            (c.theta + step).cwiseMax(boxes[i].first).cwiseMin(boxes[i].second);
+        const Eigen::VectorXd d = to - c.theta;
+        const Eigen::VectorXd moved = residuals[i] + j * d;
+        auto prior_misfit = [&](const Eigen::VectorXd& t) {
+          double sum = 0;
+          for (Eigen::Index q = 0; q < sigma.size(); ++q)
+            if (sigma[q] > 0) sum += std::pow((t[q] - mean[q]) / sigma[q], 2);
+          return sum;
+        };
+        if (!(moved.squaredNorm() + prior_misfit(to) <
+              residuals[i].squaredNorm() + prior_misfit(c.theta)))
+          continue;
+        const ModelEffect& effect = *effects[class_effect[i]];
+        residuals[i] = moved;
+        c.chi2 = (raw + raw_jacobians[i] * d).squaredNorm();
+        c.theta = to;
+        c.location = effect.Location(to);
+        c.magnitudes = effect.Magnitudes(to);
+        LocalNormalPriors(effect.Parameters(), to, &normals[i].first, &normals[i].second);
       }
-      rf = factor.triangularView<Eigen::Lower>().solve(rf);
-      // "none" has no unknowns: Eigen's triangular solve of an empty
-      // right-hand side reads its first coefficient (UBSan: a null reference).
-      if (jf.cols() > 0) jf = factor.triangularView<Eigen::Lower>().solve(jf);
-      for (std::size_t k = 0; k < frequency_rows.size(); ++k) {
-        (*r)[frequency_rows[k]] = rf[k];
-        j->row(frequency_rows[k]) = jf.row(k);
-      }
-    };
-    for (std::size_t i = 0; i < classes.size(); ++i) whiten(&residuals[i], &jacobians[i]);
-  }
-
-  // Noise temperatures from the best fit, one for the frequencies and one for
-  // the shapes: a model's form error shows in its frequencies first, and one
-  // temperature for both would be diluted by shape residuals that fit. A
-  // screened class's residual is a linear prediction, not a fit: not used.
-  std::size_t best = 0;
-  for (std::size_t i = 1; i < classes.size(); ++i)
-    if (classes[i].fitted && residuals[i].squaredNorm() < residuals[best].squaredNorm())
-      best = i;
-  int num_frequencies = 0;
-  double chi2_f = 0, chi2_s = 0;
-  for (int r = 0; r < out.num_residuals; ++r) {
-    const double v = residuals[best][r] * residuals[best][r];
-    if (is_frequency[r]) {
-      chi2_f += v;
-      ++num_frequencies;
-    } else {
-      chi2_s += v;
     }
-  }
-  const int num_params = static_cast<int>(classes[best].theta.size());
-  const int dof_f = std::max(1, num_frequencies - num_params);
-  const int dof_s = std::max(1, out.num_residuals - num_frequencies - shape_modes);
-  const int dof = std::max(1, out.num_residuals - shape_modes - num_params);
-  out.best_chi2_p_value =
-      boost::math::gamma_q(0.5 * dof, 0.5 * residuals[best].squaredNorm());
-  const double p_f = boost::math::gamma_q(0.5 * dof_f, 0.5 * chi2_f);
-  const double p_s = out.num_residuals > num_frequencies
-                         ? boost::math::gamma_q(0.5 * dof_s, 0.5 * chi2_s)
-                         : 1.0;
-  const double t_f = p_f < 0.01 ? std::max(1.0, chi2_f / dof_f) : 1.0;
-  const double t_s = p_s < 0.01 ? std::max(1.0, chi2_s / dof_s) : 1.0;
-  out.temperature = t_f;
-  out.shape_temperature = t_s;
-  Eigen::VectorXd row_scale(out.num_residuals);
-  for (int r = 0; r < out.num_residuals; ++r)
-    row_scale[r] = 1.0 / std::sqrt(is_frequency[r] ? t_f : t_s);
 
-  Eigen::VectorXd log_evidence(classes.size()), prior(classes.size());
-  for (std::size_t i = 0; i < classes.size(); ++i) {
-    const double chi2 = residuals[i].cwiseProduct(row_scale).squaredNorm();
-    const Eigen::MatrixXd jac = row_scale.asDiagonal() * jacobians[i];
-    classes[i].evidence =
-        LaplaceEvidence(chi2, jac, classes[i].theta, boxes[i].first, boxes[i].second, 1.0,
-                        normals[i].first, normals[i].second);
-    log_evidence[i] = classes[i].evidence.log_evidence;
-    prior[i] = std::exp(classes[i].log_prior);
-  }
-  const Eigen::VectorXd laplace = PosteriorProbabilities(log_evidence, prior);
-  Eigen::VectorXd p = laplace;
-  if (options.bagging_copies > 0) {
-    std::vector<ClassFit> fits_for_bagging(classes.size());
+    // Noise temperatures from the best fit, one for the frequencies and one for
+    // the shapes: a model's form error shows in its frequencies first, and one
+    // temperature for both would be diluted by shape residuals that fit. A
+    // screened class's residual is a linear prediction, not a fit: not used.
+    std::size_t best = 0;
+    for (std::size_t i = 1; i < classes.size(); ++i)
+      if (classes[i].fitted && residuals[i].squaredNorm() < residuals[best].squaredNorm())
+        best = i;
+    int num_frequencies = 0;
+    double chi2_f = 0, chi2_s = 0;
+    for (int r = 0; r < out.num_residuals; ++r) {
+      const double v = residuals[best][r] * residuals[best][r];
+      if (is_frequency[r]) {
+        chi2_f += v;
+        ++num_frequencies;
+      } else {
+        chi2_s += v;
+      }
+    }
+    const int num_params = static_cast<int>(classes[best].theta.size());
+    const int dof_f = std::max(1, num_frequencies - num_params);
+    const int dof_s = std::max(1, out.num_residuals - num_frequencies - shape_modes);
+    const int dof = std::max(1, out.num_residuals - shape_modes - num_params);
+    out.best_chi2_p_value =
+        boost::math::gamma_q(0.5 * dof, 0.5 * residuals[best].squaredNorm());
+    const double p_f = boost::math::gamma_q(0.5 * dof_f, 0.5 * chi2_f);
+    const double p_s = out.num_residuals > num_frequencies
+                           ? boost::math::gamma_q(0.5 * dof_s, 0.5 * chi2_s)
+                           : 1.0;
+    const double t_f = p_f < 0.01 ? std::max(1.0, chi2_f / dof_f) : 1.0;
+    const double t_s = p_s < 0.01 ? std::max(1.0, chi2_s / dof_s) : 1.0;
+    out.temperature = t_f;
+    out.shape_temperature = t_s;
+    row_scale.resize(out.num_residuals);
+    for (int r = 0; r < out.num_residuals; ++r)
+      row_scale[r] = 1.0 / std::sqrt(is_frequency[r] ? t_f : t_s);
+
+    Eigen::VectorXd log_evidence(classes.size()), prior(classes.size());
     for (std::size_t i = 0; i < classes.size(); ++i) {
-      ClassFit& b = fits_for_bagging[i];
-      b.residual = residuals[i].cwiseProduct(row_scale);
-      b.log_evidence = log_evidence[static_cast<Eigen::Index>(i)];
-      b.prior = prior[static_cast<Eigen::Index>(i)];
+      const double chi2 = residuals[i].cwiseProduct(row_scale).squaredNorm();
+      const Eigen::MatrixXd jac = row_scale.asDiagonal() * jacobians[i];
+      classes[i].evidence =
+          LaplaceEvidence(chi2, jac, classes[i].theta, boxes[i].first, boxes[i].second,
+                          1.0, normals[i].first, normals[i].second);
+      log_evidence[i] = classes[i].evidence.log_evidence;
+      prior[i] = std::exp(classes[i].log_prior);
     }
-    BaggingOptions bagging;
-    bagging.copies = options.bagging_copies;
-    // Frequencies are drawn among the frequencies and shape entries among the
-    // shape entries: a copy has the measured design.
-    std::vector<int> strata(is_frequency.begin(), is_frequency.end());
-    p = BaggedPosteriorProbabilities(fits_for_bagging, bagging, strata);
+    const Eigen::VectorXd laplace = PosteriorProbabilities(log_evidence, prior);
+    Eigen::VectorXd p = laplace;
+    if (options.bagging_copies > 0) {
+      std::vector<ClassFit> fits_for_bagging(classes.size());
+      for (std::size_t i = 0; i < classes.size(); ++i) {
+        ClassFit& b = fits_for_bagging[i];
+        b.residual = residuals[i].cwiseProduct(row_scale);
+        b.log_evidence = log_evidence[static_cast<Eigen::Index>(i)];
+        b.prior = prior[static_cast<Eigen::Index>(i)];
+      }
+      BaggingOptions bagging;
+      bagging.copies = options.bagging_copies;
+      // Frequencies are drawn among the frequencies and shape entries among
+      // the shape entries: a copy has the measured design.
+      std::vector<int> strata(is_frequency.begin(), is_frequency.end());
+      p = BaggedPosteriorProbabilities(fits_for_bagging, bagging, strata);
+    }
+    out.bagging_copies = options.bagging_copies;
+    by_kind.clear();
+    for (std::size_t i = 0; i < classes.size(); ++i) {
+      classes[i].probability = p[i];
+      classes[i].laplace_probability = laplace[i];
+      by_kind[classes[i].kind] += p[i];
+    }
+
+    if (round == kRefitRounds) break;
+    std::map<std::string, double> most_fitted;
+    for (const RankedClass& c : classes)
+      if (c.fitted) most_fitted[c.kind] = std::max(most_fitted[c.kind], c.probability);
+    std::vector<std::size_t> above;  // classes
+    for (std::size_t i = 0; i < classes.size(); ++i)
+      if (!classes[i].fitted && classes[i].probability > most_fitted[classes[i].kind])
+        above.push_back(i);
+    if (above.empty()) break;
+    std::stable_sort(above.begin(), above.end(), [&](std::size_t a, std::size_t b) {
+      return classes[a].probability > classes[b].probability;
+    });
+    above.resize(std::min(above.size(),
+                          static_cast<std::size_t>(std::max(1, options.members_fitted))));
+    ParallelFor(static_cast<int>(above.size()), options.threads, [&](int i) {
+      const std::size_t e = class_effect[above[static_cast<std::size_t>(i)]];
+      Fit f = FitInstance(structure, effects[e], states, fit, *solver, ritz);
+      // A place none of whose starts can be fitted keeps its screen.
+      if (f.ok) fits[e] = std::move(f);
+    });
+    refitted += static_cast<int>(above.size());
   }
-  out.bagging_copies = options.bagging_copies;
-  std::map<std::string, double> by_kind;
-  for (std::size_t i = 0; i < classes.size(); ++i) {
-    classes[i].probability = p[i];
-    classes[i].laplace_probability = laplace[i];
-    by_kind[classes[i].kind] += p[i];
+  if (screened > 0) {
+    out.notes.push_back(
+        "stiffness_loss was fitted on " +
+        std::to_string(options.members_fitted + refitted) + " of its " +
+        std::to_string(members.size()) + " places on single members (" +
+        std::to_string(members.size() - static_cast<std::size_t>(screened_parts)) +
+        " members and " + std::to_string(screened_parts) +
+        " of their finite elements): the " + std::to_string(options.members_fitted) +
+        " that one linearised step from their starts predicted to fit best" +
+        (refitted > 0 ? ", and " + std::to_string(refitted) +
+                            " whose step came out more probable than every fitted place"
+                      : std::string()) +
+        " (the others' evidence is that step's); set diagnosis.members_fitted to -1 "
+        "to fit them all");
   }
   auto label = [](const RankedClass& c) {
     return c.region.empty() ? c.kind : c.kind + " at " + c.region;
@@ -635,6 +740,47 @@ EffectRanking RankModelEffects(const Structure& structure_in,
       }
       classes[i].equivalent.push_back(label(classes[k]));
       classes[i].group_probability += classes[k].probability;
+    }
+  }
+  // A class that can only change the data as the model's own form error
+  // does: at least 98 % of its Jacobian (every row, raw) lies along the form
+  // variants' change of the frequencies, and what it gains over "none" once
+  // that form error is allowed for is within 3 noise standard deviations at
+  // the noise temperature. A uniform change of E moves every frequency alike
+  // and no shape, as shear deformation nearly does: the data cannot tell such
+  // a class from "none", and the two are named equivalent, their
+  // probabilities summed.
+  if (whitened) {
+    int alike = 0;
+    const RankedClass* most = nullptr;
+    const double none_tempered = residuals[0].cwiseProduct(row_scale).squaredNorm();
+    for (std::size_t i = 1; i < classes.size(); ++i) {
+      const Eigen::MatrixXd& j = raw_jacobians[i];
+      if (!classes[i].fitted || j.cols() == 0 || !(j.squaredNorm() > 0)) continue;
+      Eigen::MatrixXd jf(frequency_rows.size(), j.cols());
+      for (std::size_t k = 0; k < frequency_rows.size(); ++k)
+        jf.row(k) = j.row(frequency_rows[k]);
+      const double along = (form_basis.transpose() * jf).squaredNorm() / j.squaredNorm();
+      const double tempered_gain =
+          none_tempered - residuals[i].cwiseProduct(row_scale).squaredNorm();
+      if (!(along >= 0.98) || !(tempered_gain < 9)) continue;
+      classes[i].equivalent.push_back(label(classes[0]));
+      classes[i].group_probability += classes[0].probability;
+      classes[0].equivalent.push_back(label(classes[i]));
+      classes[0].group_probability += classes[i].probability;
+      ++alike;
+      if (most == nullptr || classes[i].probability > most->probability)
+        most = &classes[i];
+    }
+    if (alike > 0) {
+      out.notes.push_back(
+          std::to_string(alike) +
+          " fitted classes change the data only as the model's own form error does "
+          "(the most probable: " +
+          label(*most) +
+          "), and gain less than 9 (3 noise standard deviations) over none once it "
+          "is allowed for: the data cannot tell them from none, and they are named "
+          "equivalent");
     }
   }
   // The most probable family first ("none" is a family of one class), and
