@@ -497,8 +497,9 @@ EffectRanking RankModelEffects(const Structure& structure_in,
     for (std::size_t j = 0; j < directions.size(); ++j)
       u.col(static_cast<Eigen::Index>(j)) = directions[j];
     const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(u);
-    form_basis = qr.householderQ() * Eigen::MatrixXd::Identity(
-                                         u.rows(), std::max<Eigen::Index>(qr.rank(), 1));
+    // No column where the variants change no frequency (rank 0): then no
+    // class lies along them.
+    form_basis = qr.householderQ() * Eigen::MatrixXd::Identity(u.rows(), qr.rank());
   }
   auto whiten = [&](Eigen::VectorXd* r, Eigen::MatrixXd* j) {
     Eigen::VectorXd rf(frequency_rows.size());
@@ -524,6 +525,7 @@ EffectRanking RankModelEffects(const Structure& structure_in,
   // step's prediction is a lower bound of the misfit only to first order, and
   // on a jacket it was optimistic for a hundred places or more at once.
   constexpr int kRefitRounds = 2;
+  const bool step_in_form = StepsInForm();
   int refitted = 0;
   std::vector<RankedClass> classes;
   std::vector<Eigen::MatrixXd> jacobians, raw_jacobians;
@@ -581,7 +583,7 @@ EffectRanking RankModelEffects(const Structure& structure_in,
         // form error. One Gauss-Newton step on the whitened misfit (the stated
         // normal priors' rows with it), kept in range, moves the class there.
         const Eigen::MatrixXd& j = jacobians[i];
-        if (j.cols() == 0 || !StepsInForm()) continue;
+        if (j.cols() == 0 || !step_in_form) continue;
         RankedClass& c = classes[i];
         const Eigen::Index n = j.cols(), m = j.rows();
         const Eigen::VectorXd& mean = normals[i].first;
@@ -714,19 +716,24 @@ EffectRanking RankModelEffects(const Structure& structure_in,
     refitted += static_cast<int>(above.size());
   }
   if (screened > 0) {
+    std::string which;
+    if (options.members_fitted > 0) {
+      which = "the " + std::to_string(options.members_fitted) +
+              " that one linearised step from their starts predicted to fit best";
+    }
+    if (refitted > 0) {
+      which += (which.empty() ? "the " : ", and the ") + std::to_string(refitted) +
+               " whose step came out more probable than every fitted place";
+    }
     out.notes.push_back(
         "stiffness_loss was fitted on " +
         std::to_string(options.members_fitted + refitted) + " of its " +
         std::to_string(members.size()) + " places on single members (" +
         std::to_string(members.size() - static_cast<std::size_t>(screened_parts)) +
-        " members and " + std::to_string(screened_parts) +
-        " of their finite elements): the " + std::to_string(options.members_fitted) +
-        " that one linearised step from their starts predicted to fit best" +
-        (refitted > 0 ? ", and " + std::to_string(refitted) +
-                            " whose step came out more probable than every fitted place"
-                      : std::string()) +
-        " (the others' evidence is that step's); set diagnosis.members_fitted to -1 "
-        "to fit them all");
+        " members and " + std::to_string(screened_parts) + " of their finite elements)" +
+        (which.empty() ? std::string() : ": " + which) +
+        " (the others' evidence is one linearised step's from their starts); set "
+        "diagnosis.members_fitted to -1 to fit them all");
   }
   auto label = [](const RankedClass& c) {
     return c.region.empty() ? c.kind : c.kind + " at " + c.region;
@@ -756,7 +763,10 @@ EffectRanking RankModelEffects(const Structure& structure_in,
     const double none_tempered = residuals[0].cwiseProduct(row_scale).squaredNorm();
     for (std::size_t i = 1; i < classes.size(); ++i) {
       const Eigen::MatrixXd& j = raw_jacobians[i];
-      if (!classes[i].fitted || j.cols() == 0 || !(j.squaredNorm() > 0)) continue;
+      if (!classes[i].fitted || j.cols() == 0 || form_basis.cols() == 0 ||
+          !(j.squaredNorm() > 0)) {
+        continue;
+      }
       Eigen::MatrixXd jf(frequency_rows.size(), j.cols());
       for (std::size_t k = 0; k < frequency_rows.size(); ++k)
         jf.row(k) = j.row(frequency_rows[k]);
