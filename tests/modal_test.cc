@@ -319,6 +319,56 @@ TEST(PairModesByMac, WeakPairsLeftUnpaired) {
   EXPECT_EQ(fewer[3].candidate, -1);
 }
 
+// A portal frame's two vertical beam modes read by one vertical sensor (and
+// three horizontal ones where they move little): both MACs are 0.998 against
+// the measured vertical mode, the higher one's by the noise. Their shape
+// misfits are within the tie, and the frequency pairs it with the mode 1.6 %
+// away, not the one 13 % away; PairModesByMac takes the noise's pick.
+TEST(PairModesByMacAndMisfit, TheFrequencyPairsModesTheSensorsSeeAlike) {
+  Eigen::MatrixXd reference(4, 2), candidate(4, 3);
+  reference.col(0) << 0.60, 0.63, 1.03, -0.01;  // a sway mode
+  reference.col(1) << 0.025, 0.031, 0.010, -0.998;
+  candidate.col(0) << 0.58, 0.58, 1.0, 0.0;
+  candidate.col(1) << 0.0022, -0.0022, -0.0013, -1.0;  // 5.01 Hz
+  candidate.col(2) << 0.0002, -0.0002, -0.0008, 1.0;   // 5.58 Hz
+  const Eigen::MatrixXd mac = MacMatrix(reference, candidate);
+  ASSERT_GT(mac(1, 2), mac(1, 1));  // the noise prefers the wrong one
+  ASSERT_EQ(PairModesByMac(reference, candidate)[1].candidate, 2);
+  // Misfits in noise units squared: shapes at 2 % of the peak, frequencies
+  // (eigenvalues) at 0.4 %; the measured vertical mode at 4.93 Hz.
+  Eigen::MatrixXd shape(2, 3), frequency(2, 3);
+  for (int j = 0; j < 2; ++j) {
+    for (int k = 0; k < 3; ++k) shape(j, k) = (1 - mac(j, k)) * 2500.0;
+  }
+  const double hz[] = {0.765, 5.006, 5.581}, measured[] = {0.759, 4.926};
+  for (int j = 0; j < 2; ++j) {
+    for (int k = 0; k < 3; ++k) {
+      const double r = (hz[k] * hz[k] / (measured[j] * measured[j]) - 1) / 0.004;
+      frequency(j, k) = r * r;
+    }
+  }
+  const std::vector<ModePair> pairs =
+      PairModesByMacAndMisfit(mac, shape, frequency, 0.0, 9.0);
+  ASSERT_EQ(pairs.size(), 2u);
+  EXPECT_EQ(pairs[0].candidate, 0);
+  EXPECT_EQ(pairs[1].candidate, 1);
+  EXPECT_DOUBLE_EQ(pairs[1].mac, mac(1, 1));
+  // No tie: the MAC decides alone, as PairModesByMac.
+  const std::vector<ModePair> by_mac =
+      PairModesByMacAndMisfit(mac, shape, frequency, 0.0, 0.0);
+  EXPECT_EQ(by_mac[1].candidate, 2);
+  // Shapes the sensors tell apart are not overruled by the frequency: a
+  // candidate whose misfit is beyond the tie is never taken.
+  Eigen::MatrixXd far = shape;
+  far(1, 1) = shape(1, 2) + 10.0;
+  EXPECT_EQ(PairModesByMacAndMisfit(mac, far, frequency, 0.0, 9.0)[1].candidate, 2);
+  // Below min_mac: unpaired, whatever the misfits.
+  EXPECT_EQ(PairModesByMacAndMisfit(mac, shape, frequency, 0.999, 9.0)[1].candidate, -1);
+  EXPECT_THROW(PairModesByMacAndMisfit(mac, shape.leftCols(2), frequency, 0.0, 9.0),
+               InputError);
+  EXPECT_THROW(PairModesByMacAndMisfit(mac, shape, frequency, 0.0, -1.0), InputError);
+}
+
 // Every strictly increasing choice of m candidates out of c, by recursion.
 void IncreasingChoices(int m, int c, int from, std::vector<int>* chosen,
                        const std::function<void(const std::vector<int>&)>& visit) {

@@ -4,6 +4,7 @@
 #include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <numeric>
 #include <sstream>
@@ -93,6 +94,29 @@ void RotateRepeatedModes(const StateTerms& st, const Modes& modes,
   }
 }
 
+// Model modes whose shape misfits against a measured mode differ by less than
+// this (3 noise standard deviations of a chi-square difference) are alike to
+// the sensors: the frequency decides which is paired (PairModesByMacAndMisfit).
+constexpr double kPairingTie = 9.0;
+
+// Measured mode j's shape misfit against a model shape s at the sensors, as
+// the residuals weigh it: the squared norm of its shape rows, with s scaled as
+// they scale it (StateTerms::scaling). Infinite where s is zero.
+double ShapeMisfit(const StateTerms& st, Eigen::Index j, const Eigen::VectorXd& s) {
+  if (!(s.squaredNorm() > 0)) return std::numeric_limits<double>::infinity();
+  const Eigen::VectorXd target = st.targets.col(j);
+  const Eigen::ArrayXd w = st.shape_weights.col(j).array();
+  const double sign = s.dot(target) >= 0 ? 1.0 : -1.0;
+  double scale = sign;
+  if (st.scaling == "fit") {
+    const double d = (w.square() * s.array().square()).sum();
+    scale = d > 0 ? (w.square() * target.array() * s.array()).sum() / d : 0.0;
+  } else if (st.scaling == "unit") {
+    scale = sign / s.norm();
+  }
+  return (w * (scale * s - target).array()).matrix().squaredNorm();
+}
+
 // The projected pencil of a state's immersion, when the problem has a Ritz basis.
 struct Reduced {
   const Eigen::MatrixXd* basis = nullptr;       // V, n x r
@@ -150,8 +174,18 @@ bool EvaluateState(const Context& c, const StateTerms& st, const Eigen::VectorXd
   std::iota(pairing.begin(), pairing.end(), 0);
   if (st.pair_by_mac) {
     const Eigen::MatrixXd model_at_sensors = AtSensors(st, modes.shapes);
+    const Eigen::Index m = st.lambdas.size(), n = model_at_sensors.cols();
+    Eigen::MatrixXd shape_misfit(m, n), frequency_misfit(m, n);
+    for (Eigen::Index j = 0; j < m; ++j) {
+      for (Eigen::Index k = 0; k < n; ++k) {
+        shape_misfit(j, k) = ShapeMisfit(st, j, model_at_sensors.col(k));
+        const double r = (modes.eigenvalues[k] / st.lambdas[j] - 1.0) / c.frequency_sigma;
+        frequency_misfit(j, k) = r * r;
+      }
+    }
     const std::vector<ModePair> pairs =
-        PairModesByMac(st.shapes, model_at_sensors, c.min_mac);
+        PairModesByMacAndMisfit(MacMatrix(st.shapes, model_at_sensors), shape_misfit,
+                                frequency_misfit, c.min_mac, kPairingTie);
     for (std::size_t j = 0; j < pairs.size(); ++j) {
       if (pairs[j].candidate < 0) {
         std::ostringstream msg;
@@ -496,12 +530,18 @@ NonlinearProblem BuildOutputErrorProblem(std::shared_ptr<const ParametrisedPenci
     st.shape_residuals = options.use_shapes && data.HasShapes();
     st.num_model_modes = std::min(num_dofs, data.num_modes() + options.extra_modes);
     st.first_row = row;
-    if (st.shape_residuals) {
+    // The targets and weights serve the pairing too, where shapes pair the
+    // modes but are not residuals.
+    if (data.HasShapes()) {
       st.scaling = options.shape_scaling;
       st.targets = data.shapes;
       st.shape_weights.resize(data.shapes.rows(), data.num_modes());
       for (int j = 0; j < data.num_modes(); ++j) {
         double peak = data.shapes.col(j).cwiseAbs().maxCoeff();
+        if (!(peak > 0) && !st.shape_residuals) {
+          st.shape_weights.col(j).setZero();  // the frequency alone pairs it
+          continue;
+        }
         if (!(peak > 0)) {
           throw InputError(where + ".shapes",
                            "mode " + std::to_string(j + 1) + " is zero at every sensor");

@@ -173,6 +173,40 @@ std::vector<ModePair> PairModesByMac(const Eigen::MatrixXd& reference,
   return pairs;
 }
 
+std::vector<ModePair> PairModesByMacAndMisfit(const Eigen::MatrixXd& mac,
+                                              const Eigen::MatrixXd& shape_misfit,
+                                              const Eigen::MatrixXd& frequency_misfit,
+                                              double min_mac, double tie) {
+  if (shape_misfit.rows() != mac.rows() || shape_misfit.cols() != mac.cols() ||
+      frequency_misfit.rows() != mac.rows() || frequency_misfit.cols() != mac.cols()) {
+    throw InputError("misfit", "matrices of the MAC matrix's size expected");
+  }
+  if (!(tie >= 0)) throw InputError("tie", "must be >= 0");
+  Eigen::MatrixXd left = mac;  // -1: taken
+  std::vector<ModePair> pairs(mac.rows());
+  for (Eigen::Index i = 0; i < mac.rows(); ++i) pairs[i].reference = static_cast<int>(i);
+  const Eigen::Index rounds = std::min(mac.rows(), mac.cols());
+  for (Eigen::Index r = 0; r < rounds; ++r) {
+    Eigen::Index i = 0, j = 0;
+    const double best = left.maxCoeff(&i, &j);
+    if (best < min_mac || best < 0) break;
+    Eigen::Index chosen = j;
+    for (Eigen::Index k = 0; k < mac.cols(); ++k) {
+      if (k == j || left(i, k) < min_mac || left(i, k) < 0) continue;
+      if (!(shape_misfit(i, k) <= shape_misfit(i, j) + tie)) continue;
+      if (shape_misfit(i, k) + frequency_misfit(i, k) <
+          shape_misfit(i, chosen) + frequency_misfit(i, chosen)) {
+        chosen = k;
+      }
+    }
+    pairs[i].candidate = static_cast<int>(chosen);
+    pairs[i].mac = mac(i, chosen);
+    left.row(i).setConstant(-1.0);
+    left.col(chosen).setConstant(-1.0);
+  }
+  return pairs;
+}
+
 std::vector<ModePair> PairModesInOrder(const Eigen::MatrixXd& reference,
                                        const Eigen::MatrixXd& candidate) {
   const Eigen::MatrixXd mac = MacMatrix(reference, candidate);

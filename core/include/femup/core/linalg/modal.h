@@ -80,6 +80,20 @@ struct ModePair {
 std::vector<ModePair> PairModesByMac(const Eigen::MatrixXd& reference,
                                      const Eigen::MatrixXd& candidate,
                                      double min_mac = 0.0);
+// As PairModesByMac, on a MAC matrix already computed (references x
+// candidates), except where the shapes cannot tell candidates apart: when a
+// reference's best remaining candidate is taken, every remaining candidate
+// whose shape misfit (shape_misfit, in noise units squared, e.g. the weighted
+// least-squares residual of the scaled shapes) is within `tie` of that one's
+// competes, and the one of least shape_misfit + frequency_misfit is paired.
+// Two modes a few sensors see alike (two vertical beam modes read at one
+// point) are paired by their frequencies, not by the noise in their MACs.
+// `tie` >= 0; 0 is PairModesByMac. Result in reference order; ModePair::mac
+// is the pair's MAC.
+std::vector<ModePair> PairModesByMacAndMisfit(const Eigen::MatrixXd& mac,
+                                              const Eigen::MatrixXd& shape_misfit,
+                                              const Eigen::MatrixXd& frequency_misfit,
+                                              double min_mac, double tie);
 // Pairs each reference mode with a distinct candidate keeping the order: when
 // reference i < j are both paired, candidate(i) < candidate(j). Among such
 // pairings it pairs as many as it can and, of those, maximises the sum of MACs
