@@ -174,13 +174,16 @@ bool EvaluateState(const Context& c, const StateTerms& st, const Eigen::VectorXd
   std::iota(pairing.begin(), pairing.end(), 0);
   if (st.pair_by_mac) {
     const Eigen::MatrixXd model_at_sensors = AtSensors(st, modes.shapes);
-    const Eigen::Index m = st.lambdas.size(), n = model_at_sensors.cols();
-    Eigen::MatrixXd shape_misfit(m, n), frequency_misfit(m, n);
-    for (Eigen::Index j = 0; j < m; ++j) {
-      for (Eigen::Index k = 0; k < n; ++k) {
-        shape_misfit(j, k) = ShapeMisfit(st, j, model_at_sensors.col(k));
-        const double r = (modes.eigenvalues[k] / st.lambdas[j] - 1.0) / c.frequency_sigma;
-        frequency_misfit(j, k) = r * r;
+    const Eigen::Index num_measured = st.lambdas.size();
+    const Eigen::Index num_candidates = model_at_sensors.cols();
+    Eigen::MatrixXd shape_misfit(num_measured, num_candidates);
+    Eigen::MatrixXd frequency_misfit(num_measured, num_candidates);
+    for (Eigen::Index j = 0; j < num_measured; ++j) {
+      for (Eigen::Index q = 0; q < num_candidates; ++q) {
+        shape_misfit(j, q) = ShapeMisfit(st, j, model_at_sensors.col(q));
+        const double gap =
+            (modes.eigenvalues[q] / st.lambdas[j] - 1.0) / c.frequency_sigma;
+        frequency_misfit(j, q) = gap * gap;
       }
     }
     const std::vector<ModePair> pairs =
