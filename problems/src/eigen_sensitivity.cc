@@ -13,6 +13,7 @@
 #include "femup/core/errors.h"
 #include "femup/core/linalg/eigen_derivatives.h"
 #include "femup/core/parallel.h"
+#include "mode_pairing.h"
 #include "output_error_context.h"
 
 namespace femup {
@@ -20,6 +21,9 @@ namespace {
 
 using output_error::AtSensors;
 using output_error::Context;
+using output_error::PairMeasuredModes;
+using output_error::ScaleShape;
+using output_error::ShapeScale;
 using output_error::StateTerms;
 
 bool Fail(std::string* why, const std::string& message) {
@@ -94,29 +98,6 @@ void RotateRepeatedModes(const StateTerms& st, const Modes& modes,
   }
 }
 
-// Model modes whose shape misfits against a measured mode differ by less than
-// this (3 noise standard deviations of a chi-square difference) are alike to
-// the sensors: the frequency decides which is paired (PairModesByMacAndMisfit).
-constexpr double kPairingTie = 9.0;
-
-// Measured mode j's shape misfit against a model shape s at the sensors, as
-// the residuals weigh it: the squared norm of its shape rows, with s scaled as
-// they scale it (StateTerms::scaling). Infinite where s is zero.
-double ShapeMisfit(const StateTerms& st, Eigen::Index j, const Eigen::VectorXd& s) {
-  if (!(s.squaredNorm() > 0)) return std::numeric_limits<double>::infinity();
-  const Eigen::VectorXd target = st.targets.col(j);
-  const Eigen::ArrayXd w = st.shape_weights.col(j).array();
-  const double sign = s.dot(target) >= 0 ? 1.0 : -1.0;
-  double scale = sign;
-  if (st.scaling == "fit") {
-    const double d = (w.square() * s.array().square()).sum();
-    scale = d > 0 ? (w.square() * target.array() * s.array()).sum() / d : 0.0;
-  } else if (st.scaling == "unit") {
-    scale = sign / s.norm();
-  }
-  return (w * (scale * s - target).array()).matrix().squaredNorm();
-}
-
 // The projected pencil of a state's immersion, when the problem has a Ritz basis.
 struct Reduced {
   const Eigen::MatrixXd* basis = nullptr;       // V, n x r
@@ -170,35 +151,8 @@ bool EvaluateState(const Context& c, const StateTerms& st, const Eigen::VectorXd
   }
 
   // Measured mode j is paired with model mode pairing[j].
-  std::vector<int> pairing(st.lambdas.size());
-  std::iota(pairing.begin(), pairing.end(), 0);
-  if (st.pair_by_mac) {
-    const Eigen::MatrixXd model_at_sensors = AtSensors(st, modes.shapes);
-    const Eigen::Index num_measured = st.lambdas.size();
-    const Eigen::Index num_candidates = model_at_sensors.cols();
-    Eigen::MatrixXd shape_misfit(num_measured, num_candidates);
-    Eigen::MatrixXd frequency_misfit(num_measured, num_candidates);
-    for (Eigen::Index j = 0; j < num_measured; ++j) {
-      for (Eigen::Index q = 0; q < num_candidates; ++q) {
-        shape_misfit(j, q) = ShapeMisfit(st, j, model_at_sensors.col(q));
-        const double gap =
-            (modes.eigenvalues[q] / st.lambdas[j] - 1.0) / c.frequency_sigma;
-        frequency_misfit(j, q) = gap * gap;
-      }
-    }
-    const std::vector<ModePair> pairs =
-        PairModesByMacAndMisfit(MacMatrix(st.shapes, model_at_sensors), shape_misfit,
-                                frequency_misfit, c.min_mac, kPairingTie);
-    for (std::size_t j = 0; j < pairs.size(); ++j) {
-      if (pairs[j].candidate < 0) {
-        std::ostringstream msg;
-        msg << st.name << " mode " << j + 1
-            << ": no model mode left to pair with MAC >= " << c.min_mac;
-        return Fail(why, msg.str());
-      }
-      pairing[j] = pairs[j].candidate;
-    }
-  }
+  std::vector<int> pairing;
+  if (!PairMeasuredModes(c, st, modes, &pairing, why)) return false;
 
   // Residuals mode by mode; what the Jacobian rows of each mode need is kept.
   struct ModeTerms {
@@ -220,9 +174,8 @@ bool EvaluateState(const Context& c, const StateTerms& st, const Eigen::VectorXd
     t.lambda_weight = 1.0 / (st.lambdas[j] * c.frequency_sigma);
     (*r)[row] = (t.lambda / st.lambdas[j] - 1.0) / c.frequency_sigma;
 
-    // The model shape at the sensors enters as c s: c = sign / ||s|| ("unit"),
-    // sign ("mass") or the fitted N / D ("fit"). c's derivative is linear in
-    // the shape's: dc = dc_ds' ds.
+    // The model shape at the sensors enters as c s (ScaleShape); c's
+    // derivative is linear in the shape's: dc = dc_ds' ds.
     const Eigen::Index num_sensors = static_cast<Eigen::Index>(st.num_sensors());
     if (st.shape_residuals) {
       t.s = AtSensors(st, t.phi);
@@ -234,21 +187,9 @@ bool EvaluateState(const Context& c, const StateTerms& st, const Eigen::VectorXd
             << pairing[j] + 1 << " is zero at every sensor";
         return Fail(why, msg.str());
       }
-      const double sign = s.dot(target) >= 0 ? 1.0 : -1.0;
-      if (st.scaling == "fit") {
-        // c minimises sum_i W_i^2 (c s_i - psi_i)^2: c = N / D, and
-        // dc = (dN - c dD) / D with dN = (W^2 psi)' ds, dD = 2 (W^2 s)' ds.
-        const Eigen::ArrayXd w2 = st.shape_weights.col(j).array().square();
-        const double d = (w2 * s.array().square()).sum();
-        t.c_scale = (w2 * target.array() * s.array()).sum() / d;
-        t.dc_ds = ((w2 * target.array() - 2.0 * t.c_scale * w2 * s.array()) / d).matrix();
-      } else if (st.scaling == "unit") {
-        t.c_scale = sign / s.norm();
-        t.dc_ds = -t.c_scale / s.squaredNorm() * s;  // d(1 / ||s||) = -s' ds / ||s||^3
-      } else {
-        t.c_scale = sign;
-        t.dc_ds = Eigen::VectorXd::Zero(num_sensors);
-      }
+      ShapeScale scale = ScaleShape(st, j, s);
+      t.c_scale = scale.c;
+      t.dc_ds = std::move(scale.dc_ds);
       r->segment(row + 1, num_sensors) =
           st.shape_weights.col(j).cwiseProduct(t.c_scale * s - target);
     }
