@@ -21,6 +21,7 @@
 #include "expect_error.h"
 #include "femup/core/errors.h"
 #include "femup/core/fe/builders.h"
+#include "femup/core/fe/form_variant.h"
 #include "femup/core/fe/plane_frame.h"
 #include "femup/core/fe/space_frame.h"
 #include "femup/core/linalg/modal.h"
@@ -144,14 +145,22 @@ PlaneFrameSpec TwoStoreyPortal() {
 }
 
 // The lowest four modes of `truth` measured as a test would (sway at the
-// joints and the beams' middles), noise 0.2 % / 2 % from `seed`.
-ModalData PortalMeasured(const Structure& truth, unsigned seed) {
+// joints and the beams' middles), noise 0.2 % / 2 % from `seed`. With `model`
+// (a coarser mesh of the same frame) the sensors are at the model's DOFs of
+// those labels, read on the truth at the same places (MatchDofs).
+ModalData PortalMeasured(const Structure& truth, unsigned seed,
+                         const Structure* model = nullptr) {
   const Modes modes = SolveModes(truth.stiffness, truth.mass);
-  std::vector<int> sensors;
+  const Structure& named = model != nullptr ? *model : truth;
+  std::vector<int> sensors, read;
+  const std::vector<int> at_truth =
+      model != nullptr ? MatchDofs(*model, truth) : std::vector<int>{};
   for (const char* label : {"n1:ux", "n2:ux", "n3:ux", "n4:ux", "n7:uy", "n10:uy"}) {
-    const auto at = std::find(truth.dof_labels.begin(), truth.dof_labels.end(), label);
-    EXPECT_NE(at, truth.dof_labels.end()) << label;
-    sensors.push_back(static_cast<int>(at - truth.dof_labels.begin()));
+    const auto at = std::find(named.dof_labels.begin(), named.dof_labels.end(), label);
+    EXPECT_NE(at, named.dof_labels.end()) << label;
+    sensors.push_back(static_cast<int>(at - named.dof_labels.begin()));
+    read.push_back(model != nullptr ? at_truth[static_cast<std::size_t>(sensors.back())]
+                                    : sensors.back());
   }
   std::mt19937 rng(seed);
   std::normal_distribution<double> normal(0.0, 1.0);
@@ -163,7 +172,7 @@ ModalData PortalMeasured(const Structure& truth, unsigned seed) {
   for (int j = 0; j < 4; ++j) {
     d.frequencies_hz[j] *= 1 + 0.002 * normal(rng);
     for (std::size_t i = 0; i < sensors.size(); ++i)
-      d.shapes(i, j) = modes.shapes(sensors[i], j);
+      d.shapes(i, j) = modes.shapes(read[i], j);
     const double peak = d.shapes.col(j).cwiseAbs().maxCoeff();
     for (std::size_t i = 0; i < sensors.size(); ++i)
       d.shapes(i, j) += 0.02 * peak * normal(rng);
@@ -189,20 +198,22 @@ TEST(EffectRanking, NamesASofterFoundationOfAPortalFrame) {
   EXPECT_NEAR(r.classes[0].magnitudes[0].value, 3.0, 0.6);
 }
 
-// The Euler-Bernoulli model of a frame whose members deform in shear (the
-// truth: Timoshenko members of shear area 0.4 A, not the A / 2 of the model's
-// form variant), with no effect added: without the form error allowed for, an
-// E scaling is named for the frame's uniform softness; with it, no family is
-// (the gap is the model's own formulation). A damaged column on the same
-// truth is still found, and at its place.
+// The Euler-Bernoulli model of a frame (two elements per member) whose
+// members deform in shear (the truth: Timoshenko members of shear area 0.4 A,
+// not the A / 2 of the model's form variant, on eight elements per member),
+// with no effect added: without the form error allowed for, an E scaling is
+// named for the frame's uniform softness; with it, no family is (the gap is
+// the model's own formulation and mesh). A damaged column on the same truth
+// is still found, and at its place.
 TEST(EffectRanking, AllowsForTheModelsOwnShearDeformation) {
   const Structure model = BuildPlaneFrameStructure(TwoStoreyPortal());
-  ASSERT_EQ(model.form_variants.size(), 1u);
+  ASSERT_EQ(model.form_variants.size(), 2u);
   PlaneFrameSpec truth = TwoStoreyPortal();
+  truth.elements_per_member = 8;
   truth.theory = BeamTheory::kTimoshenko;
   truth.column_shear_area = 0.4 * truth.column.A;
   truth.beam_shear_area = 0.4 * truth.beam.A;
-  const ModalData d = PortalMeasured(BuildPlaneFrameStructure(truth), 3);
+  const ModalData d = PortalMeasured(BuildPlaneFrameStructure(truth), 3, &model);
 
   EffectRankingOptions without = Options();
   without.formulation_error = false;
@@ -212,7 +223,8 @@ TEST(EffectRanking, AllowsForTheModelsOwnShearDeformation) {
   EXPECT_GT(blind.classes[0].probability, 0.5);
 
   const EffectRanking r = RankModelEffects(model, {d}, Options());
-  ASSERT_EQ(r.form_errors.size(), 1u);
+  ASSERT_EQ(r.form_errors.size(), 2u);
+  EXPECT_NE(r.form_errors[1].name.find("finer mesh"), std::string::npos);
   EXPECT_NE(r.form_errors[0].name.find("shear deformation"), std::string::npos);
   // Shear makes the four modes up to 6 % softer here (the stocky columns' higher
   // modes): many noise units.
@@ -226,7 +238,7 @@ TEST(EffectRanking, AllowsForTheModelsOwnShearDeformation) {
   damaged.stiffness -= 0.4 * damaged.elements[0].stiffness;
   ASSERT_EQ(damaged.elements[0].label, "s1:col1");
   const EffectRanking found =
-      RankModelEffects(model, {PortalMeasured(damaged, 3)}, Options());
+      RankModelEffects(model, {PortalMeasured(damaged, 3, &model)}, Options());
   EXPECT_EQ(found.classes[0].kind, "stiffness_loss");
   EXPECT_NE(found.classes[0].region.find("s1:col1"), std::string::npos)
       << found.classes[0].region;

@@ -188,7 +188,10 @@ TEST(PlaneFrameStructure, TimoshenkoPortalSwayHasTheShearTerm) {
   spec.theory = BeamTheory::kTimoshenko;
   spec.column_shear_area = 1e-4;
   const Structure s = BuildPlaneFrameStructure(spec);
-  EXPECT_TRUE(s.form_variants.empty());  // nothing richer to allow for
+  // Nothing richer to allow for than its own members on a finer mesh.
+  ASSERT_EQ(s.form_variants.size(), 1u);
+  EXPECT_EQ(s.form_variants[0].name,
+            "a finer mesh (16 elements per member instead of 4)");
   EXPECT_NE(s.description.find("Timoshenko"), std::string::npos);
   const Modes modes = SolveModes(s.stiffness, s.mass);
   const double beam_mass = spec.beam.rho * spec.beam.A * spec.bay_width;
@@ -200,28 +203,62 @@ TEST(PlaneFrameStructure, TimoshenkoPortalSwayHasTheShearTerm) {
   EXPECT_NEAR(modes.eigenvalues[0] / exact, 1.0, 2e-3);
 }
 
-// An Euler-Bernoulli frame carries its shear-deformable self as a form
-// variant: the matrices of the same frame built with Timoshenko members of
-// half the area as shear area, base springs included.
-TEST(PlaneFrameStructure, FormVariantIsTheFrameWithShearDeformation) {
+// An Euler-Bernoulli frame carries its shear-deformable self and its finer
+// mesh as form variants: the same frame built with Timoshenko members of half
+// the area as shear area on four times its elements per member, base springs
+// included, and the same frame on that mesh. Each on its own DOFs, with the
+// model's DOFs at their places.
+TEST(PlaneFrameStructure, FormVariantsAreTheFrameWithShearDeformationAndOnAFinerMesh) {
   PlaneFrameSpec spec = fixtures::PlaneFrame(2, 2, 2);
   spec.base.rotation = 5e7;
   const Structure s = BuildPlaneFrameStructure(spec);
-  ASSERT_EQ(s.form_variants.size(), 1u);
-  spec.theory = BeamTheory::kTimoshenko;
-  spec.column_shear_area = 0.5 * spec.column.A;
-  spec.beam_shear_area = 0.5 * spec.beam.A;
-  const Structure t = BuildPlaneFrameStructure(spec);
+  ASSERT_EQ(s.form_variants.size(), 2u);
+  PlaneFrameSpec finer = spec;
+  finer.elements_per_member = 8;
+  const Structure mesh = BuildPlaneFrameStructure(finer);
+  finer.theory = BeamTheory::kTimoshenko;
+  finer.column_shear_area = 0.5 * spec.column.A;
+  finer.beam_shear_area = 0.5 * spec.beam.A;
+  const Structure t = BuildPlaneFrameStructure(finer);
+  auto max_abs = [](const SparseMatrix& a) {
+    return Eigen::MatrixXd(a).cwiseAbs().maxCoeff();
+  };
   const FormVariant& v = s.form_variants[0];
-  const double k_scale = Eigen::MatrixXd(t.stiffness).cwiseAbs().maxCoeff();
-  const double m_scale = Eigen::MatrixXd(t.mass).cwiseAbs().maxCoeff();
-  EXPECT_LT((Eigen::MatrixXd(v.stiffness - t.stiffness)).cwiseAbs().maxCoeff(),
-            1e-12 * k_scale);
-  EXPECT_LT((Eigen::MatrixXd(v.mass - t.mass)).cwiseAbs().maxCoeff(), 1e-12 * m_scale);
-  // Softer: every one of the lowest modes is lower.
+  EXPECT_NE(v.name.find("shear deformation"), std::string::npos);
+  EXPECT_NE(v.name.find("on a finer mesh (8 elements per member instead of 2)"),
+            std::string::npos);
+  EXPECT_LT(max_abs(v.stiffness - t.stiffness), 1e-12 * max_abs(t.stiffness));
+  EXPECT_LT(max_abs(v.mass - t.mass), 1e-12 * max_abs(t.mass));
+  const FormVariant& m = s.form_variants[1];
+  EXPECT_EQ(m.name, "a finer mesh (8 elements per member instead of 2)");
+  EXPECT_LT(max_abs(m.stiffness - mesh.stiffness), 1e-12 * max_abs(mesh.stiffness));
+  EXPECT_LT(max_abs(m.mass - mesh.mass), 1e-12 * max_abs(mesh.mass));
+  ASSERT_EQ(v.dofs.size(), s.dof_labels.size());
+  EXPECT_EQ(m.dofs, v.dofs);
+  for (std::size_t i = 0; i < s.dof_labels.size(); ++i) {
+    const std::string& a = s.dof_labels[i];
+    const std::string& b = t.dof_labels[static_cast<std::size_t>(v.dofs[i])];
+    EXPECT_EQ(a.substr(a.find(':')), b.substr(b.find(':'))) << a << " " << b;
+  }
+  // Softer, and lower on the finer mesh: every one of the lowest modes.
   const Modes eb = SolveModes(s.stiffness, s.mass);
   const Modes sheared = SolveModes(v.stiffness, v.mass);
-  for (int k = 0; k < 4; ++k) EXPECT_LT(sheared.eigenvalues[k], eb.eigenvalues[k]) << k;
+  const Modes refined = SolveModes(m.stiffness, m.mass);
+  for (int k = 0; k < 4; ++k) {
+    EXPECT_LT(sheared.eigenvalues[k], refined.eigenvalues[k]) << k;
+    EXPECT_LE(refined.eigenvalues[k], eb.eigenvalues[k] * (1 + 1e-12)) << k;
+  }
+}
+
+// Where the finer mesh would be more than a few thousand DOFs, the shear
+// variant stays on the model's own mesh and there is no mesh variant.
+TEST(PlaneFrameStructure, FormVariantsStayOnTheModelsMeshWhereAFinerOneIsLarge) {
+  const Structure s = BuildPlaneFrameStructure(fixtures::PlaneFrame(20, 5, 4));
+  ASSERT_GT(s.stiffness.rows(), 2000);
+  ASSERT_EQ(s.form_variants.size(), 1u);
+  EXPECT_TRUE(s.form_variants[0].dofs.empty());
+  EXPECT_EQ(s.form_variants[0].stiffness.rows(), s.stiffness.rows());
+  EXPECT_EQ(s.form_variants[0].name.find(" on a finer mesh"), std::string::npos);
 }
 
 TEST(PlaneFrameStructure, TheoryAndShearAreasFromAStudyFileAndTheirErrors) {
@@ -234,7 +271,8 @@ TEST(PlaneFrameStructure, TheoryAndShearAreasFromAStudyFileAndTheirErrors) {
           "  theory: timoshenko\n  column: {E: 210e9, A: 0.01, I: 8e-5, rho: 7850, "
           "shear_area: 0.004}\n",
       "portal.yaml");
-  EXPECT_TRUE(study.structure.form_variants.empty());
+  ASSERT_EQ(study.structure.form_variants.size(), 1u);  // its finer mesh alone
+  EXPECT_EQ(study.structure.form_variants[0].name.find("shear"), std::string::npos);
   for (const auto& [bad, field] :
        {std::pair<std::string, std::string>{
             "  theory: bernoulli\n  column: {E: 210e9, A: 0.01, I: 8e-5, rho: 7850}\n",

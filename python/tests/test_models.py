@@ -117,13 +117,15 @@ def test_plane_and_space_frames():
     structure = femup.build_plane_frame_structure(spec)
     assert structure.type == "plane_frame"
     assert len(structure.elements) == 2 * 2 + 2 * 1  # columns and beams per storey
-    assert len(structure.form_variant_names) == 1
+    assert len(structure.form_variant_names) == 2  # shear deformation, a finer mesh
     assert "shear deformation" in structure.form_variant_names[0]
+    assert structure.form_variant_names[1] == \
+        "a finer mesh (8 elements per member instead of 2)"
     model = femup.build_plane_frame(spec)
     assert model.num_dofs == structure.num_dofs
     spec.theory, spec.column_shear_area = "timoshenko", 0.008
     sheared = femup.build_plane_frame_structure(spec)
-    assert sheared.form_variant_names == []
+    assert sheared.form_variant_names == ["a finer mesh (8 elements per member instead of 2)"]
     assert femup.solve_modes(sheared.stiffness, sheared.mass, 1).frequencies_hz[0] < \
         femup.solve_modes(structure.stiffness, structure.mass, 1).frequencies_hz[0]
     with pytest.raises(femup.InputError, match="theory"):

@@ -14,6 +14,7 @@
 #include <string_view>
 
 #include "femup/core/errors.h"
+#include "femup/core/fe/form_variant.h"
 #include "femup/core/linalg/node_ordering.h"
 #include "femup/core/parallel.h"
 #include "femup/problems/effect_priors.h"
@@ -240,9 +241,16 @@ Nominal NominalResidual(const Structure& structure, const std::vector<ModalData>
 // few sensors or frequencies only, a variant whose modes swap order would be
 // paired with other modes than the nominal's, and its "change" would be the
 // distance between two modes.
-Eigen::VectorXd FormVariantChange(const Structure& structure, const FormVariant& v,
+Eigen::VectorXd FormVariantChange(const Structure& structure, const FormVariant& own,
                                   const std::vector<ModalData>& states,
                                   const EigenSensitivityOptions& options) {
+  // A variant on DOFs of its own (a finer mesh): as the model's modes that can
+  // be paired with the data move on it.
+  int modes = 1;
+  for (const ModalData& d : states)
+    modes = std::max(modes, d.num_modes() + options.extra_modes);
+  const FormVariant v = OnModelDofs(
+      structure, own, std::min(modes, static_cast<int>(structure.stiffness.rows())));
   std::vector<Parameter> unknowns(2);
   unknowns[0].name = "form variant stiffness";
   unknowns[0].kind = ParameterKind::kStiffness;

@@ -10,6 +10,7 @@
 
 #include "fe/assembly.h"
 #include "femup/core/errors.h"
+#include "femup/core/fe/form_variant.h"
 
 namespace femup {
 namespace {
@@ -237,8 +238,75 @@ ParametrisedModel BuildPlaneFrame(const PlaneFrameSpec& spec) {
 }  // namespace femup
 
 namespace femup {
+namespace {
+
+// The finer mesh a frame carries as a form variant: 4 times its elements per
+// member, or 2 times where that is more than this many DOFs; none where both
+// are (the variant's modes are solved at every diagnosis).
+constexpr int kFinerMeshMaxDofs = 4000;
+
+Structure BuildFrame(const PlaneFrameSpec& spec, bool variants);
+
+// How many times finer the mesh of the frame's form variants is (4, or 2 where
+// 4 would be more than kFinerMeshMaxDofs DOFs); 0: none.
+int FinerMeshFactor(const Structure& s) {
+  const Eigen::Index n = s.stiffness.rows();
+  const Eigen::Index elements = static_cast<Eigen::Index>(s.segments.size());
+  for (const int factor : {4, 2}) {
+    // Each element adds factor - 1 inner nodes of 3 DOFs.
+    if (n + elements * (factor - 1) * 3 <= kFinerMeshMaxDofs) return factor;
+  }
+  return 0;
+}
+
+// An Euler-Bernoulli frame's form variants: the same members with shear
+// deformation (kv, mv: its global K and M on the frame's own mesh, the base
+// springs included), and the frame on a finer mesh. Where the finer mesh is
+// not too large, the shear variant is on it too: on two elements per member a
+// Timoshenko member changes the higher modes far less than it does once the
+// mesh resolves them (a portal's fifth mode: 2 % against 8 %). A Timoshenko
+// frame carries the finer mesh alone.
+void AddFormVariants(const PlaneFrameSpec& spec, const BeamShear& column_shear,
+                     const BeamShear& beam_shear, const Triplets& kv, const Triplets& mv,
+                     Structure* s) {
+  const int factor = FinerMeshFactor(*s);
+  PlaneFrameSpec finer = spec;
+  finer.elements_per_member *= factor;
+  std::ostringstream mesh;
+  mesh << "a finer mesh (" << finer.elements_per_member
+       << " elements per member instead of " << spec.elements_per_member << ")";
+  if (spec.theory != BeamTheory::kTimoshenko) {
+    std::ostringstream what;
+    what << "shear deformation (Timoshenko members; shear areas " << column_shear.area
+         << " m^2 in the columns, " << beam_shear.area << " m^2 in the beams)";
+    if (factor == 0) {
+      const int n = static_cast<int>(s->dof_labels.size());
+      s->form_variants.push_back(
+          {what.str(), FromTriplets(n, kv), FromTriplets(n, mv), {}});
+    } else {
+      PlaneFrameSpec sheared = finer;
+      sheared.theory = BeamTheory::kTimoshenko;
+      sheared.column_shear_area = column_shear.area;
+      sheared.beam_shear_area = beam_shear.area;
+      what << " on " << mesh.str();
+      s->form_variants.push_back(
+          FinerMeshVariant(*s, BuildFrame(sheared, false), what.str()));
+    }
+  }
+  if (factor > 0)
+    s->form_variants.push_back(
+        FinerMeshVariant(*s, BuildFrame(finer, false), mesh.str()));
+}
+
+}  // namespace
 
 Structure BuildPlaneFrameStructure(const PlaneFrameSpec& spec) {
+  return BuildFrame(spec, true);
+}
+
+namespace {
+
+Structure BuildFrame(const PlaneFrameSpec& spec, bool variants) {
   ThrowIfInvalid(spec.Validate(), "model");
   const FrameLayout layout = LayOut(spec);
   const std::vector<double>& x = layout.x;
@@ -341,12 +409,6 @@ Structure BuildPlaneFrameStructure(const PlaneFrameSpec& spec) {
   }
   s.stiffness = FromTriplets(n, kt);
   s.mass = FromTriplets(n, mt);
-  if (!timoshenko) {
-    std::ostringstream what;
-    what << "shear deformation (Timoshenko members; shear areas " << shear(true).area
-         << " m^2 in the columns, " << shear(false).area << " m^2 in the beams)";
-    s.form_variants.push_back({what.str(), FromTriplets(n, kv), FromTriplets(n, mv)});
-  }
   s.length = spec.storeys * spec.storey_height;
   std::ostringstream desc;
   desc << "2D plane frame, " << spec.storeys << " storeys x " << spec.bays << " bays ("
@@ -367,7 +429,9 @@ Structure BuildPlaneFrameStructure(const PlaneFrameSpec& spec) {
     desc << "; rigid otherwise)";
   }
   s.description = desc.str();
+  if (variants) AddFormVariants(spec, shear(true), shear(false), kv, mv, &s);
   return s;
 }
 
+}  // namespace
 }  // namespace femup

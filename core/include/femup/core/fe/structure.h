@@ -67,13 +67,17 @@ struct SupportSpring {
 };
 
 // The same model in a richer formulation that its builder can make and the
-// model leaves out (a frame of Euler-Bernoulli members with shear deformation),
-// on the same DOFs: the difference is a model-form error the diagnosis allows
-// for (effect_ranking.h).
+// model leaves out (a frame of Euler-Bernoulli members with shear deformation,
+// the frame on a finer mesh): the difference is a model-form error the
+// diagnosis allows for (effect_ranking.h). On the model's DOFs, or on its own
+// (a finer mesh; form_variant.h puts it on the model's).
 struct FormVariant {
   std::string name;  // what it adds, for reports
   SparseMatrix stiffness;
   SparseMatrix mass;
+  // Empty: the matrices are on the model's DOFs. Otherwise the variant has
+  // DOFs of its own and dofs[i] is the one at the model's DOF i.
+  std::vector<int> dofs;
 };
 
 struct Structure {
