@@ -11,7 +11,8 @@ Areas:
   :func:`build_plane_frame_structure`, :func:`build_space_frame`,
   :func:`import_matrix_market`, :func:`model_from_dict` (any study ``model:``),
   :func:`build_model`; :func:`solve_modes`, :func:`mac`, :func:`mac_matrix`,
-  :func:`pair_modes_by_mac`, :func:`pair_modes_in_order`, :func:`predict_modes`;
+  :func:`pair_modes_by_mac`, :func:`pair_modes_by_mac_and_misfit`,
+  :func:`pair_modes_in_order`, :func:`predict_modes`;
 * measurements: :class:`ModalData`, :func:`read_uff`, :func:`read_csv_series`,
   :func:`era`, :func:`stabilisation_diagram` (``.arrays()``),
   :func:`pick_stable_modes`, :func:`identify`, :func:`run_simulate`;

@@ -565,6 +565,11 @@ void BindModes(py::module_& m) {
   m.def("pair_modes_by_mac", &femup::PairModesByMac, py::arg("reference"),
         py::arg("candidate"), py::arg("min_mac") = 0.0,
         "Each reference mode with a distinct candidate, largest MAC first.");
+  m.def("pair_modes_by_mac_and_misfit", &femup::PairModesByMacAndMisfit, py::arg("mac"),
+        py::arg("shape_misfit"), py::arg("frequency_misfit"), py::arg("min_mac") = 0.0,
+        py::arg("tie") = 9.0,
+        "As pair_modes_by_mac on a MAC matrix, but candidates whose shape misfits are "
+        "within `tie` of the best one's are paired by least shape + frequency misfit.");
   m.def("pair_modes_in_order", &femup::PairModesInOrder, py::arg("reference"),
         py::arg("candidate"),
         "Order-keeping pairing maximising the number of pairs, then the sum of MACs.");

@@ -225,6 +225,18 @@ def test_mac_and_pairing():
     pairs = femup.pair_modes_by_mac(ref, cand)
     assert [(p.reference, p.candidate) for p in pairs] == [(0, 1), (1, 2), (2, 0)]
     assert femup.pair_modes_by_mac(ref, cand, min_mac=1.1)[0].candidate == -1
+    # Two candidates the sensors see alike (MACs differing by noise, shape
+    # misfits within the tie): the frequency pairs the measured mode.
+    mac = np.array([[0.9981, 0.9980]])
+    shape = np.array([[2.0, 3.0]])
+    frequency = np.array([[4900.0, 67.0]])
+    assert femup.pair_modes_by_mac_and_misfit(mac, shape, frequency)[0].candidate == 1
+    assert femup.pair_modes_by_mac_and_misfit(mac, shape, frequency, tie=0)[0].candidate == 0
+    assert femup.pair_modes_by_mac_and_misfit(mac, shape + [[0, 20]], frequency)[0].candidate == 0
+    with pytest.raises(femup.InputError, match="tie"):
+        femup.pair_modes_by_mac_and_misfit(mac, shape, frequency, tie=-1)
+    with pytest.raises(femup.InputError, match="misfit"):
+        femup.pair_modes_by_mac_and_misfit(mac, shape[:, :1], frequency)
     ordered = femup.pair_modes_in_order(ref, cand)
     cands = [p.candidate for p in ordered if p.candidate >= 0]
     assert cands == sorted(cands)
