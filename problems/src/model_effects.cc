@@ -6,6 +6,7 @@
 #include <map>
 
 #include "femup/core/errors.h"
+#include "femup/core/fe/dof_labels.h"
 #include "femup/core/fe/sensor.h"
 #include "vector_of.h"
 
@@ -20,14 +21,6 @@ SparseMatrix Zero(int n) { return SparseMatrix(n, n); }
 // The largest stiffness loss a stated prior may reach (all of it leaves a
 // mechanism).
 constexpr double kMaxLoss = 0.99;
-
-// The node and component of a DOF label: "n7:ux" -> ("n7", "ux"); a chain's "x3"
-// -> ("x3", "").
-std::pair<std::string, std::string> SplitLabel(const std::string& label) {
-  const auto colon = label.find(':');
-  if (colon == std::string::npos) return {label, ""};
-  return {label.substr(0, colon), label.substr(colon + 1)};
-}
 
 bool IsTranslation(const std::string& component) {
   return component.empty() || component == "ux" || component == "uy" || component == "uz";
@@ -393,7 +386,7 @@ double ReferenceMass(const Structure& s) {
   std::map<std::string, Eigen::VectorXd> rigid;  // component -> unit translation
   const int n = static_cast<int>(s.dof_labels.size());
   for (int i = 0; i < n; ++i) {
-    const auto [node, component] = SplitLabel(s.dof_labels[i]);
+    const auto [node, component] = internal::SplitDofLabel(s.dof_labels[i]);
     if (!IsTranslation(component)) continue;
     auto it = rigid.try_emplace(component, Eigen::VectorXd::Zero(n)).first;
     it->second[i] = 1.0;
@@ -492,7 +485,7 @@ std::vector<std::unique_ptr<ModelEffect>> CreateModelEffects(
     std::map<std::string, std::vector<int>> dofs;
     std::map<std::string, double> position;
     for (int i = 0; i < static_cast<int>(s.dof_labels.size()); ++i) {
-      const auto [node, component] = SplitLabel(s.dof_labels[i]);
+      const auto [node, component] = internal::SplitDofLabel(s.dof_labels[i]);
       if (!IsTranslation(component)) continue;
       if (!dofs.count(node)) {
         order.push_back(node);

@@ -6,17 +6,11 @@
 #include <utility>
 
 #include "femup/core/errors.h"
+#include "femup/core/fe/dof_labels.h"
 #include "femup/core/linalg/modal.h"
 
 namespace femup {
 namespace {
-
-// A label's node and direction: "n3:ux" -> {"n3", "ux"}; no ':' -> {label, ""}.
-std::pair<std::string, std::string> SplitLabel(const std::string& label) {
-  const std::size_t colon = label.find(':');
-  if (colon == std::string::npos) return {label, ""};
-  return {label.substr(0, colon), label.substr(colon + 1)};
-}
 
 // The largest coordinate magnitude of a model's nodes (at least 1 m).
 double Size(const Structure& s) {
@@ -42,7 +36,7 @@ std::vector<int> MatchDofs(const Structure& model, const Structure& finer) {
   std::vector<int> out;
   out.reserve(model.dof_labels.size());
   for (const std::string& label : model.dof_labels) {
-    const auto [node, direction] = SplitLabel(label);
+    const auto [node, direction] = internal::SplitDofLabel(label);
     const auto at = model_node.find(node);
     std::string match;  // the finer model's label of this DOF
     if (at == model_node.end()) {

@@ -247,29 +247,29 @@ constexpr int kFinerMeshMaxDofs = 4000;
 
 Structure BuildFrame(const PlaneFrameSpec& spec, bool variants);
 
-// How many times finer the mesh of the frame's form variants is (4, or 2 where
-// 4 would be more than kFinerMeshMaxDofs DOFs); 0: none.
-int FinerMeshFactor(const Structure& s) {
-  const Eigen::Index n = s.stiffness.rows();
-  const Eigen::Index elements = static_cast<Eigen::Index>(s.segments.size());
-  for (const int factor : {4, 2}) {
+// How many times finer the mesh of the form variants of a frame of n DOFs and
+// `elements` finite elements is (4, or 2 where 4 would be more than
+// kFinerMeshMaxDofs DOFs); 0: none.
+int FinerMeshFactor(std::size_t n, std::size_t elements) {
+  for (const std::size_t factor : {4, 2}) {
     // Each element adds factor - 1 inner nodes of 3 DOFs.
-    if (n + elements * (factor - 1) * 3 <= kFinerMeshMaxDofs) return factor;
+    if (n + elements * (factor - 1) * 3 <= kFinerMeshMaxDofs)
+      return static_cast<int>(factor);
   }
   return 0;
 }
 
 // An Euler-Bernoulli frame's form variants: the same members with shear
 // deformation (kv, mv: its global K and M on the frame's own mesh, the base
-// springs included), and the frame on a finer mesh. Where the finer mesh is
+// springs included; used where factor is 0), and the frame on a mesh `factor`
+// times finer (FinerMeshFactor). Where the finer mesh is
 // not too large, the shear variant is on it too: on two elements per member a
 // Timoshenko member changes the higher modes far less than it does once the
 // mesh resolves them (a portal's fifth mode: 2 % against 8 %). A Timoshenko
 // frame carries the finer mesh alone.
-void AddFormVariants(const PlaneFrameSpec& spec, const BeamShear& column_shear,
-                     const BeamShear& beam_shear, const Triplets& kv, const Triplets& mv,
-                     Structure* s) {
-  const int factor = FinerMeshFactor(*s);
+void AddFormVariants(const PlaneFrameSpec& spec, int factor,
+                     const BeamShear& column_shear, const BeamShear& beam_shear,
+                     const Triplets& kv, const Triplets& mv, Structure* s) {
   PlaneFrameSpec finer = spec;
   finer.elements_per_member *= factor;
   std::ostringstream mesh;
@@ -354,7 +354,11 @@ Structure BuildFrame(const PlaneFrameSpec& spec, bool variants) {
   // An Euler-Bernoulli frame's form variant: the same members with shear
   // deformation (its global K and M, the base springs included).
   const bool timoshenko = spec.theory == BeamTheory::kTimoshenko;
-  Triplets kv = kt, mv;
+  const int finer =
+      variants ? FinerMeshFactor(static_cast<std::size_t>(n), layout.pieces.size()) : 0;
+  // The shear variant on the frame's own mesh: only where there is no finer one.
+  const bool own_mesh_shear = variants && !timoshenko && finer == 0;
+  Triplets kv = own_mesh_shear ? kt : Triplets{}, mv;
   auto shear = [&](bool column) {
     const BeamSection& sec = column ? spec.column : spec.beam;
     const double stated = column ? spec.column_shear_area : spec.beam_shear_area;
@@ -385,8 +389,10 @@ Structure BuildFrame(const PlaneFrameSpec& spec, bool variants) {
       } else {
         Scatter(Frame2dStiffness(sec, p.xa, p.ya, p.xb, p.yb), d, &ke);
         Scatter(Frame2dConsistentMass(sec, p.xa, p.ya, p.xb, p.yb), d, &me);
-        Scatter(Frame2dStiffness(sec, sheared, p.xa, p.ya, p.xb, p.yb), d, &kv);
-        Scatter(Frame2dConsistentMass(sec, sheared, p.xa, p.ya, p.xb, p.yb), d, &mv);
+        if (own_mesh_shear) {
+          Scatter(Frame2dStiffness(sec, sheared, p.xa, p.ya, p.xb, p.yb), d, &kv);
+          Scatter(Frame2dConsistentMass(sec, sheared, p.xa, p.ya, p.xb, p.yb), d, &mv);
+        }
       }
       if (mb.column && mb.storey <= spec.wet_storeys) {
         Scatter(Frame2dTransverseMass(sec.rho * sec.A, p.xa, p.ya, p.xb, p.yb), d, &we);
@@ -429,7 +435,7 @@ Structure BuildFrame(const PlaneFrameSpec& spec, bool variants) {
     desc << "; rigid otherwise)";
   }
   s.description = desc.str();
-  if (variants) AddFormVariants(spec, shear(true), shear(false), kv, mv, &s);
+  if (variants) AddFormVariants(spec, finer, shear(true), shear(false), kv, mv, &s);
   return s;
 }
 

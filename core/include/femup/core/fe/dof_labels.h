@@ -1,11 +1,20 @@
-// Private to the studies: what a DOF label says about the DOF.
+// Private to femup's layers: what a DOF label says about the DOF.
 #pragma once
 
 #include <Eigen/Core>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace femup::internal {
+
+// The node and component of a DOF label: "n7:ux" -> ("n7", "ux"); a chain's "x3"
+// -> ("x3", "").
+inline std::pair<std::string, std::string> SplitDofLabel(const std::string& label) {
+  const auto colon = label.find(':');
+  if (colon == std::string::npos) return {label, ""};
+  return {label.substr(0, colon), label.substr(colon + 1)};
+}
 
 // A frame's transverse translation: labels ending in ":ux" ("n3:ux").
 inline bool IsTransverseDof(const std::string& label) {
