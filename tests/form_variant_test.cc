@@ -5,12 +5,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <set>
 
 #include "expect_error.h"
 #include "femup/core/errors.h"
 #include "femup/core/fe/builders.h"
 #include "femup/core/fe/plane_frame.h"
 #include "femup/core/linalg/modal.h"
+#include "femup/problems/model_effects.h"
 #include "structure_specs.h"
 
 namespace femup {
@@ -104,6 +106,118 @@ TEST(OnModelDofs, MovesEachModeAsTheFinerMeshDoes) {
   short_map.dofs.pop_back();
   testing::ExpectInputError([&] { OnModelDofs(model, short_map, kModes); },
                             {"entries for a model of"});
+}
+
+// The finer mesh as a model the diagnosis can run on: the same matrices as the
+// finer frame built directly, its nodes at the model's places named as the
+// model's, and the model's attached-mass candidates (its nodes, and one line
+// of finer segments per model segment).
+TEST(RefinedModel, NamesTheFinerMeshAsTheModel) {
+  const Structure model = BuildPlaneFrameStructure(HeavyPortal(2));
+  ASSERT_EQ(model.form_variants.size(), 2u);
+  const FormVariant& mesh = model.form_variants[1];
+  ASSERT_NE(mesh.model, nullptr);
+  EXPECT_EQ(model.form_variants[0].model, nullptr);  // the shear variant is no model
+  const Structure& fine = *mesh.model;
+  const Structure direct = BuildPlaneFrameStructure(HeavyPortal(8));
+  ASSERT_EQ(fine.stiffness.rows(), direct.stiffness.rows());
+  EXPECT_EQ(Eigen::MatrixXd(fine.stiffness - direct.stiffness).cwiseAbs().maxCoeff(), 0);
+  EXPECT_EQ(Eigen::MatrixXd(fine.mass - direct.mass).cwiseAbs().maxCoeff(), 0);
+  for (std::size_t i = 0; i < model.dof_labels.size(); ++i)
+    EXPECT_EQ(fine.dof_labels[static_cast<std::size_t>(mesh.dofs[i])],
+              model.dof_labels[i]);
+  int inner = 0;
+  for (const ModelNode& n : fine.nodes) {
+    bool named = false;
+    for (const ModelNode& m : model.nodes) named = named || m.name == n.name;
+    if (!named) {
+      EXPECT_EQ(n.name[0], 'f') << n.name;
+      ++inner;
+    }
+  }
+  EXPECT_EQ(inner, static_cast<int>(fine.nodes.size() - model.nodes.size()));
+  EXPECT_EQ(fine.attached_mass_nodes.size(), model.nodes.size());
+  ASSERT_EQ(fine.attached_mass_lines.size(), model.segments.size());
+  for (std::size_t i = 0; i < model.segments.size(); ++i) {
+    const std::vector<int>& line = fine.attached_mass_lines[i];
+    ASSERT_EQ(line.size(), 4u);
+    const LineSegment& first = fine.segments[static_cast<std::size_t>(line.front())];
+    const LineSegment& last = fine.segments[static_cast<std::size_t>(line.back())];
+    EXPECT_LT((first.a - model.segments[i].a).norm(), 1e-12);
+    EXPECT_LT((last.b - model.segments[i].b).norm(), 1e-12);
+    for (std::size_t k = 0; k + 1 < line.size(); ++k)
+      EXPECT_EQ(fine.segments[static_cast<std::size_t>(line[k])].node_b,
+                fine.segments[static_cast<std::size_t>(line[k + 1])].node_a);
+  }
+  // The attached-mass candidates are the model's, by name.
+  std::set<std::string> on_model, on_fine;
+  for (const auto& e : CreateModelEffects("attached_mass", model))
+    on_model.insert(e->region().name);
+  for (const auto& e : CreateModelEffects("attached_mass", fine))
+    on_fine.insert(e->region().name);
+  EXPECT_EQ(on_fine, on_model);
+  // Its own form variant: shear deformation on its own DOFs.
+  ASSERT_EQ(fine.form_variants.size(), 1u);
+  EXPECT_TRUE(fine.form_variants[0].dofs.empty());
+  EXPECT_EQ(fine.form_variants[0].name.find("finer mesh"), std::string::npos);
+  EXPECT_NE(fine.form_variants[0].name.find("shear deformation"), std::string::npos);
+  // A Timoshenko frame's finer mesh carries no variant of its own.
+  PlaneFrameSpec timoshenko = HeavyPortal(2);
+  timoshenko.theory = BeamTheory::kTimoshenko;
+  const Structure t = BuildPlaneFrameStructure(timoshenko);
+  ASSERT_EQ(t.form_variants.size(), 1u);
+  ASSERT_NE(t.form_variants[0].model, nullptr);
+  EXPECT_TRUE(t.form_variants[0].model->form_variants.empty());
+  // A finer model that does not hold the model's nodes.
+  testing::ExpectInputError(
+      [&] { RefinedModel(model, BuildPlaneFrameStructure(HeavyPortal(3))); },
+      {"has no DOF at its place"});
+}
+
+// A mass on a line of finer segments sits on the segment its position falls
+// in: at a finer node, it is that node's point mass; its slope is the change's
+// derivative with respect to the position.
+TEST(RefinedModel, AMassAlongALineIsOnTheSegmentItFallsIn) {
+  const Structure model = BuildPlaneFrameStructure(HeavyPortal(2));
+  const Structure& fine = *model.form_variants[1].model;
+  const auto effects = CreateModelEffects("attached_mass", fine);
+  const ModelEffect* line = nullptr;
+  for (const auto& e : effects)
+    if (e->region().name == "n1-n5") line = e.get();  // the beam's first half
+  ASSERT_NE(line, nullptr);
+  // Half way along n1-n5: a finer node (4 segments on the line).
+  const Eigen::Vector3d middle = 0.5 * (model.nodes[0].xyz + model.nodes[4].xyz);
+  int node = -1;
+  for (std::size_t k = 0; k < fine.nodes.size(); ++k)
+    if ((fine.nodes[k].xyz - middle).norm() < 1e-9) node = static_cast<int>(k);
+  ASSERT_GE(node, 0);
+  const std::string name = fine.nodes[static_cast<std::size_t>(node)].name;
+  Eigen::VectorXd theta(2);
+  theta << std::log(0.01), 0.5;
+  const SparseMatrix dm = line->Change(theta, Immersion::kDry).mass;
+  const double m = 0.01 * ReferenceMass(fine);
+  Eigen::MatrixXd expected = Eigen::MatrixXd::Zero(dm.rows(), dm.cols());
+  for (std::size_t i = 0; i < fine.dof_labels.size(); ++i) {
+    if (fine.dof_labels[i] == name + ":ux" || fine.dof_labels[i] == name + ":uy")
+      expected(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i)) = m;
+  }
+  EXPECT_LT((Eigen::MatrixXd(dm) - expected).cwiseAbs().maxCoeff(), 1e-9 * m);
+  // d(dM)/dxi by central differences, inside a segment (xi = 0.4: the second).
+  for (const double xi : {0.4, 0.8}) {
+    theta[1] = xi;
+    const double h = 1e-6;
+    Eigen::VectorXd up = theta, down = theta;
+    up[1] += h;
+    down[1] -= h;
+    const Eigen::MatrixXd numeric =
+        Eigen::MatrixXd(line->Change(up, Immersion::kDry).mass -
+                        line->Change(down, Immersion::kDry).mass) /
+        (2 * h);
+    const Eigen::MatrixXd analytic = line->Derivative(theta, 1, Immersion::kDry).mass;
+    EXPECT_LT((numeric - analytic).cwiseAbs().maxCoeff(),
+              1e-5 * analytic.cwiseAbs().maxCoeff())
+        << xi;
+  }
 }
 
 }  // namespace

@@ -184,18 +184,24 @@ class AttachedMass : public Base {
 // read the element's translation along each axis the model has DOFs for
 // (femup/sensor.h: cubic Hermite across, linear along), so the mass moves with
 // the element's displacement field where it sits; dM/dxi from the weights'
-// slopes. xi stays 0.05 from the ends, where the node instances act.
+// slopes. xi stays 0.05 from the ends, where the node instances act. A line
+// of several segments end to end (Structure::attached_mass_lines: a refined
+// mesh's elements along one of the model's) is one candidate: xi is the
+// fraction of the whole line, and the mass sits on the segment it falls in.
 class SegmentMass : public Base {
  public:
   SegmentMass(const Structure& s, EffectRegion region, double reference_mass,
-              LineSegment segment, std::vector<Eigen::Vector3d> axes, double position_a,
-              double position_b)
+              std::vector<LineSegment> line, std::vector<Eigen::Vector3d> axes,
+              double position_a, double position_b)
       : Base(s, std::move(region)),
         m_ref_(reference_mass),
-        segment_(std::move(segment)),
+        line_(std::move(line)),
         axes_(std::move(axes)),
         position_a_(position_a),
-        position_b_(position_b) {}
+        position_b_(position_b) {
+    ends_.push_back(0.0);
+    for (const LineSegment& g : line_) ends_.push_back(ends_.back() + (g.b - g.a).norm());
+  }
   std::string kind() const override { return "attached_mass"; }
   std::vector<EffectParameter> Parameters() const override {
     return {LogQuantity({"ln_mass_ratio", "ln(mass / the structure's mass)",
@@ -221,20 +227,29 @@ class SegmentMass : public Base {
   std::vector<EffectMagnitude> Magnitudes(const Eigen::VectorXd& t) const override {
     return {{"mass", "kg", m_ref_ * std::exp(t[0])},
             {"mass_ratio", "1 (of the structure's mass)", std::exp(t[0])},
-            {"distance_from_first_node", "m", t[1] * (segment_.b - segment_.a).norm()}};
+            {"distance_from_first_node", "m", t[1] * ends_.back()}};
   }
 
  private:
-  // sum_d w_d w_d', or with `slope` its derivative sum_d (w_d' w_d + w_d w_d').
+  // sum_d w_d w_d', or with `slope` its derivative sum_d (w_d' w_d + w_d w_d'),
+  // on the segment xi falls in (its own fraction: d local / d xi = the line's
+  // length over the segment's).
   SparseMatrix Outer(double xi, bool slope) const {
+    const double at = xi * ends_.back();
+    std::size_t k = 0;
+    while (k + 1 < line_.size() && at > ends_[k + 1]) ++k;
+    const double length = ends_[k + 1] - ends_[k];
+    const double local = std::clamp((at - ends_[k]) / length, 0.0, 1.0);
+    const double stretch = ends_.back() / length;
     std::vector<Eigen::Triplet<double>> t;
     for (const Eigen::Vector3d& d : axes_) {
-      const auto w = SegmentWeights(s_, segment_, xi, d, false);
-      const auto dw = slope ? SegmentWeights(s_, segment_, xi, d, false, true) : w;
+      const auto w = SegmentWeights(s_, line_[k], local, d, false);
+      const auto dw = slope ? SegmentWeights(s_, line_[k], local, d, false, true) : w;
       for (const auto& [i, wi] : dw) {
         for (const auto& [j, wj] : w) {
-          t.emplace_back(i, j, wi * wj);
-          if (slope) t.emplace_back(j, i, wi * wj);
+          const double v = slope ? stretch * wi * wj : wi * wj;
+          t.emplace_back(i, j, v);
+          if (slope) t.emplace_back(j, i, v);
         }
       }
     }
@@ -243,7 +258,8 @@ class SegmentMass : public Base {
     return m;
   }
   double m_ref_;
-  LineSegment segment_;
+  std::vector<LineSegment> line_;
+  std::vector<double> ends_;  // distance from the line's start to each segment's ends
   std::vector<Eigen::Vector3d> axes_;
   double position_a_, position_b_;
 };
@@ -518,23 +534,31 @@ std::vector<std::unique_ptr<ModelEffect>> CreateModelEffects(
         }
       }
     }
-    std::vector<LineSegment> between = s.segments;
-    if (!s.attached_mass_nodes.empty()) {
-      between.clear();
-      for (int i : s.attached_mass_segments) between.push_back(s.segments.at(i));
+    std::vector<std::vector<LineSegment>> between;
+    if (!s.attached_mass_lines.empty()) {
+      for (const std::vector<int>& line : s.attached_mass_lines) {
+        between.emplace_back();
+        for (int i : line) between.back().push_back(s.segments.at(i));
+      }
+    } else if (!s.attached_mass_nodes.empty()) {
+      for (int i : s.attached_mass_segments) between.push_back({s.segments.at(i)});
+    } else {
+      for (const LineSegment& g : s.segments) between.push_back({g});
     }
-    for (const LineSegment& g : between) {
-      if (g.node_a < 0 && g.node_b < 0) continue;
-      const std::string a = g.node_a >= 0 ? s.nodes[g.node_a].name : "the support";
-      const std::string b = g.node_b >= 0 ? s.nodes[g.node_b].name : "the support";
+    for (std::vector<LineSegment>& line : between) {
+      if (line.empty()) continue;
+      const int node_a = line.front().node_a, node_b = line.back().node_b;
+      if (node_a < 0 && node_b < 0) continue;
+      const std::string a = node_a >= 0 ? s.nodes[node_a].name : "the support";
+      const std::string b = node_b >= 0 ? s.nodes[node_b].name : "the support";
       EffectRegion r{a + "-" + b, {}, {}};
-      if (g.element >= 0) r.elements.push_back(g.element);
+      if (line.front().element >= 0) r.elements.push_back(line.front().element);
       const auto at = [&](const std::string& node) {
         return position.count(node) ? position[node] : 0.0;
       };
-      out.push_back(std::make_unique<SegmentMass>(s, std::move(r), m_ref, g, axes,
-                                                  g.node_a >= 0 ? at(a) : 0.0,
-                                                  g.node_b >= 0 ? at(b) : 0.0));
+      out.push_back(std::make_unique<SegmentMass>(s, std::move(r), m_ref, std::move(line),
+                                                  axes, node_a >= 0 ? at(a) : 0.0,
+                                                  node_b >= 0 ? at(b) : 0.0));
     }
   } else if (kind == "added_mass") {
     const bool level = HasHeights(s);

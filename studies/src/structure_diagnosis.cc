@@ -7,8 +7,76 @@
 #include <sstream>
 
 #include "femup/core/errors.h"
+#include "femup/core/fe/form_variant.h"
+#include "femup/core/fe/sensor.h"
 
 namespace femup {
+namespace {
+
+// A mesh that moves a measured mode by more than this many frequency noise
+// standard deviations is not converged for the data (DiagnosisSpec::refine_mesh).
+constexpr double kMeshErrorInNoise = 3.0;
+
+// A measured state on the refined model's DOFs: a sensor on a node at that
+// node's DOF there (variant.dofs), one between nodes placed again on the finer
+// mesh from where it was stated.
+ModalData OnRefinedModel(const ModalData& d, const FormVariant& variant,
+                         const Structure& refined, const std::string& where) {
+  ModalData out = d;
+  for (int& dof : out.sensor_dofs) dof = variant.dofs.at(static_cast<std::size_t>(dof));
+  if (!d.HasInterpolatedSensors()) return out;
+  const int n = static_cast<int>(refined.dof_labels.size());
+  std::vector<Eigen::Triplet<double>> t;
+  if (d.sensor_specs.size() == static_cast<std::size_t>(d.sensor_weights.rows())) {
+    for (std::size_t i = 0; i < d.sensor_specs.size(); ++i) {
+      SensorRow row;
+      ThrowIfInvalid(LocateSensor(refined, d.sensor_specs[i], &row), where + ".sensors");
+      for (const auto& [dof, w] : row.weights)
+        t.emplace_back(static_cast<int>(i), dof, w);
+    }
+  } else {  // read through the model's own interpolation of its nodes
+    for (int k = 0; k < d.sensor_weights.outerSize(); ++k)
+      for (SparseMatrix::InnerIterator it(d.sensor_weights, k); it; ++it)
+        t.emplace_back(static_cast<int>(it.row()),
+                       variant.dofs.at(static_cast<std::size_t>(it.col())), it.value());
+  }
+  out.sensor_weights.resize(d.sensor_weights.rows(), n);
+  out.sensor_weights.setFromTriplets(t.begin(), t.end());
+  return out;
+}
+
+// The finer-mesh variant the diagnosis runs on (DiagnosisSpec::refine_mesh),
+// or null; `note` says why, with how far the model's mesh moves a mode.
+const FormVariant* MeshToDiagnoseOn(const Structure& model,
+                                    const std::vector<ModalData>& measured,
+                                    const DiagnosisSpec& spec, std::string* note) {
+  if (!spec.refine_mesh) return nullptr;
+  int modes = 1;
+  for (const ModalData& d : measured) modes = std::max(modes, d.num_modes());
+  modes = std::min(modes, static_cast<int>(model.stiffness.rows()));
+  for (const FormVariant& v : model.form_variants) {
+    if (!v.model) continue;
+    const ModeChanges c = PairedModeChanges(model, v, modes);
+    // Relative frequency change: half the relative eigenvalue change.
+    const Eigen::VectorXd moved =
+        0.5 * c.eigenvalue_change.cwiseQuotient(c.modes.eigenvalues).cwiseAbs();
+    Eigen::Index worst = 0;
+    const double most = moved.maxCoeff(&worst);
+    if (most / spec.frequency_noise <= kMeshErrorInNoise) continue;
+    std::ostringstream what;
+    what << std::setprecision(3) << "the model's mesh is not converged for the measured "
+         << "modes: " << v.name << " moves its mode " << worst + 1 << " by " << 100 * most
+         << " % (" << most / spec.frequency_noise
+         << " frequency noise units), so the diagnosis ran on that mesh, its nodes and "
+            "candidates named as the model's (diagnosis.refine_mesh: false keeps the "
+            "model's mesh)";
+    *note = what.str();
+    return &v;
+  }
+  return nullptr;
+}
+
+}  // namespace
 
 StructureDiagnosisResult RunStructureDiagnosis(const Study& study) {
   if (study.measurements.empty())
@@ -69,8 +137,19 @@ StructureDiagnosisResult RunStructureDiagnosis(const Study& study) {
   }
   for (const PreparedState& p : PrepareMeasurements(study))
     r.measured.push_back(p.at_sensors);
+  std::string refined_note;
+  const FormVariant* refined =
+      MeshToDiagnoseOn(study.structure, r.measured, spec, &refined_note);
+  std::vector<ModalData> data = r.measured;
+  if (refined) {
+    for (std::size_t i = 0; i < data.size(); ++i)
+      data[i] = OnRefinedModel(data[i], *refined, *refined->model,
+                               study.measurements.at(i).field);
+  }
   try {
-    r.ranking = RankModelEffects(study.structure, r.measured, options);
+    r.ranking =
+        RankModelEffects(refined ? *refined->model : study.structure, data, options);
+    if (refined) r.ranking.notes.insert(r.ranking.notes.begin(), refined_note);
   } catch (const InputError& e) {
     // The study's own fields (diagnosis.priors.*, ...): name the study file.
     if (e.where().rfind("diagnosis", 0) == 0) throw InputError(study.path, e.what());

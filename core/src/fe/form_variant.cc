@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 #include <utility>
 
 #include "femup/core/errors.h"
@@ -69,37 +70,123 @@ FormVariant FinerMeshVariant(const Structure& model, const Structure& finer,
   return v;
 }
 
-FormVariant OnModelDofs(const Structure& model, const FormVariant& variant, int modes) {
-  if (variant.dofs.empty()) return variant;
+Structure RefinedModel(const Structure& model, Structure finer) {
+  MatchDofs(model, finer);  // every model DOF has its place
+  const double tolerance = 1e-9 * std::max(Size(model), Size(finer));
+  const auto same_place = [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    return (a - b).cwiseAbs().maxCoeff() <= tolerance;
+  };
+  // Names: the model's where a model node is; "f<k>" elsewhere.
+  std::map<std::string, std::string> renamed;
+  for (std::size_t k = 0; k < finer.nodes.size(); ++k) {
+    ModelNode& f = finer.nodes[k];
+    std::string name = "f" + std::to_string(k + 1);
+    for (const ModelNode& m : model.nodes) {
+      if (same_place(m.xyz, f.xyz)) {
+        name = m.name;
+        break;
+      }
+    }
+    renamed[f.name] = name;
+    f.name = name;
+  }
+  for (std::string& label : finer.dof_labels) {
+    const auto [node, direction] = internal::SplitDofLabel(label);
+    const auto it = renamed.find(node);
+    if (it != renamed.end()) label = it->second + ":" + direction;
+  }
+  // Attached-mass candidates: the model's nodes.
+  finer.attached_mass_nodes = model.attached_mass_nodes;
+  if (finer.attached_mass_nodes.empty()) {
+    std::set<std::string> translating;
+    for (const std::string& label : model.dof_labels) {
+      const auto [node, direction] = internal::SplitDofLabel(label);
+      if (!direction.empty() && direction[0] == 'u') translating.insert(node);
+    }
+    for (const ModelNode& m : model.nodes)
+      if (translating.count(m.name)) finer.attached_mass_nodes.push_back(m.name);
+  }
+  // And the model's segments, each as the finer segments along it in order.
+  std::vector<int> from_model;
+  if (model.attached_mass_nodes.empty()) {
+    for (std::size_t i = 0; i < model.segments.size(); ++i)
+      from_model.push_back(static_cast<int>(i));
+  } else {
+    from_model = model.attached_mass_segments;
+  }
+  finer.attached_mass_segments.clear();
+  finer.attached_mass_lines.clear();
+  for (const int i : from_model) {
+    const LineSegment& g = model.segments.at(static_cast<std::size_t>(i));
+    const Eigen::Vector3d axis = g.b - g.a;
+    const double length2 = axis.squaredNorm();
+    // Fraction along g of a point on its line, or -1 off it.
+    const auto along = [&](const Eigen::Vector3d& p) {
+      const double t = (p - g.a).dot(axis) / length2;
+      return same_place(g.a + t * axis, p) && t > -1e-9 && t < 1 + 1e-9 ? t : -1.0;
+    };
+    std::vector<std::pair<double, int>> pieces;
+    double covered = 0;
+    for (std::size_t k = 0; k < finer.segments.size(); ++k) {
+      const LineSegment& f = finer.segments[k];
+      const double ta = along(f.a), tb = along(f.b);
+      if (ta < 0 || tb < 0 || tb <= ta) continue;
+      pieces.emplace_back(ta, static_cast<int>(k));
+      covered += tb - ta;
+    }
+    if (pieces.empty() || std::abs(covered - 1) > 1e-6) {
+      throw InputError("form variant",
+                       "the model's segment " + std::to_string(i + 1) +
+                           " is not made of the finer model's segments, end to end");
+    }
+    std::sort(pieces.begin(), pieces.end());
+    finer.attached_mass_lines.emplace_back();
+    for (const auto& [t, k] : pieces) finer.attached_mass_lines.back().push_back(k);
+  }
+  return finer;
+}
+
+ModeChanges PairedModeChanges(const Structure& model, const FormVariant& variant,
+                              int modes) {
   const int n = static_cast<int>(model.stiffness.rows());
   if (modes < 1 || modes > n) {
     throw InputError("form variant", "modes must be in 1.." + std::to_string(n) +
                                          ", got " + std::to_string(modes));
   }
-  if (static_cast<int>(variant.dofs.size()) != n) {
+  if (!variant.dofs.empty() && static_cast<int>(variant.dofs.size()) != n) {
     throw InputError("form variant", "dofs has " + std::to_string(variant.dofs.size()) +
                                          " entries for a model of " + std::to_string(n) +
                                          " DOFs");
   }
   EigenOptions own;
   own.num_modes = modes;
-  const Modes m = SolveModes(model.stiffness, model.mass, own);
+  ModeChanges out;
+  out.modes = SolveModes(model.stiffness, model.mass, own);
   // A few more of the variant's, so that a mode that moved above another is
   // still there to pair.
   const int rows = static_cast<int>(variant.stiffness.rows());
   EigenOptions finer;
   finer.num_modes = std::min(rows, modes + 4);  // kAuto: dense from rows - 1
   const Modes v = SolveModes(variant.stiffness, variant.mass, finer);
-  const Eigen::MatrixXd at_model = v.shapes(variant.dofs, Eigen::all);
+  const Eigen::MatrixXd at_model =
+      variant.dofs.empty() ? v.shapes
+                           : Eigen::MatrixXd(v.shapes(variant.dofs, Eigen::all));
   constexpr double kMinMac = 0.8;
-  const std::vector<ModePair> pairs = PairModesByMac(m.shapes, at_model, kMinMac);
-  Eigen::VectorXd shift = Eigen::VectorXd::Zero(m.size());
+  const std::vector<ModePair> pairs = PairModesByMac(out.modes.shapes, at_model, kMinMac);
+  out.eigenvalue_change = Eigen::VectorXd::Zero(out.modes.size());
   for (const ModePair& p : pairs) {
     if (p.candidate >= 0)
-      shift[p.reference] = v.eigenvalues[p.candidate] - m.eigenvalues[p.reference];
+      out.eigenvalue_change[p.reference] =
+          v.eigenvalues[p.candidate] - out.modes.eigenvalues[p.reference];
   }
-  const Eigen::MatrixXd mphi = model.mass * m.shapes;
-  const Eigen::MatrixXd dk = mphi * shift.asDiagonal() * mphi.transpose();
+  return out;
+}
+
+FormVariant OnModelDofs(const Structure& model, const FormVariant& variant, int modes) {
+  if (variant.dofs.empty()) return variant;
+  const ModeChanges c = PairedModeChanges(model, variant, modes);
+  const Eigen::MatrixXd mphi = model.mass * c.modes.shapes;
+  const Eigen::MatrixXd dk = mphi * c.eigenvalue_change.asDiagonal() * mphi.transpose();
   FormVariant out;
   out.name = variant.name;
   out.stiffness = (model.stiffness + SparseMatrix(dk.sparseView())).pruned();

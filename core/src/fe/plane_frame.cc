@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -275,6 +276,7 @@ void AddFormVariants(const PlaneFrameSpec& spec, int factor,
   std::ostringstream mesh;
   mesh << "a finer mesh (" << finer.elements_per_member
        << " elements per member instead of " << spec.elements_per_member << ")";
+  std::string shear_name;  // the shear variant's, on the mesh it is built on
   if (spec.theory != BeamTheory::kTimoshenko) {
     std::ostringstream what;
     what << "shear deformation (Timoshenko members; shear areas " << column_shear.area
@@ -282,20 +284,30 @@ void AddFormVariants(const PlaneFrameSpec& spec, int factor,
     if (factor == 0) {
       const int n = static_cast<int>(s->dof_labels.size());
       s->form_variants.push_back(
-          {what.str(), FromTriplets(n, kv), FromTriplets(n, mv), {}});
+          {what.str(), FromTriplets(n, kv), FromTriplets(n, mv), {}, {}});
     } else {
       PlaneFrameSpec sheared = finer;
       sheared.theory = BeamTheory::kTimoshenko;
       sheared.column_shear_area = column_shear.area;
       sheared.beam_shear_area = beam_shear.area;
+      shear_name = what.str();
       what << " on " << mesh.str();
       s->form_variants.push_back(
           FinerMeshVariant(*s, BuildFrame(sheared, false), what.str()));
     }
   }
-  if (factor > 0)
-    s->form_variants.push_back(
-        FinerMeshVariant(*s, BuildFrame(finer, false), mesh.str()));
+  if (factor > 0) {
+    // The finer frame as a model too, with the shear variant (on its DOFs,
+    // which are the sheared frame's) as its own form variant.
+    Structure fine = BuildFrame(finer, false);
+    FormVariant v = FinerMeshVariant(*s, fine, mesh.str());
+    if (spec.theory != BeamTheory::kTimoshenko) {
+      const FormVariant& sheared = s->form_variants.back();
+      fine.form_variants.push_back({shear_name, sheared.stiffness, sheared.mass, {}, {}});
+    }
+    v.model = std::make_shared<const Structure>(RefinedModel(*s, std::move(fine)));
+    s->form_variants.push_back(std::move(v));
+  }
 }
 
 }  // namespace

@@ -150,6 +150,12 @@ struct DiagnosisSpec {
   // formulation (a plane frame's members with shear deformation;
   // effect_ranking.h). Not used by the cantilever's own pipeline.
   bool formulation_error = true;
+  // Where the model's builder made it on a finer mesh too (a plane frame:
+  // FormVariant::model) and that mesh moves one of the measured modes by more
+  // than 3 frequency noise standard deviations, diagnose on the finer mesh
+  // (its nodes and candidates named as the model's); false: on the model's.
+  // Not used by the cantilever's own pipeline.
+  bool refine_mesh = true;
   // Bootstrap copies the structures' probabilities are averaged over (a
   // bagged posterior, effect_ranking.h); 0: the Laplace posterior alone. Not
   // used by the cantilever's own pipeline.

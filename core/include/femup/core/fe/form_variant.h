@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "femup/core/fe/structure.h"
+#include "femup/core/linalg/modal.h"
 
 namespace femup {
 
@@ -23,6 +24,29 @@ std::vector<int> MatchDofs(const Structure& model, const Structure& finer);
 // `name`.
 FormVariant FinerMeshVariant(const Structure& model, const Structure& finer,
                              std::string name);
+
+// `finer` (the same structure on a finer mesh) as a model the diagnosis can
+// run on in place of `model`, in the model's terms: each of its nodes at a
+// model node's place takes that node's name (its DOF labels too), its other
+// nodes "f<k>" (k: 1-based in `finer`); an attached mass is looked for where
+// the model would look (Structure::attached_mass_nodes: the model's, or every
+// model node with translational DOFs), and between them along each of the
+// model's segments (or its attached_mass_segments where it names its nodes),
+// one candidate per model segment made of the finer segments along it
+// (Structure::attached_mass_lines). Form variants are `finer`'s. InputError
+// where a model node or segment has no place in `finer` (MatchDofs).
+Structure RefinedModel(const Structure& model, Structure finer);
+
+// The model's lowest `modes` modes, and how far the variant moves each: its
+// paired mode's eigenvalue less the model's, the modes paired by MAC >= 0.8
+// over the model's DOFs (0 where a mode pairs with none). 1 <= modes <= the
+// model's DOF count, and a variant's dofs sized as the model's, or InputError.
+struct ModeChanges {
+  Modes modes;
+  Eigen::VectorXd eigenvalue_change;  // rad^2/s^2, one per mode
+};
+ModeChanges PairedModeChanges(const Structure& model, const FormVariant& variant,
+                              int modes);
 
 // The variant on the model's DOFs. A variant already there is returned as it
 // is. Otherwise the model's lowest `modes` modes are paired, by MAC over the

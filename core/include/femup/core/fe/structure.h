@@ -4,6 +4,7 @@
 // ParameterPlan turns it into a ParametrisedModel.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -71,6 +72,7 @@ struct SupportSpring {
 // the frame on a finer mesh): the difference is a model-form error the
 // diagnosis allows for (effect_ranking.h). On the model's DOFs, or on its own
 // (a finer mesh; form_variant.h puts it on the model's).
+struct Structure;
 struct FormVariant {
   std::string name;  // what it adds, for reports
   SparseMatrix stiffness;
@@ -78,6 +80,11 @@ struct FormVariant {
   // Empty: the matrices are on the model's DOFs. Otherwise the variant has
   // DOFs of its own and dofs[i] is the one at the model's DOF i.
   std::vector<int> dofs;
+  // The variant as a whole model the diagnosis can run on instead, where its
+  // builder made one (a finer mesh: RefinedModel, form_variant.h): its
+  // stiffness and mass are the ones above, its DOFs those `dofs` index, its
+  // nodes at the model's places named as the model's; null otherwise.
+  std::shared_ptr<const Structure> model;
 };
 
 struct Structure {
@@ -116,6 +123,11 @@ struct Structure {
   // where a mass between nodes is looked for too (a space frame: its top
   // level's horizontals); otherwise unused.
   std::vector<int> attached_mass_segments;
+  // Where given, the lines (each a chain of segments, end to end, indices into
+  // segments) where a mass between nodes is looked for instead, one candidate
+  // per line: a refined mesh's segments grouped as the coarser model's
+  // elements (RefinedModel), so the candidates stay the model's.
+  std::vector<std::vector<int>> attached_mass_lines;
   // Richer formulations of this model (see FormVariant); empty: none known.
   std::vector<FormVariant> form_variants;
   // Index of the element with the given id, or -1.
