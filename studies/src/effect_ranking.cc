@@ -379,10 +379,13 @@ EffectRanking RankModelEffects(const Structure& structure_in,
   fit.frequency_sigma = 2 * options.frequency_sigma;  // of lambda = (2 pi f)^2
   fit.shape_sigma = options.shape_sigma;
   fit.use_shapes = options.use_shapes;
-  // A space frame's few lowest modes, at every size, by sparse shift-invert: a
-  // dense solve of all its modes (kAuto up to 1500 DOF) costs 0.1 s per
-  // evaluation at 600 DOF, and every fit evaluates hundreds of times.
-  if (structure->type == "space_frame")
+  // A space frame's few lowest modes, at every size, and any other model's from
+  // kSparseFitMinDofs DOFs (a plane frame on its finer mesh), by sparse
+  // shift-invert: a dense solve of all its modes (kAuto up to 1500 DOF) costs
+  // 0.1 s per evaluation at 600 DOF, and every fit evaluates hundreds of times.
+  constexpr std::size_t kSparseFitMinDofs = 100;
+  if (structure->type == "space_frame" ||
+      structure->dof_labels.size() >= kSparseFitMinDofs)
     fit.eigen.method = EigenOptions::Method::kSparseShiftInvert;
   // A frame's sparse solves order its node graph (node_ordering.h).
   fit.eigen = WithNodeOrdering(fit.eigen, structure->dof_labels);
