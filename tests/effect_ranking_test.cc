@@ -661,6 +661,7 @@ measurements:
 }
 
 TEST(StructureDiagnosis, RunsOnAFinerMeshWhereTheModelsMovesTheModes) {
+  EXPECT_FALSE(DiagnosisSpec().refine_mesh);  // off unless the study asks
   const Study study = ParseStudy(HeavyPortalStudy(true), "heavy_portal.yaml");
   ASSERT_TRUE(study.diagnosis.has_value());
   EXPECT_TRUE(study.diagnosis->refine_mesh);
