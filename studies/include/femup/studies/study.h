@@ -156,7 +156,7 @@ struct DiagnosisSpec {
   // (its nodes and candidates named as the model's); false: on the model's,
   // with the finer mesh allowed for as a form error. Off by default: on the
   // plane-frame suite it named 2 cases right that the model's mesh had wrong
-  // and 8 wrong that it had right (docs/diagnosis.md, "Diagnosing on the finer
+  // and 7 wrong that it had right (docs/diagnosis.md, "Diagnosing on the finer
   // mesh"). Not used by the cantilever's own pipeline.
   bool refine_mesh = false;
   // Bootstrap copies the structures' probabilities are averaged over (a
