@@ -7,6 +7,7 @@
 #include <cmath>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "expect_error.h"
@@ -171,6 +172,35 @@ TEST(SparseEigenTest, NodeGraphOrderingMatchesDenseSolver) {
   EXPECT_THROW(SolveModesSparse(K, M, options), InputError);
   options.dof_groups.push_back(-1);
   femup::testing::ExpectError([&] { SolveModesSparse(K, M, options); }, {"dof_groups"});
+}
+
+// Solves on several threads at once give the bits of a solve alone. METIS
+// (the node-graph ordering) keeps its random number generator in global
+// variables; without a lock, two orderings at once took each other's draws,
+// and a diagnosis's fits changed with the number of threads.
+TEST(SparseEigenTest, SolvesOnSeveralThreadsAtOnceGiveTheBitsOfOneAlone) {
+  SparseMatrix K, M;
+  RandomPencil(20, 25, 20261129u, &K, &M);
+  EigenOptions options;
+  options.num_modes = 6;
+  for (Eigen::Index i = 0; i < K.rows(); ++i)
+    options.dof_groups.push_back(static_cast<int>(i / 3));
+  const Modes alone = SolveModesSparse(K, M, options);
+  constexpr int kThreads = 4, kSolves = 25;
+  std::vector<int> differing(kThreads, 0);
+  std::vector<std::thread> threads;
+  for (int t = 0; t < kThreads; ++t) {
+    threads.emplace_back([&, t] {
+      for (int k = 0; k < kSolves; ++k) {
+        const Modes modes = SolveModesSparse(K, M, options);
+        if (modes.eigenvalues != alone.eigenvalues || modes.shapes != alone.shapes)
+          ++differing[static_cast<std::size_t>(t)];
+      }
+    });
+  }
+  for (std::thread& thread : threads) thread.join();
+  for (int t = 0; t < kThreads; ++t)
+    EXPECT_EQ(differing[static_cast<std::size_t>(t)], 0) << t;
 }
 
 // CHOLMOD's simplicial and supernodal LL' (a switch of 0 flops per entry of L

@@ -7,6 +7,7 @@
 #include <Eigen/CholmodSupport>
 #include <algorithm>
 #include <cstddef>
+#include <mutex>
 #include <new>
 #include <string>
 #include <vector>
@@ -69,7 +70,7 @@ class CholmodLlt : public Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower
     const std::vector<int> perm =
         groups.empty() ? std::vector<int>{} : GroupOrdering(a, groups, &cholmod());
     if (perm.empty()) {
-      analyzePattern(a);
+      AnalyzePatternLocked(a);
       return;
     }
     if (m_cholmodFactor != nullptr) cholmod_free_factor(&m_cholmodFactor, &cholmod());
@@ -83,13 +84,20 @@ class CholmodLlt : public Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower
     cholmod().nmethods = nmethods;
     cholmod().method[0].ordering = ordering;
     if (m_cholmodFactor == nullptr) {
-      analyzePattern(a);
+      AnalyzePatternLocked(a);
       return;
     }
     m_isInitialized = true;
     m_info = Eigen::Success;
     m_analysisIsOk = true;
     m_factorizationIsOk = false;
+  }
+
+  // Eigen's analyzePattern(): CHOLMOD's own ordering, which may be METIS
+  // (internal::MetisMutex).
+  void AnalyzePatternLocked(const SparseMatrix& a) {
+    const std::lock_guard<std::mutex> lock(MetisMutex());
+    analyzePattern(a);
   }
 
   // Takes `other`'s symbolic analysis (ordering and pattern of L) as its own,

@@ -22,6 +22,11 @@ cholmod_sparse CholmodLowerView(int rows, int* p, int* i, double* x) {
   return a;
 }
 
+std::mutex& MetisMutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+
 std::vector<int> GroupOrdering(const SparseMatrix& lower, const std::vector<int>& groups,
                                cholmod_common* common) {
   const int n = static_cast<int>(lower.rows());
@@ -50,8 +55,11 @@ std::vector<int> GroupOrdering(const SparseMatrix& lower, const std::vector<int>
   for (int c = 0; c < count; ++c) p[c + 1] += p[c];
   cholmod_sparse graph = CholmodLowerView(count, p.data(), i.data(), nullptr);
   std::vector<int> group_order(static_cast<std::size_t>(count));
-  if (count == 0 || !cholmod_metis(&graph, nullptr, 0, 0, group_order.data(), common))
-    return {};
+  if (count == 0) return {};
+  {
+    const std::lock_guard<std::mutex> lock(MetisMutex());
+    if (!cholmod_metis(&graph, nullptr, 0, 0, group_order.data(), common)) return {};
+  }
   // Rows by group, ascending within each.
   std::vector<int> start(static_cast<std::size_t>(count) + 1, 0);
   for (int g : groups) ++start[static_cast<std::size_t>(g) + 1];

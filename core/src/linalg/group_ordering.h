@@ -10,6 +10,7 @@
 
 #include <cholmod.h>
 
+#include <mutex>
 #include <vector>
 
 #include "femup/core/fe/model.h"
@@ -29,5 +30,15 @@ cholmod_sparse CholmodLowerView(int rows, int* p, int* i, double* x);
 // fails (the caller then orders the rows itself).
 std::vector<int> GroupOrdering(const SparseMatrix& lower, const std::vector<int>& groups,
                                cholmod_common* common);
+
+// The lock that every call which may reach METIS holds (cholmod_metis, and
+// cholmod_analyze where CHOLMOD may choose nested dissection). METIS 5.1 draws
+// its random numbers from one generator in global variables (GKlib's), seeded
+// afresh by every ordering and not locked: two orderings at once on two
+// threads take each other's draws, and either may come out other than it does
+// alone. Every solve on such an ordering then rounds otherwise, and a fit
+// whose misfit has several optima may end in another one, run to run (seen as
+// a diagnosis that changed with the number of threads).
+std::mutex& MetisMutex();
 
 }  // namespace femup::internal

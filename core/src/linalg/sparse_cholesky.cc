@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <mutex>
 #include <numeric>
 
 #include "femup/core/errors.h"
@@ -126,6 +127,8 @@ SparseCholesky::SparseCholesky(const SparseMatrix& a,
     m.common.method[0].ordering = CHOLMOD_GIVEN;
     m.factor = cholmod_analyze_p(&view, given.data(), nullptr, 0, &m.common);
   } else {
+    // CHOLMOD's own choice may be METIS (internal::MetisMutex).
+    const std::lock_guard<std::mutex> lock(internal::MetisMutex());
     m.factor = cholmod_analyze(&view, &m.common);
   }
   if (m.factor == nullptr && m.common.status == CHOLMOD_NOT_INSTALLED) {
