@@ -696,6 +696,20 @@ TEST(StructureDiagnosis, RunsOnAFinerMeshWhereTheModelsMovesTheModes) {
             "x.yaml");
       },
       {"refine_mesh"});
+  testing::ExpectInputError(
+      [] {
+        ParseStudy(
+            "name: x\nmodel: {type: chain, masses: [1], springs: [1]}\n"
+            "measurements:\n  - {state: a, frequencies_hz: [1]}\n"
+            "diagnosis: {form_step: sometimes}\n",
+            "x.yaml");
+      },
+      {"form_step"});
+  EXPECT_FALSE(ParseStudy("name: x\nmodel: {type: chain, masses: [1], springs: [1]}\n"
+                          "measurements:\n  - {state: a, frequencies_hz: [1]}\n"
+                          "diagnosis: {form_step: false}\n",
+                          "x.yaml")
+                   .diagnosis->form_step);
 }
 
 // A small jacket (1 x 1 bays, 3 levels of 10 m, X-braced faces, 2 elements per
@@ -762,8 +776,8 @@ ModalData JacketMeasured(const std::string& damaged, double loss, int num_modes,
 // well below 0.985), and at that point the whitened misfit (the model's form
 // error allowed for) gains nothing over "none". Each class is moved to the
 // whitened misfit's mode before its evidence: E is named, near its value.
-// Without that step (FEMUP_NO_FORM_STEP) the verdict is "none". (P 0.90 and
-// E 0.984 with it, when written.)
+// Without that step (EffectRankingOptions::form_step false) the verdict is "none". (P
+// 0.90 and E 0.984 with it, when written.)
 TEST(EffectRanking, NamesAUniformEErrorBesideTheModelsShearDeformation) {
   const Structure nominal = BuildSpaceFrameStructure(SmallJacket());
   const SpaceFrameSpec truth_spec = TimoshenkoJacket();
@@ -784,9 +798,9 @@ TEST(EffectRanking, NamesAUniformEErrorBesideTheModelsShearDeformation) {
   EXPECT_NEAR(r.classes[0].magnitudes[0].value, 0.985, 0.005);
   ASSERT_EQ(r.form_errors.size(), 1u);
 
-  setenv("FEMUP_NO_FORM_STEP", "1", 1);
+  EXPECT_TRUE(EffectRankingOptions().form_step);  // on unless asked otherwise
+  options.form_step = false;
   const EffectRanking raw = RankModelEffects(nominal, {d}, options);
-  unsetenv("FEMUP_NO_FORM_STEP");
   ASSERT_FALSE(raw.classes.empty());
   // The raw fit of E: 0.973 here, the verdict "none" at P 0.78.
   for (const RankedClass& c : raw.classes) {

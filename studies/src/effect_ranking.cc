@@ -26,9 +26,6 @@ namespace femup {
 
 namespace {
 
-// FEMUP_NO_FORM_STEP=1 leaves the classes at their raw fits (for comparison).
-bool StepsInForm() { return std::getenv("FEMUP_NO_FORM_STEP") == nullptr; }
-
 // One instance's best fit over its starts.
 struct Fit {
   bool ok = false;
@@ -536,7 +533,7 @@ EffectRanking RankModelEffects(const Structure& structure_in,
   // step's prediction is a lower bound of the misfit only to first order, and
   // on a jacket it was optimistic for a hundred places or more at once.
   constexpr int kRefitRounds = 2;
-  const bool step_in_form = StepsInForm();
+  const bool step_in_form = options.form_step;
   int refitted = 0;
   std::vector<RankedClass> classes;
   std::vector<Eigen::MatrixXd> jacobians, raw_jacobians;

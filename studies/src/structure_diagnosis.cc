@@ -113,6 +113,7 @@ StructureDiagnosisResult RunStructureDiagnosis(const Study& study) {
   options.solver = spec.solver;
   options.priors = spec.priors;
   options.formulation_error = spec.formulation_error;
+  options.form_step = spec.form_step;
   options.bagging_copies = spec.bagging_copies;
   options.max_members = spec.max_members;
   options.members_fitted = spec.members_fitted;

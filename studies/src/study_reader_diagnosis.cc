@@ -178,10 +178,26 @@ void ReadStatedPriors(const Field& f, const Study& study, DiagnosisSpec* d) {
 }  // namespace
 
 DiagnosisSpec ReadDiagnosis(const Field& f, const Study& study) {
-  f.ExpectKeys({"noise", "candidates", "max_effects", "held_out", "use_shapes",
-                "mesh_error", "formulation_error", "refine_mesh", "bagging_copies",
-                "max_members", "members_fitted", "form_error", "localise", "solver",
-                "confidence", "evidence", "evidence_samples", "priors", "weights"});
+  f.ExpectKeys({"noise",
+                "candidates",
+                "max_effects",
+                "held_out",
+                "use_shapes",
+                "mesh_error",
+                "formulation_error",
+                "refine_mesh",
+                "bagging_copies",
+                "max_members",
+                "members_fitted",
+                "form_error",
+                "localise",
+                "solver",
+                "confidence",
+                "evidence",
+                "evidence_samples",
+                "priors",
+                "weights",
+                "form_step"});
   DiagnosisSpec d;
   if (f.Has("noise")) {
     const Field n = f["noise"];
@@ -234,6 +250,7 @@ DiagnosisSpec ReadDiagnosis(const Field& f, const Study& study) {
   if (f.Has("use_shapes")) d.use_shapes = f["use_shapes"].Bool();
   if (f.Has("mesh_error")) d.mesh_error = f["mesh_error"].Bool();
   if (f.Has("formulation_error")) d.formulation_error = f["formulation_error"].Bool();
+  if (f.Has("form_step")) d.form_step = f["form_step"].Bool();
   if (f.Has("refine_mesh")) d.refine_mesh = f["refine_mesh"].Bool();
   if (f.Has("bagging_copies")) {
     d.bagging_copies = f["bagging_copies"].Int();

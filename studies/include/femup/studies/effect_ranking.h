@@ -88,6 +88,11 @@ struct EffectRankingOptions {
   // Allow for the model's form error where the structure carries form
   // variants (above); false: judge the classes on the stated noise alone.
   bool formulation_error = true;
+  // Where the model's form error is allowed for, move each class to the mode
+  // of the misfit its evidence is taken on (one Gauss-Newton step on the
+  // whitened misfit) before its evidence; false: each class at its raw fit
+  // (for comparison; docs/diagnosis.md, "Each class is moved to the mode").
+  bool form_step = true;
   // Bootstrap copies of the residuals the probabilities are averaged over
   // (above); 0: the Laplace posterior alone.
   int bagging_copies = 400;

@@ -150,6 +150,10 @@ struct DiagnosisSpec {
   // formulation (a plane frame's members with shear deformation;
   // effect_ranking.h). Not used by the cantilever's own pipeline.
   bool formulation_error = true;
+  // Where the form error is allowed for, each class moved to the mode of the
+  // misfit its evidence is taken on; false: at its raw fit (for comparison).
+  // EffectRankingOptions::form_step. Not used by the cantilever's own pipeline.
+  bool form_step = true;
   // Where the model's builder made it on a finer mesh too (a plane frame:
   // FormVariant::model) and that mesh moves one of the measured modes by more
   // than 3 frequency noise standard deviations, diagnose on the finer mesh
