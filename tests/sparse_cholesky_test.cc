@@ -9,9 +9,9 @@
 #include <cmath>
 #include <limits>
 #include <random>
-#include <thread>
 #include <vector>
 
+#include "concurrent_runs.h"
 #include "femup/core/errors.h"
 
 namespace femup {
@@ -230,9 +230,6 @@ TEST(SparseCholesky, HalfSolveThreadsGiveTheSameBits) {
   }
 }
 
-// Three unknowns per node of a grid (a node's block couples them): the factor
-// ordered on the node graph solves as the dense factor and fills about as
-// little as the one ordered on the unknowns themselves.
 // Factorisations on several threads at once give the bits of one alone, with
 // METIS's nested dissection, whose random generator is a global of METIS's
 // (internal::MetisMutex): without the lock, the Ritz bases of a diagnosis's
@@ -244,22 +241,13 @@ TEST(SparseCholesky, FactorisationsOnSeveralThreadsAtOnceGiveTheBitsOfOneAlone) 
   SparseCholeskyOptions nd;
   nd.ordering = Ordering::kNestedDissection;
   const Eigen::MatrixXd alone = SparseCholesky(a, nd).Solve(b);
-  constexpr int kThreads = 4, kSolves = 25;
-  std::vector<int> differing(kThreads, 0);
-  std::vector<std::thread> threads;
-  for (int t = 0; t < kThreads; ++t) {
-    threads.emplace_back([&, t] {
-      for (int k = 0; k < kSolves; ++k) {
-        if (SparseCholesky(a, nd).Solve(b) != alone)
-          ++differing[static_cast<std::size_t>(t)];
-      }
-    });
-  }
-  for (std::thread& thread : threads) thread.join();
-  for (int t = 0; t < kThreads; ++t)
-    EXPECT_EQ(differing[static_cast<std::size_t>(t)], 0) << t;
+  femup::testing::ExpectSameBitsOnThreads(
+      4, 25, [&] { return SparseCholesky(a, nd).Solve(b) == alone; });
 }
 
+// Three unknowns per node of a grid (a node's block couples them): the factor
+// ordered on the node graph solves as the dense factor and fills about as
+// little as the one ordered on the unknowns themselves.
 TEST(SparseCholesky, NodeGroupOrderingSolvesAndFillsAsTheUnknownOrdering) {
   const SparseMatrix grid = Grid(24, 18, 0.05);
   const int nodes = static_cast<int>(grid.rows());

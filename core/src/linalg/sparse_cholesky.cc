@@ -127,8 +127,10 @@ SparseCholesky::SparseCholesky(const SparseMatrix& a,
     m.common.method[0].ordering = CHOLMOD_GIVEN;
     m.factor = cholmod_analyze_p(&view, given.data(), nullptr, 0, &m.common);
   } else {
-    // CHOLMOD's own choice may be METIS (internal::MetisMutex).
-    const std::lock_guard<std::mutex> lock(internal::MetisMutex());
+    // CHOLMOD's own choice may be METIS, whose random generator is global
+    // (internal::MetisMutex); minimum degree alone needs no lock.
+    std::unique_lock<std::mutex> lock(internal::MetisMutex(), std::defer_lock);
+    if (options.ordering != SparseCholeskyOptions::Ordering::kAmd) lock.lock();
     m.factor = cholmod_analyze(&view, &m.common);
   }
   if (m.factor == nullptr && m.common.status == CHOLMOD_NOT_INSTALLED) {
