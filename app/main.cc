@@ -6,10 +6,12 @@
 #include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
+#include <string>
 #include <vector>
 
 #include "commands/commands.h"
 #include "femup/core/errors.h"
+#include "femup/core/linalg/blas.h"
 
 namespace femup::cli {
 namespace {
@@ -25,11 +27,19 @@ std::vector<Command> Commands() {
 }  // namespace femup::cli
 
 int main(int argc, char** argv) {
+  // OpenBLAS's kernels for this processor where Debian's OpenBLAS does not
+  // know it, and one BLAS thread per caller: femup parallelises above the
+  // BLAS, with results that do not depend on `--threads`
+  // (femup/core/linalg/blas.h).
+  femup::RestartWithBetterBlasKernels(argv);
+  femup::UseOneBlasThreadPerCaller();
   CLI::App app{
       "femup: find where a finite element model is wrong, and by how much, from "
       "vibration measurements"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", femup::cli::kVersion);
+  app.set_version_flag("--version", [] {
+    return std::string(femup::cli::kVersion) + "\n" + femup::BlasSummary();
+  });
   const femup::cli::Invocation invocation{femup::cli::QuotedCommandLine(argc, argv)};
 
   const std::vector<femup::cli::Command> commands = femup::cli::Commands();

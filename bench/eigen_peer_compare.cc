@@ -48,6 +48,7 @@
 
 #include "femup/core/fe/space_frame.h"
 #include "femup/core/io/matrix_market.h"
+#include "femup/core/linalg/blas.h"
 #include "femup/core/linalg/modal.h"
 #include "femup/core/parallel.h"
 #include "peer_runner.h"
@@ -289,6 +290,10 @@ std::string Tables(const std::vector<Row>& rows, const std::vector<std::string>&
 }  // namespace
 
 int main(int argc, char** argv) {
+  // As the command line: OpenBLAS's kernels for this processor, one BLAS thread
+  // per caller (femup/core/linalg/blas.h).
+  femup::RestartWithBetterBlasKernels(argv);
+  femup::UseOneBlasThreadPerCaller();
   CLI::App app{"femup's sparse shift-invert eigensolver against scipy's eigsh"};
   std::string sizes_text = "1e5";
   int modes = 10;
@@ -427,7 +432,7 @@ int main(int argc, char** argv) {
       << (threads == 0
               ? " (one per core: " + std::to_string(femup::DefaultThreadCount()) + ")"
               : std::string())
-      << "). "
+      << "; " << femup::BlasSummary() << "). "
       << (versions.empty()
               ? std::string("Peer: not run.")
               : "Peer: " + versions + " (" + python +

@@ -36,6 +36,7 @@
 
 #include "femup/core/errors.h"
 #include "femup/core/io/matrix_market.h"
+#include "femup/core/linalg/blas.h"
 #include "femup/studies/noise_study.h"
 #include "femup/studies/study.h"
 #include "peer_runner.h"
@@ -147,6 +148,10 @@ std::string Cell(const PeerResult& p, const char* format, double value) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // As the command line: OpenBLAS's kernels for this processor, one BLAS thread
+  // per caller (femup/core/linalg/blas.h).
+  femup::RestartWithBetterBlasKernels(argv);
+  femup::UseOneBlasThreadPerCaller();
   CLI::App app{"femup's noise study against the same computation in numpy"};
   std::string study_path = FEMUP_NOISE_STUDY;
   int draws = 0, repeat = 1, rounds = 1;

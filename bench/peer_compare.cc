@@ -30,6 +30,7 @@
 
 #include "bounded_problem.h"
 #include "femup/core/io/matrix_market.h"
+#include "femup/core/linalg/blas.h"
 #include "femup/solvers/linear_solver.h"
 #include "peer_runner.h"
 
@@ -184,6 +185,10 @@ std::string Tables(const std::vector<Row>& rows, const std::string& peer_note) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // As the command line: OpenBLAS's kernels for this processor, one BLAS thread
+  // per caller (femup/core/linalg/blas.h).
+  femup::RestartWithBetterBlasKernels(argv);
+  femup::UseOneBlasThreadPerCaller();
   CLI::App app{"femup's bounded least-squares solvers against scipy's lsq_linear"};
   std::string sizes_text = "500x50,2000x200,5000x500";
   int repeat = 3;

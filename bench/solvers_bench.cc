@@ -69,6 +69,7 @@
 
 #include "bounded_problem.h"
 #include "femup/core/fe/plane_frame.h"
+#include "femup/core/linalg/blas.h"
 #include "femup/core/linalg/modal.h"
 #include "femup/core/sysid/measurement.h"
 #include "femup/evaluation/ill_posed.h"
@@ -373,6 +374,10 @@ void RegisterLargeFrame() {
 // Google Benchmark's main, with the benchmarks registered at run time: their
 // problems are built here, once, not at static initialisation.
 int main(int argc, char** argv) {
+  // As the command line: OpenBLAS's kernels for this processor, one BLAS thread
+  // per caller (femup/core/linalg/blas.h).
+  femup::RestartWithBetterBlasKernels(argv);
+  femup::UseOneBlasThreadPerCaller();
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   RegisterPaperChain();

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "femup/core/errors.h"
+#include "femup/core/linalg/blas.h"
 #include "femup/evaluation/nist_strd.h"
 #include "femup/reporting/output_dir.h"
 
@@ -132,6 +133,10 @@ using femup_validate::Report;
 using femup_validate::Seconds;
 
 int main(int argc, char** argv) {
+  // As the command line: OpenBLAS's kernels for this processor, one BLAS thread
+  // per caller (femup/core/linalg/blas.h).
+  femup::RestartWithBetterBlasKernels(argv);
+  femup::UseOneBlasThreadPerCaller();
   // CLI11 reports an unknown subcommand as an unexpected argument; name it.
   if (argc > 1 && argv[1][0] != '-' &&
       std::find(kSubcommands.begin(), kSubcommands.end(), argv[1]) ==

@@ -6,6 +6,7 @@
 
 #include "common.h"
 #include "femup/core/errors.h"
+#include "femup/core/linalg/blas.h"
 
 namespace femup_python {
 
@@ -50,6 +51,11 @@ PYBIND11_MODULE(_femup, m) {
       "converge); `where` holds the location.";
   fp::g_numerical_error = numerical_error.ptr();
   py::register_exception_translator(&fp::TranslateInputError);
+  // One BLAS thread per caller, as the command line (femup/core/linalg/blas.h).
+  femup::UseOneBlasThreadPerCaller();
+  m.def("blas", &femup::BlasSummary,
+        "The BLAS and LAPACK femup is linked against and its threads per call, e.g. "
+        "'BLAS: OpenBLAS 0.3.21 ..., 1 thread per call' (femup parallelises above it).");
   fp::InitModels(m);
   fp::InitMeasurements(m);
   fp::InitSolvers(m);

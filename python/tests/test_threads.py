@@ -44,3 +44,12 @@ def test_a_diagnosis_runs_while_python_keeps_running():
     # Released: this thread ran through most of the call; held: ~5 ms of it.
     share = ticks / (rate * elapsed)
     assert share > 0.1, "Python ran %.1f %% of a %.2f s call" % (100 * share, elapsed)
+
+
+def test_the_blas_runs_one_thread_per_call():
+    # femup parallelises above the BLAS (its results do not depend on the
+    # number of threads), so importing it sets the BLAS to one thread per call.
+    summary = femup.blas()
+    assert summary.startswith("BLAS: ")
+    if "OpenBLAS" in summary:
+        assert ", 1 thread per call" in summary, summary

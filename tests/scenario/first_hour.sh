@@ -3,6 +3,21 @@
 # nothing left behind when the job fails), one-sided bounds written as
 # -inf/inf by numpy or MATLAB, a dry structure with the default added mass.
 source "$(dirname "$0")/lib.sh"
+# The version names the BLAS femup runs on and its one thread per call.
+"$FEMUP" --version > version.txt
+grep -q "^femup [0-9]" version.txt || fail "no version: $(cat version.txt)"
+grep -q "^BLAS: " version.txt || fail "no BLAS named: $(cat version.txt)"
+# On a processor with AVX2 and FMA, OpenBLAS's kernels are at least Haswell's:
+# femup starts again with them where Debian's OpenBLAS does not know the
+# processor (it would take its SSE3 Prescott kernels); a core the user sets stays.
+if grep -q "^BLAS: OpenBLAS" version.txt && grep -qw avx2 /proc/cpuinfo &&
+   grep -qw fma /proc/cpuinfo; then
+  grep -qw Prescott version.txt && fail "SSE3 kernels on an AVX2 processor: $(cat version.txt)"
+  OPENBLAS_CORETYPE=Prescott "$FEMUP" --version > version_user.txt
+  grep -qw Prescott version_user.txt || fail "the user's core not kept: $(cat version_user.txt)"
+  grep -q "set OPENBLAS_CORETYPE=" version_user.txt ||
+    fail "no hint for the older kernels: $(cat version_user.txt)"
+fi
 
 # -o a/b/c: the parents are created; the job's files land in c.
 "$FEMUP" run "$ROOT/examples/paper_chain_masses_1-3_wet.yaml" -o deep/er/out --no-plots -q \
