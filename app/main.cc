@@ -31,8 +31,7 @@ int main(int argc, char** argv) {
   // know it, and one BLAS thread per caller: femup parallelises above the
   // BLAS, with results that do not depend on `--threads`
   // (femup/core/linalg/blas.h).
-  femup::RestartWithBetterBlasKernels(argv);
-  femup::UseOneBlasThreadPerCaller();
+  femup::SetUpBlasForProgram(argv);
   CLI::App app{
       "femup: find where a finite element model is wrong, and by how much, from "
       "vibration measurements"};

@@ -290,10 +290,7 @@ std::string Tables(const std::vector<Row>& rows, const std::vector<std::string>&
 }  // namespace
 
 int main(int argc, char** argv) {
-  // As the command line: OpenBLAS's kernels for this processor, one BLAS thread
-  // per caller (femup/core/linalg/blas.h).
-  femup::RestartWithBetterBlasKernels(argv);
-  femup::UseOneBlasThreadPerCaller();
+  femup::SetUpBlasForProgram(argv);  // as the command line (femup/core/linalg/blas.h)
   CLI::App app{"femup's sparse shift-invert eigensolver against scipy's eigsh"};
   std::string sizes_text = "1e5";
   int modes = 10;

@@ -148,10 +148,7 @@ std::string Cell(const PeerResult& p, const char* format, double value) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  // As the command line: OpenBLAS's kernels for this processor, one BLAS thread
-  // per caller (femup/core/linalg/blas.h).
-  femup::RestartWithBetterBlasKernels(argv);
-  femup::UseOneBlasThreadPerCaller();
+  femup::SetUpBlasForProgram(argv);  // as the command line (femup/core/linalg/blas.h)
   CLI::App app{"femup's noise study against the same computation in numpy"};
   std::string study_path = FEMUP_NOISE_STUDY;
   int draws = 0, repeat = 1, rounds = 1;

@@ -185,10 +185,7 @@ std::string Tables(const std::vector<Row>& rows, const std::string& peer_note) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  // As the command line: OpenBLAS's kernels for this processor, one BLAS thread
-  // per caller (femup/core/linalg/blas.h).
-  femup::RestartWithBetterBlasKernels(argv);
-  femup::UseOneBlasThreadPerCaller();
+  femup::SetUpBlasForProgram(argv);  // as the command line (femup/core/linalg/blas.h)
   CLI::App app{"femup's bounded least-squares solvers against scipy's lsq_linear"};
   std::string sizes_text = "500x50,2000x200,5000x500";
   int repeat = 3;

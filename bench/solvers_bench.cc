@@ -374,10 +374,7 @@ void RegisterLargeFrame() {
 // Google Benchmark's main, with the benchmarks registered at run time: their
 // problems are built here, once, not at static initialisation.
 int main(int argc, char** argv) {
-  // As the command line: OpenBLAS's kernels for this processor, one BLAS thread
-  // per caller (femup/core/linalg/blas.h).
-  femup::RestartWithBetterBlasKernels(argv);
-  femup::UseOneBlasThreadPerCaller();
+  femup::SetUpBlasForProgram(argv);  // as the command line (femup/core/linalg/blas.h)
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   RegisterPaperChain();

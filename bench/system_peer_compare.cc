@@ -255,10 +255,7 @@ double MaxAbsDifference(const nlohmann::json& a, const nlohmann::json& b) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  // As the command line: OpenBLAS's kernels for this processor, one BLAS thread
-  // per caller (femup/core/linalg/blas.h).
-  femup::RestartWithBetterBlasKernels(argv);
-  femup::UseOneBlasThreadPerCaller();
+  femup::SetUpBlasForProgram(argv);  // as the command line (femup/core/linalg/blas.h)
   CLI::App app{"the linear correction-factor system at scale: femup against scipy"};
   std::string size = "1e5";
   int air_modes = 5, water_modes = 5, threads = 1;

@@ -133,10 +133,7 @@ using femup_validate::Report;
 using femup_validate::Seconds;
 
 int main(int argc, char** argv) {
-  // As the command line: OpenBLAS's kernels for this processor, one BLAS thread
-  // per caller (femup/core/linalg/blas.h).
-  femup::RestartWithBetterBlasKernels(argv);
-  femup::UseOneBlasThreadPerCaller();
+  femup::SetUpBlasForProgram(argv);  // as the command line (femup/core/linalg/blas.h)
   // CLI11 reports an unknown subcommand as an unexpected argument; name it.
   if (argc > 1 && argv[1][0] != '-' &&
       std::find(kSubcommands.begin(), kSubcommands.end(), argv[1]) ==

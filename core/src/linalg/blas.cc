@@ -90,6 +90,11 @@ void RestartWithBetterBlasKernels(char** argv) {
   ::unsetenv("OPENBLAS_CORETYPE");  // not started again: OpenBLAS's choice stands
 }
 
+void SetUpBlasForProgram(char** argv) {
+  RestartWithBetterBlasKernels(argv);
+  UseOneBlasThreadPerCaller();
+}
+
 std::string BlasSummary() {
   const BlasInfo blas = CurrentBlas();
   std::string line = "BLAS: " + blas.name;

@@ -14,9 +14,9 @@
 // Kernels: OpenBLAS picks its kernels for the processor when it is loaded.
 // Debian 12's OpenBLAS (0.3.21) does not know processors newer than itself
 // (an Intel Xeon of family 6, model 207, here) and falls back to its oldest
-// x86-64 kernels (Prescott: SSE3), 2.5-3.5x slower at dgemm than the AVX2 or
-// AVX-512 kernels that processor runs. BetterBlasCoreType() names those, and
-// a program's main can start itself again with them
+// x86-64 kernels (Prescott: SSE3): dgemm at 15.5 GFLOP/s there against 68
+// with the AVX-512 kernels that processor runs (scripts/blas_compare.sh).
+// BetterBlasCoreType() names those, and a program's main can start itself again with them
 // (RestartWithBetterBlasKernels): OpenBLAS reads OPENBLAS_CORETYPE only when
 // it is loaded.
 #pragma once
@@ -60,6 +60,10 @@ std::string BetterBlasCoreType();
 // only when there is nothing to do or the start failed (the program then goes
 // on with OpenBLAS's own choice).
 void RestartWithBetterBlasKernels(char** argv);
+
+// What a program's main calls first: RestartWithBetterBlasKernels(argv), then
+// UseOneBlasThreadPerCaller().
+void SetUpBlasForProgram(char** argv);
 
 // One line for `femup --version` and reports: "BLAS: OpenBLAS 0.3.21 ...,
 // 1 thread per call", and a hint where the kernels are older than the
