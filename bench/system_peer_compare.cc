@@ -459,7 +459,7 @@ int main(int argc, char** argv) {
        << Format("%.1f", f["nnz_w"].get<double>() / f["nnz_z"].get<double>())
        << "x), half solves " << Format("%.2f", f["half_solve_time"].get<double>())
        << " s, G = sum W_j' W_j " << Format("%.2f", f["gram_time"].get<double>())
-       << " s, pivoted LDL' of G " << Format("%.2f", f["compress_time"].get<double>())
+       << " s, pivoted Cholesky of G " << Format("%.2f", f["compress_time"].get<double>())
        << " s, " << f["dropped"].get<int>() << " directions dropped.";
     // The arithmetic the method cannot skip, at the dense product's rate: M's
     // factorisation (the M^-1 weighting) and G's lower triangle.

@@ -184,6 +184,21 @@ TEST(NormalCorrectionSystem, MassThatIsNotPositiveDefiniteIsNamed) {
   }
 }
 
+// Shapes finite but too large to square: G overflows, and the error says so
+// rather than returning a system of infinities.
+TEST(NormalCorrectionSystem, NormalMatrixThatOverflowsIsNamed) {
+  const Case c = Chain();
+  std::vector<ModalData> huge = c.states;
+  for (ModalData& st : huge) st.shapes *= 1e160;
+  try {
+    BuildNormalCorrectionSystem(c.model, huge);
+    ADD_FAILURE() << "an overflowing system accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where(), "measurements");
+    EXPECT_NE(std::string(e.what()).find("not finite"), std::string::npos) << e.what();
+  }
+}
+
 TEST(NormalCorrectionSystem, BadInputNamesTheField) {
   const Case c = Chain();
   EXPECT_THROW(BuildNormalCorrectionSystem(c.model, {}), InputError);

@@ -1,14 +1,15 @@
 #include "femup/problems/normal_correction_system.h"
 
-#include <Eigen/Cholesky>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <numeric>
 #include <sstream>
 
 #include "femup/core/errors.h"
+#include "femup/core/linalg/dense_kernels.h"
 #include "femup/core/linalg/sparse_cholesky.h"
 #include "femup/core/parallel.h"
 
@@ -22,18 +23,41 @@ double Since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// Rows of W grouped for the dense products: a block is a run of consecutive
+// non-empty rows whose column patterns are joined into one (sorted) union, on
+// which their values are laid out dense with zeros where a row lacks a column.
+// Rows of one node, and nodes along a chain of the elimination tree, reach
+// nearly the same factors, so little is padded.
+struct GramBlock {
+  int first_row = 0, last_row = 0;  // [first_row, last_row): some may be empty
+  int columns_begin = 0;            // into the blocks' union of columns
+  int columns = 0;
+};
+
+// A block takes a row while at least 1 - kGramPadding of its dense layout
+// holds entries, and up to kGramBlockRows rows.
+constexpr double kGramPadding = 0.25;
+constexpr int kGramBlockRows = 48;
+// The blocks' dense products made at once (then added into G), at most this
+// many doubles of them (8 MB).
+constexpr std::size_t kGramBatchDoubles = std::size_t{1} << 20;
+
 // The lower triangle of g += sum_j W_j' W_j for W_j (n x p, compressed) that
-// share one pattern (HalfSolve's output for the modes of a state): row by row,
-// each row's t entries for all modes at once, t (t + 1) / 2 products of
-// m-vectors into G, with no sparse product and its sparse result. Returns the
-// floating-point operations it made (a multiplication and an addition per
-// product term). Runs on `threads` threads.
+// share one pattern (HalfSolve's output for the modes of a state). The rows
+// are grouped into blocks (GramBlock); each block's values for all modes form
+// a dense (rows m) x t matrix V on the union of its rows' t columns, and
+// V' V (the BLAS's dsyrk) is added into G on those columns. Returns the
+// floating-point operations the method needs, whatever the padding: t (t + 1)
+// m per row of t entries (a multiplication and an addition per product term
+// of its lower triangle). Runs on `threads` threads with the same bits for
+// any number of them: each block's product does not depend on them, and each
+// entry of G takes the blocks' terms in block order.
 double AddGramLower(const std::vector<SparseMatrix>& w, int threads, Eigen::MatrixXd* g) {
   if (w.empty()) return 0;
   const SparseMatrix& first = w.front();
   const int n = static_cast<int>(first.rows());
   const int p = static_cast<int>(first.cols());
-  const std::size_t m = w.size();
+  const int m = static_cast<int>(w.size());
   const int* outer = first.outerIndexPtr();
   const int* inner = first.innerIndexPtr();
   const int nnz = outer[p];
@@ -49,20 +73,63 @@ double AddGramLower(const std::vector<SparseMatrix>& w, int threads, Eigen::Matr
     for (int q = outer[c]; q < outer[c + 1]; ++q) {
       const int slot = next[inner[q]]++;
       column[slot] = c;
-      for (std::size_t j = 0; j < m; ++j) value[slot * m + j] = w[j].valuePtr()[q];
+      for (int j = 0; j < m; ++j)
+        value[static_cast<std::size_t>(slot) * m + j] = w[j].valuePtr()[q];
     }
   }
-  double* gd = g->data();
-  const Eigen::Index ld = g->rows();
   double flops = 0;
-  // The products each column of G receives (its pairs a <= b in every row),
-  // to split G's columns into kGramParts ranges of about equal work.
-  std::vector<double> work(static_cast<std::size_t>(p), 0.0);
   for (int r = 0; r < n; ++r) {
     const double t = row_start[r + 1] - row_start[r];
-    flops += t * (t + 1) * static_cast<double>(m);
-    for (int a = row_start[r]; a < row_start[r + 1]; ++a)
-      work[static_cast<std::size_t>(column[a])] += row_start[r + 1] - a;
+    flops += t * (t + 1) * m;
+  }
+
+  // The blocks, and their unions of columns one after another.
+  std::vector<GramBlock> blocks;
+  std::vector<int> unions;
+  {
+    std::vector<int> current, merged;
+    GramBlock block;
+    long long entries = 0;  // of the block's rows
+    int rows = 0;
+    const auto close = [&](int end_row) {
+      if (rows == 0) return;
+      block.last_row = end_row;
+      block.columns_begin = static_cast<int>(unions.size());
+      block.columns = static_cast<int>(current.size());
+      unions.insert(unions.end(), current.begin(), current.end());
+      blocks.push_back(block);
+      rows = 0;
+      entries = 0;
+      current.clear();
+    };
+    for (int r = 0; r < n; ++r) {
+      const int* lo = column.data() + row_start[r];
+      const int* hi = column.data() + row_start[r + 1];
+      if (lo == hi) continue;
+      merged.clear();
+      std::set_union(current.begin(), current.end(), lo, hi, std::back_inserter(merged));
+      const double dense =
+          static_cast<double>(rows + 1) * static_cast<double>(merged.size());
+      const long long with_row = entries + (hi - lo);
+      if (rows > 0 && (rows == kGramBlockRows ||
+                       dense - static_cast<double>(with_row) > kGramPadding * dense)) {
+        close(r);
+        merged.assign(lo, hi);
+      }
+      if (rows == 0) block.first_row = r;
+      current.swap(merged);
+      entries += hi - lo;
+      ++rows;
+    }
+    close(n);
+  }
+
+  // The products each column of G receives, to split G's columns into
+  // kGramParts ranges of about equal work for the additions.
+  std::vector<double> work(static_cast<std::size_t>(p), 0.0);
+  for (const GramBlock& b : blocks) {
+    for (int a = 0; a < b.columns; ++a)
+      work[unions[b.columns_begin + a]] += b.columns - a;
   }
   std::vector<int> part_start(kGramParts + 1, p);
   part_start[0] = 0;
@@ -75,31 +142,69 @@ double AddGramLower(const std::vector<SparseMatrix>& w, int threads, Eigen::Matr
         part_start[cut++] = c + 1;
     }
   }
-  // Each part writes the columns of G in its range only, their terms added in
-  // row order as one loop would: the bits do not depend on the threads. A
-  // row's entries are in ascending column order, so a part's are contiguous.
-  ParallelFor(kGramParts, threads, [&](int part) {
-    const int lo = part_start[part], hi = part_start[part + 1];
-    if (lo >= hi) return;
-    for (int r = 0; r < n; ++r) {
-      const int* first_col = column.data() + row_start[r];
-      const int* last_col = column.data() + row_start[r + 1];
-      const int begin =
-          static_cast<int>(std::lower_bound(first_col, last_col, lo) - column.data());
-      const int end =
-          static_cast<int>(std::lower_bound(first_col, last_col, hi) - column.data());
-      for (int a = begin; a < end; ++a) {
-        const double* va = value.data() + static_cast<std::size_t>(a) * m;
-        double* ga = gd + static_cast<Eigen::Index>(column[a]) * ld;  // column a of G
-        for (int b = a; b < row_start[r + 1]; ++b) {
-          const double* vb = value.data() + static_cast<std::size_t>(b) * m;
-          double sum = 0;
-          for (std::size_t j = 0; j < m; ++j) sum += va[j] * vb[j];
-          ga[column[b]] += sum;  // G(column b, column a), column b >= column a
+
+  double* gd = g->data();
+  const Eigen::Index ld = g->rows();
+  std::vector<double> products;  // the batch's V' V, one after another
+  std::vector<std::size_t> offset;
+  std::vector<std::vector<double>> scratch;  // per worker: a block's V
+  for (std::size_t b0 = 0; b0 < blocks.size();) {
+    // A batch: blocks from b0 while their products fit (at least one).
+    std::size_t b1 = b0, size = 0;
+    offset.clear();
+    while (b1 < blocks.size()) {
+      const std::size_t t = static_cast<std::size_t>(blocks[b1].columns);
+      if (b1 > b0 && size + t * t > kGramBatchDoubles) break;
+      offset.push_back(size);
+      size += t * t;
+      ++b1;
+    }
+    products.resize(size);
+    const int count = static_cast<int>(b1 - b0);
+    scratch.resize(static_cast<std::size_t>(ParallelWorkers(count, threads)));
+    ParallelForWorkers(count, threads, [&](int index, int worker) {
+      const GramBlock& b = blocks[b0 + static_cast<std::size_t>(index)];
+      const int* cols = unions.data() + b.columns_begin;
+      const int k = (b.last_row - b.first_row) * m;
+      std::vector<double>& buffer = scratch[static_cast<std::size_t>(worker)];
+      buffer.assign(static_cast<std::size_t>(k) * b.columns, 0.0);
+      Eigen::Map<Eigen::MatrixXd> v(buffer.data(), k, b.columns);
+      for (int r = b.first_row; r < b.last_row; ++r) {
+        int pos = 0;
+        for (int e = row_start[r]; e < row_start[r + 1]; ++e) {
+          while (cols[pos] != column[e]) ++pos;  // both ascending, row's within the union
+          for (int j = 0; j < m; ++j) {
+            v((r - b.first_row) * m + j, pos) =
+                value[static_cast<std::size_t>(e) * m + j];
+          }
         }
       }
-    }
-  });
+      Eigen::Map<Eigen::MatrixXd> c(
+          products.data() + offset[static_cast<std::size_t>(index)], b.columns,
+          b.columns);
+      RankUpdateLower(v, 1.0, 0.0, c);
+    });
+    // Each part adds into the columns of G in its range only, block by block.
+    ParallelFor(kGramParts, threads, [&](int part) {
+      const int lo = part_start[part], hi = part_start[part + 1];
+      if (lo >= hi) return;
+      for (std::size_t i = b0; i < b1; ++i) {
+        const GramBlock& b = blocks[i];
+        const int* cols = unions.data() + b.columns_begin;
+        const int begin =
+            static_cast<int>(std::lower_bound(cols, cols + b.columns, lo) - cols);
+        const int end =
+            static_cast<int>(std::lower_bound(cols, cols + b.columns, hi) - cols);
+        const double* c = products.data() + offset[i - b0];
+        for (int a = begin; a < end; ++a) {
+          double* ga = gd + static_cast<Eigen::Index>(cols[a]) * ld;  // column a of G
+          const double* ca = c + static_cast<std::size_t>(a) * b.columns;
+          for (int bb = a; bb < b.columns; ++bb) ga[cols[bb]] += ca[bb];
+        }
+      }
+    });
+    b0 = b1;
+  }
   return flops;
 }
 
@@ -196,40 +301,47 @@ LinearProblem BuildNormalCorrectionSystem(const ParametrisedModel& model,
     flops_gram += AddGramLower(w, options.threads, &g);
     seconds_gram += Since(t_phase);
   }
-  // The upper triangle from the lower (a loop: no aliasing between the two).
-  for (int c = 1; c < p; ++c) {
-    for (int r = 0; r < c; ++r) g(r, c) = g(c, r);
-  }
   const double assembly = Since(t0);
 
-  // Column-scaled square root by pivoted LDL' (stable on a semidefinite G):
-  // D G D = P' L S L' P, A = S^1/2 L' P D^-1, and b with A' b = h:
-  // S^1/2 b = L^-1 P D h. Pivots at or below p eps max are dropped (zero rows).
+  // Column-scaled square root by Cholesky with complete pivoting (stable on a
+  // semidefinite G; LAPACK's dpstrf): with D G D = P L L' P', A = L' P' D^-1
+  // and b with A' b = h: L b = P' D h. The factorisation stops at pivots at
+  // or below p eps times the largest (the scaled diagonal's 1): those rows of
+  // A and b are zero (dropped).
   const auto t1 = std::chrono::steady_clock::now();
   Eigen::VectorXd d(p);
   for (int k = 0; k < p; ++k) d[k] = g(k, k) > 0 ? 1.0 / std::sqrt(g(k, k)) : 1.0;
-  const Eigen::LDLT<Eigen::MatrixXd> ldlt(d.asDiagonal() * g * d.asDiagonal());
-  const Eigen::VectorXd& s = ldlt.vectorD();
-  const double smax = s.size() > 0 ? std::max(s.maxCoeff(), 0.0) : 0.0;
-  const double threshold = p * std::numeric_limits<double>::epsilon() * smax;
-  LinearProblem problem;
-  Eigen::MatrixXd pd = d.cwiseInverse().asDiagonal();
-  pd = ldlt.transpositionsP() * pd;
-  problem.A = ldlt.matrixU() * pd;
-  Eigen::VectorXd y = ldlt.transpositionsP() * (d.asDiagonal() * h);
-  ldlt.matrixL().solveInPlace(y);
-  problem.b = Eigen::VectorXd::Zero(p);
-  int dropped = 0;
-  for (int i = 0; i < p; ++i) {
-    if (!(s[i] > threshold)) {
-      ++dropped;
-      problem.A.row(i).setZero();
-      continue;
-    }
-    const double root = std::sqrt(s[i]);
-    problem.A.row(i) *= root;
-    problem.b[i] = y[i] / root;
+  for (int c = 0; c < p; ++c) {  // D G D, lower triangle
+    for (int r = c; r < p; ++r) g(r, c) *= d[r] * d[c];
   }
+  double largest = 0;
+  for (int k = 0; k < p; ++k) largest = std::max(largest, g(k, k));
+  std::vector<int> pivots;
+  const int rank = PivotedCholeskyLower(
+      g, p * std::numeric_limits<double>::epsilon() * largest, &pivots);
+  if (rank < 0) {
+    throw InputError("measurements",
+                     "the correction system's normal matrix is not finite: the measured "
+                     "shapes or the model's matrices are too large to square in double "
+                     "precision");
+  }
+  LinearProblem problem;
+  problem.A = Eigen::MatrixXd::Zero(p, p);
+  for (int i = 0; i < rank; ++i) {
+    for (int j = i; j < p; ++j) {
+      const int k = pivots[static_cast<std::size_t>(j)];
+      problem.A(i, k) = g(j, i) / d[k];
+    }
+  }
+  problem.b = Eigen::VectorXd::Zero(p);
+  for (int j = 0; j < rank; ++j) {
+    const int k = pivots[static_cast<std::size_t>(j)];
+    problem.b[j] = d[k] * h[k];
+  }
+  g.topLeftCorner(rank, rank)
+      .triangularView<Eigen::Lower>()
+      .solveInPlace(problem.b.head(rank));
+  const int dropped = p - rank;
   problem.source_rows = dofs * modes;
   problem.residual_offset = std::max(0.0, f2 - problem.b.squaredNorm());
   problem.names = model.ParameterNames();

@@ -1,10 +1,10 @@
 #include "gram_least_squares.h"
 
-#include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
+#include "femup/core/linalg/dense_kernels.h"
 #include "symmetric_spectrum.h"
 
 namespace femup::internal {
@@ -27,8 +27,8 @@ bool LeastSquaresByGram(const ReducedProblem& reduced, double relative_tolerance
   if (n == 0 || !a.allFinite()) return false;
   const Eigen::VectorXd scale = IdentifiabilityScale(a, scale_columns);
   const Eigen::MatrixXd scaled = a * scale.cwiseInverse().asDiagonal();
-  Eigen::MatrixXd gram = Eigen::MatrixXd::Zero(n, n);  // lower triangle only
-  gram.selfadjointView<Eigen::Lower>().rankUpdate(scaled.transpose());
+  Eigen::MatrixXd gram(n, n);  // lower triangle only
+  RankUpdateLower(scaled, 1.0, 0.0, gram);
 
   Eigen::VectorXd w;  // ascending
   if (!SymmetricEigenvalues(gram, &w)) return false;
@@ -67,14 +67,17 @@ bool LeastSquaresByGram(const ReducedProblem& reduced, double relative_tolerance
   // G + w_max N N' on the dropped directions N, and P = I - N N'.
   const Eigen::MatrixXd null = v_small.leftCols(n - rank);
   if (null.cols() > 0) gram.selfadjointView<Eigen::Lower>().rankUpdate(null, w_max);
-  const Eigen::LLT<Eigen::MatrixXd, Eigen::Lower> llt(gram);
-  if (llt.info() != Eigen::Success) return false;
+  // L L' of it in gram's lower triangle.
+  if (!CholeskyLower(gram)) return false;
   auto project = [&null](Eigen::MatrixXd x) {
     if (null.cols() > 0) x.noalias() -= null * (null.transpose() * x);
     return x;
   };
   auto pseudo_solve = [&](const Eigen::VectorXd& g) -> Eigen::VectorXd {
-    return project(llt.solve(project(g)));
+    Eigen::VectorXd x = project(g);
+    gram.triangularView<Eigen::Lower>().solveInPlace(x);
+    gram.triangularView<Eigen::Lower>().adjoint().solveInPlace(x);
+    return project(x);
   };
 
   // z = D^-1 G^+ D^-1 A' b, then refined: z += D^-1 G^+ D^-1 A' (b - A z) with
@@ -92,8 +95,8 @@ bool LeastSquaresByGram(const ReducedProblem& reduced, double relative_tolerance
   if (!z.allFinite()) return false;
   out->z = std::move(z);
   // Cov(z) / sigma^2 = D^-1 P (L L')^-1 P D^-1 = (D^-1 P L^-T)(D^-1 P L^-T)'.
-  Eigen::MatrixXd root = Eigen::MatrixXd::Identity(n, n);
-  llt.matrixU().solveInPlace(root);
+  if (!InvertLowerTriangular(gram)) return false;
+  Eigen::MatrixXd root = gram.triangularView<Eigen::Lower>().transpose();
   out->z_root = scale.cwiseInverse().asDiagonal() * project(std::move(root));
   return out->z_root.allFinite();
 }

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "femup/core/errors.h"
+#include "femup/core/linalg/dense_kernels.h"
 #include "femup/solvers/uncertainty.h"
 
 namespace femup::internal {
@@ -94,11 +95,12 @@ void FillUncertainty(const LinearProblem& problem, const Eigen::MatrixXd& x_map,
     }
     variance = (weighted_residual.squaredNorm() + problem.residual_offset) / dof;
   }
-  // X X' by a symmetric rank update (half the flops of a general product),
-  // then the upper triangle from the lower: exactly symmetric.
+  // X X' by a symmetric rank update (half the flops of a general product; the
+  // BLAS's dsyrk), then the upper triangle from the lower: exactly symmetric.
   const Eigen::Index n = x_map.rows();
-  solution->covariance = Eigen::MatrixXd::Zero(n, n);
-  solution->covariance.selfadjointView<Eigen::Lower>().rankUpdate(x_map, variance);
+  solution->covariance.resize(n, n);
+  const Eigen::MatrixXd x_transposed = x_map.transpose();
+  RankUpdateLower(x_transposed, variance, 0.0, solution->covariance);
   Eigen::MatrixXd& c = solution->covariance;
   for (Eigen::Index j = 1; j < n; ++j) {  // a loop: no aliasing of c with c'
     for (Eigen::Index i = 0; i < j; ++i) c(i, j) = c(j, i);

@@ -16,9 +16,9 @@
 //
 // The price of the normal equations: A's small singular values are accurate
 // only to about sqrt(machine epsilon) times the largest (column-scaled). A is
-// the square root of the column-scaled G by pivoted LDL' (Eigen::LDLT, stable
-// on a semidefinite matrix); pivots at or below n * eps * max are dropped (zero
-// rows) and counted in `dropped`. Use correction_system.h where the dense form
+// the square root of the column-scaled G by Cholesky with complete pivoting
+// (LAPACK's dpstrf, stable on a semidefinite matrix); pivots at or below
+// n * eps * max are dropped (zero rows) and counted in `dropped`. Use correction_system.h where the dense form
 // fits in memory.
 #pragma once
 
@@ -31,13 +31,13 @@
 namespace femup {
 
 struct NormalCorrectionStats {
-  int dropped = 0;                // pivots of G's LDL' below the threshold
+  int dropped = 0;                // pivots of G's factor below the threshold
   double seconds_factorise = 0;   // sparse Cholesky of M (analysis included)
   double seconds_analyse = 0;     // of which the ordering and symbolic analysis
   double seconds_assembly = 0;    // Z_j, L^-1 P Z_j and G, factorisation included
   double seconds_half_solve = 0;  // W_j = L^-1 P Z_j, all modes
   double seconds_gram = 0;        // G += W_j' W_j, all modes
-  double seconds_compress = 0;    // pivoted LDL' of G and A from it
+  double seconds_compress = 0;    // pivoted Cholesky of G and A from it
   long long nnz_l = 0;            // entries of M's Cholesky factor
   long long nnz_z = 0;            // entries of all Z_j together
   long long nnz_w = 0;            // entries of all L^-1 P Z_j together
