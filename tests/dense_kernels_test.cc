@@ -106,6 +106,34 @@ TEST(CholeskyLower, IndefiniteAndSingularAreFalseAndNonSquareIsNamed) {
   }
 }
 
+TEST(SolveLowerInPlace, AgainstEigensTriangularSolveAndSizesNamed) {
+  std::srand(15);
+  Eigen::MatrixXd l = Eigen::MatrixXd::Random(5, 5);
+  l.diagonal().array() += 4.0;
+  l.triangularView<Eigen::StrictlyUpper>().setConstant(
+      std::numeric_limits<double>::quiet_NaN());  // not read
+  const Eigen::MatrixXd b = Eigen::MatrixXd::Random(5, 3);
+  Eigen::MatrixXd x = b;
+  SolveLowerInPlace(l, x);
+  const Eigen::MatrixXd lower = l.triangularView<Eigen::Lower>();
+  EXPECT_LT((lower * x - b).cwiseAbs().maxCoeff(), 1e-14);
+  Eigen::MatrixXd none(5, 0);
+  SolveLowerInPlace(l, none);
+  Eigen::MatrixXd wrong(4, 2);
+  try {
+    SolveLowerInPlace(l, wrong);
+    FAIL() << "4 rows accepted for a 5 x 5 l";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where(), "x");
+  }
+  try {
+    SolveLowerInPlace(Eigen::MatrixXd::Ones(5, 4), x);
+    FAIL() << "a 5 x 4 l accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where(), "l");
+  }
+}
+
 // A rank-2 semidefinite 5 x 5 matrix: rank 2, and P' a P = L L' on L's first
 // two columns, the pivots a permutation, the largest diagonal entry first.
 TEST(PivotedCholeskyLower, RankAndFactorOfASemidefiniteMatrix) {

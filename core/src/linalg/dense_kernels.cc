@@ -11,6 +11,10 @@ extern "C" {
 void dsyrk_(const char* uplo, const char* trans, const int* n, const int* k,
             const double* alpha, const double* a, const int* lda, const double* beta,
             double* c, const int* ldc, std::size_t uplo_length, std::size_t trans_length);
+void dtrsm_(const char* side, const char* uplo, const char* transa, const char* diag,
+            const int* m, const int* n, const double* alpha, const double* a,
+            const int* lda, double* b, const int* ldb, std::size_t side_length,
+            std::size_t uplo_length, std::size_t transa_length, std::size_t diag_length);
 void dpotrf_(const char* uplo, const int* n, double* a, const int* lda, int* info,
              std::size_t uplo_length);
 void dpstrf_(const char* uplo, const int* n, double* a, const int* lda, int* piv,
@@ -52,6 +56,25 @@ void RequireSquare(const Eigen::Ref<Eigen::MatrixXd>& a) {
 }
 
 }  // namespace
+
+void SolveLowerInPlace(const Eigen::Ref<const Eigen::MatrixXd>& l,
+                       Eigen::Ref<Eigen::MatrixXd> x) {
+  if (l.rows() != l.cols()) {
+    throw InputError("l", "must be square, got " + std::to_string(l.rows()) + " x " +
+                              std::to_string(l.cols()));
+  }
+  if (x.rows() != l.rows()) {
+    throw InputError("x", "must have " + std::to_string(l.rows()) + " rows (l's), got " +
+                              std::to_string(x.rows()));
+  }
+  const int m = static_cast<int>(x.rows());
+  const int n = static_cast<int>(x.cols());
+  if (m == 0 || n == 0) return;
+  const int lda = static_cast<int>(l.outerStride());
+  const int ldb = static_cast<int>(x.outerStride());
+  const double one = 1.0;
+  dtrsm_("L", "L", "N", "N", &m, &n, &one, l.data(), &lda, x.data(), &ldb, 1, 1, 1, 1);
+}
 
 bool CholeskyLower(Eigen::Ref<Eigen::MatrixXd> a) {
   RequireSquare(a);

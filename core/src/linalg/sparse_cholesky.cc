@@ -10,6 +10,7 @@
 #include <numeric>
 
 #include "femup/core/errors.h"
+#include "femup/core/linalg/dense_kernels.h"
 #include "femup/core/parallel.h"
 #include "linalg/group_ordering.h"
 
@@ -18,6 +19,8 @@ namespace {
 
 // Blocks of columns a sparse half-solve is split into, for its threads.
 constexpr int kHalfSolveBlocks = 32;
+// L's dense tail is solved by blocks where it has at least this many columns.
+constexpr int kDenseTailMin = 32;
 
 double Since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -41,6 +44,54 @@ cs_di CsView(int rows, int cols, int* p, int* i, double* x) {
   a.x = x;
   a.nz = -1;  // compressed columns
   return a;
+}
+
+// Forward substitution x <- L^-1 x on the reach (its `size` columns in
+// topological order, L's diagonal entry first in each column) for `count`
+// right-hand sides held row-major in x (the count values of a row together).
+// kCount > 0 fixes the count at compile time, so that the compiler unrolls and
+// vectorises the row updates; each value takes the same operations in the
+// same order either way (the bits do not depend on it).
+template <int kCount>
+void SubstituteOnReachFixed(int dynamic_count, const int* reach, int size, const int* lp,
+                            const int* li, const double* lx, double* x) {
+  const std::size_t count = kCount > 0 ? static_cast<std::size_t>(kCount)
+                                       : static_cast<std::size_t>(dynamic_count);
+  for (int p = 0; p < size; ++p) {
+    const int c = reach[p];
+    double* xc = x + static_cast<std::size_t>(c) * count;
+    const double diagonal = lx[lp[c]];
+    for (std::size_t j = 0; j < count; ++j) xc[j] /= diagonal;
+    for (int q = lp[c] + 1; q < lp[c + 1]; ++q) {
+      double* xr = x + static_cast<std::size_t>(li[q]) * count;
+      const double v = lx[q];
+      for (std::size_t j = 0; j < count; ++j) xr[j] -= v * xc[j];
+    }
+  }
+}
+
+void SubstituteOnReach(int count, const int* reach, int size, const int* lp,
+                       const int* li, const double* lx, double* x) {
+  switch (count) {
+    case 1:
+      return SubstituteOnReachFixed<1>(count, reach, size, lp, li, lx, x);
+    case 2:
+      return SubstituteOnReachFixed<2>(count, reach, size, lp, li, lx, x);
+    case 3:
+      return SubstituteOnReachFixed<3>(count, reach, size, lp, li, lx, x);
+    case 4:
+      return SubstituteOnReachFixed<4>(count, reach, size, lp, li, lx, x);
+    case 5:
+      return SubstituteOnReachFixed<5>(count, reach, size, lp, li, lx, x);
+    case 6:
+      return SubstituteOnReachFixed<6>(count, reach, size, lp, li, lx, x);
+    case 8:
+      return SubstituteOnReachFixed<8>(count, reach, size, lp, li, lx, x);
+    case 10:
+      return SubstituteOnReachFixed<10>(count, reach, size, lp, li, lx, x);
+    default:
+      return SubstituteOnReachFixed<0>(count, reach, size, lp, li, lx, x);
+  }
 }
 
 }  // namespace
@@ -267,6 +318,30 @@ std::vector<SparseMatrix> SparseCholesky::HalfSolve(
   std::vector<Block> done(static_cast<std::size_t>(blocks));
   const int* li = m.li();
   const double* lx = m.lx();
+  // L's dense tail: its last `tail` columns form a full lower triangle (the
+  // top separator of the nested dissection, a chain in the elimination tree).
+  // A column's reach holds a last part of it (from the first tail column it
+  // reaches to the end), or none of it; no other column of the reach depends
+  // on a tail column. Where the tail is long enough, the
+  // tail's substitution runs for all the columns of a block at once, by the
+  // BLAS's triangular solve (dtrsm) on a dense copy of it: the same operations
+  // as column by column, in blocked order.
+  int tail = 0;
+  {
+    const int* lp0 = m.lp();
+    while (tail < n && lp0[n - tail] - lp0[n - tail - 1] == tail + 1) ++tail;
+    if (tail < kDenseTailMin) tail = 0;
+  }
+  const int tail_start = n - tail;
+  Eigen::MatrixXd tail_l;  // tail x tail, lower triangle
+  if (tail > 0) {
+    tail_l = Eigen::MatrixXd::Zero(tail, tail);
+    const int* lp0 = m.lp();
+    for (int c = tail_start; c < n; ++c) {
+      for (int q = lp0[c]; q < lp0[c + 1]; ++q)
+        tail_l(li[q] - tail_start, c - tail_start) = lx[q];
+    }
+  }
   ParallelForWorkers(blocks, m.threads, [&](int block, int worker) {
     Workspace& w = space[static_cast<std::size_t>(worker)];
     if (w.lp.empty()) {
@@ -280,36 +355,66 @@ std::vector<SparseMatrix> SparseCholesky::HalfSolve(
     Block& out_block = done[static_cast<std::size_t>(block)];
     out_block.values.resize(count);
     std::vector<int> column;
+    // The block's tail values: tail x (count per column reaching the tail),
+    // and where each such column's tail entries go in the block's output.
+    std::vector<double> tail_x;
+    std::vector<std::size_t> tail_at;
+    std::vector<int> tail_first;
     for (int k = block_start[block]; k < block_start[block + 1]; ++k) {
       const int top = cs_di_reach(&l, &pattern, k, w.xi.data(), nullptr);
       for (int p = top; p < n; ++p) {
         std::fill_n(w.x.data() + static_cast<std::size_t>(w.xi[p]) * count, count, 0.0);
       }
+      // The reach without the tail, in its order, and the first tail row it
+      // reaches (n: none).
+      column.clear();
+      int first_tail = n;
+      for (int p = top; p < n; ++p) {
+        if (w.xi[p] < tail_start) {
+          column.push_back(w.xi[p]);
+        } else {
+          first_tail = std::min(first_tail, w.xi[p]);
+        }
+      }
+      const bool reaches_tail = first_tail < n;
+      if (reaches_tail) {  // the tail's rows above the reach are zero in the dense solve
+        std::fill_n(w.x.data() + static_cast<std::size_t>(tail_start) * count,
+                    static_cast<std::size_t>(first_tail - tail_start) * count, 0.0);
+      }
       for (int p = outer[k]; p < outer[k + 1]; ++p) {
         double* row = w.x.data() + static_cast<std::size_t>(rows[p]) * count;
         for (std::size_t j = 0; j < count; ++j) row[j] = b[j].valuePtr()[p];
       }
-      // Forward substitution in the reach's topological order (L's diagonal
-      // entry first in each column).
-      for (int p = top; p < n; ++p) {
-        const int c = w.xi[p];
-        double* xc = w.x.data() + static_cast<std::size_t>(c) * count;
-        const double diagonal = lx[lp[c]];
-        for (std::size_t j = 0; j < count; ++j) xc[j] /= diagonal;
-        for (int q = lp[c] + 1; q < lp[c + 1]; ++q) {
-          double* xr = w.x.data() + static_cast<std::size_t>(li[q]) * count;
-          const double v = lx[q];
-          for (std::size_t j = 0; j < count; ++j) xr[j] -= v * xc[j];
-        }
-      }
-      column.assign(w.xi.begin() + top, w.xi.begin() + n);
+      SubstituteOnReach(static_cast<int>(count), column.data(),
+                        static_cast<int>(column.size()), lp, li, lx, w.x.data());
       std::sort(column.begin(), column.end());
       for (int r : column) {
         out_block.inner.push_back(r);
         const double* xr = w.x.data() + static_cast<std::size_t>(r) * count;
         for (std::size_t j = 0; j < count; ++j) out_block.values[j].push_back(xr[j]);
       }
-      out_block.counts.push_back(static_cast<int>(column.size()));
+      if (reaches_tail) {  // the reached tail rows after the others, values later
+        tail_at.push_back(out_block.inner.size());
+        tail_first.push_back(first_tail);
+        for (std::size_t j = 0; j < count; ++j) {
+          for (int r = tail_start; r < n; ++r)
+            tail_x.push_back(w.x[static_cast<std::size_t>(r) * count + j]);
+          out_block.values[j].resize(out_block.values[j].size() + (n - first_tail));
+        }
+        for (int r = first_tail; r < n; ++r) out_block.inner.push_back(r);
+      }
+      out_block.counts.push_back(static_cast<int>(column.size()) + (n - first_tail));
+    }
+    if (tail_at.empty()) return;
+    Eigen::Map<Eigen::MatrixXd> x(tail_x.data(), tail,
+                                  static_cast<Eigen::Index>(tail_at.size() * count));
+    SolveLowerInPlace(tail_l, x);
+    for (std::size_t i = 0; i < tail_at.size(); ++i) {
+      for (std::size_t j = 0; j < count; ++j) {
+        const int skip = tail_first[i] - tail_start;  // rows above the reach
+        std::copy_n(x.col(static_cast<Eigen::Index>(i * count + j)).data() + skip,
+                    n - tail_first[i], out_block.values[j].data() + tail_at[i]);
+      }
     }
   });
   // The blocks in column order.

@@ -17,6 +17,13 @@ namespace femup {
 void RankUpdateLower(const Eigen::Ref<const Eigen::MatrixXd>& a, double alpha,
                      double beta, Eigen::Ref<Eigen::MatrixXd> c);
 
+// x = L^-1 x for the lower triangular L held in l's lower triangle (BLAS
+// dtrsm, "L", "L", "N", "N"; l's strict upper triangle is not read), x with
+// l.rows() rows and any number of columns. InputError (naming "l" or "x") when
+// l is not square or x's rows are not l's.
+void SolveLowerInPlace(const Eigen::Ref<const Eigen::MatrixXd>& l,
+                       Eigen::Ref<Eigen::MatrixXd> x);
+
 // The Cholesky factor L (a = L L') in the lower triangle of a (LAPACK
 // dpotrf, "L"; the strict upper triangle is not read nor written). False when
 // a is not positive definite (a's lower triangle then holds a partial factor).
