@@ -180,6 +180,31 @@ TEST(SparseCholesky, CountsTheFactorisationsFlopsFromTheColumnCounts) {
   EXPECT_EQ(SparseCholesky(diagonal).info().flops, 7.0);
 }
 
+// The half solve's operation count from its result's pattern: on a diagonal
+// matrix one division per entry and right-hand side; on a path under minimum
+// degree (L bidiagonal, the last column alone) three more per entry outside
+// the last row.
+TEST(SparseCholesky, CountsTheHalfSolvesFlopsFromThePattern) {
+  SparseMatrix diagonal(7, 7);
+  diagonal.setIdentity();
+  const SparseCholesky d(diagonal);
+  const SparseMatrix b = SparseColumns(7, 3, 2, 5);
+  const SparseMatrix w = d.HalfSolve(b);
+  EXPECT_EQ(d.HalfSolveFlops(w, 4), 4.0 * static_cast<double>(w.nonZeros()));
+  SparseCholeskyOptions amd;
+  amd.ordering = Ordering::kAmd;
+  const SparseCholesky path(Grid(50, 1, 0.5), amd);
+  SparseMatrix one(50, 1);
+  one.insert(0, 0) = 1.0;
+  const SparseMatrix reach = path.HalfSolve(one);
+  double expected = 0;
+  for (SparseMatrix::InnerIterator it(reach, 0); it; ++it)
+    expected += it.row() == 49 ? 1.0 : 3.0;
+  EXPECT_EQ(path.HalfSolveFlops(reach, 1), expected);
+  EXPECT_THROW(path.HalfSolveFlops(reach, 0), InputError);
+  EXPECT_THROW(path.HalfSolveFlops(w, 1), InputError);
+}
+
 // The shared-pattern half solve runs blocks of columns on threads: the same
 // bits for 1, 2 and 3 threads (each column's arithmetic is its own), and the
 // same pattern; a negative count is refused by name.

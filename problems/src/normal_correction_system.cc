@@ -236,7 +236,7 @@ LinearProblem BuildNormalCorrectionSystem(const ParametrisedModel& model,
   double f2 = 0;
   int modes = 0;
   long long nnz_z = 0, nnz_w = 0;
-  double seconds_half_solve = 0, seconds_gram = 0, flops_gram = 0;
+  double seconds_half_solve = 0, seconds_gram = 0, flops_gram = 0, flops_half_solve = 0;
   for (const ModalData& st : states) {
     const std::string where = "measurements." + st.state;
     st.Validate(dofs, where);
@@ -287,6 +287,7 @@ LinearProblem BuildNormalCorrectionSystem(const ParametrisedModel& model,
     auto t_phase = std::chrono::steady_clock::now();
     const std::vector<SparseMatrix> w = chol.HalfSolve(z);
     seconds_half_solve += Since(t_phase);
+    if (!w.empty()) flops_half_solve += chol.HalfSolveFlops(w.front(), m);
     // F_j = -(K phi_j - lambda_j M phi_j), all modes at once, and L^-1 P F.
     const Eigen::MatrixXd f =
         -(model.stiffness() * shapes - (model.mass() * shapes) * lambdas.asDiagonal());
@@ -356,6 +357,7 @@ LinearProblem BuildNormalCorrectionSystem(const ParametrisedModel& model,
     stats->nnz_l = chol.info().nnz_l;
     stats->flops_factorise = chol.info().flops;
     stats->flops_gram = flops_gram;
+    stats->flops_half_solve = flops_half_solve;
     stats->seconds_half_solve = seconds_half_solve;
     stats->seconds_gram = seconds_gram;
     stats->nnz_z = nnz_z;

@@ -441,6 +441,25 @@ std::vector<SparseMatrix> SparseCholesky::HalfSolve(
   return out;
 }
 
+double SparseCholesky::HalfSolveFlops(const SparseMatrix& w, int right_hand_sides) const {
+  if (w.rows() != size() || right_hand_sides < 1) {
+    throw InputError("SparseCholesky::HalfSolveFlops",
+                     "the pattern must have " + std::to_string(size()) +
+                         " rows and the right-hand sides must be >= 1, got " +
+                         std::to_string(w.rows()) + " rows and " +
+                         std::to_string(right_hand_sides));
+  }
+  const int* lp = impl_->lp();
+  double per_side = 0;
+  for (Eigen::Index k = 0; k < w.outerSize(); ++k) {
+    for (SparseMatrix::InnerIterator it(w, k); it; ++it) {
+      const Eigen::Index c = it.row();
+      per_side += 2.0 * (lp[c + 1] - lp[c]) - 1.0;
+    }
+  }
+  return per_side * right_hand_sides;
+}
+
 SparseMatrix SparseCholesky::HalfSolve(const SparseMatrix& b) const {
   SparseMatrix compressed = b;
   compressed.makeCompressed();

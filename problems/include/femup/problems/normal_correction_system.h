@@ -18,8 +18,8 @@
 // only to about sqrt(machine epsilon) times the largest (column-scaled). A is
 // the square root of the column-scaled G by Cholesky with complete pivoting
 // (LAPACK's dpstrf, stable on a semidefinite matrix); pivots at or below
-// n * eps * max are dropped (zero rows) and counted in `dropped`. Use correction_system.h where the dense form
-// fits in memory.
+// n * eps * max are dropped (zero rows) and counted in `dropped`. Use correction_system.h
+// where the dense form fits in memory.
 #pragma once
 
 #include <vector>
@@ -43,6 +43,7 @@ struct NormalCorrectionStats {
   long long nnz_w = 0;            // entries of all L^-1 P Z_j together
   double flops_factorise = 0;     // of M's Cholesky factorisation (CHOLMOD's count)
   double flops_gram = 0;          // multiplications and additions of G's lower triangle
+  double flops_half_solve = 0;    // of the half solves L^-1 P Z_j (HalfSolveFlops)
 };
 
 struct NormalCorrectionOptions {

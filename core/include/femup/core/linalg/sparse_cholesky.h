@@ -83,6 +83,13 @@ class SparseCholesky {
   // Blocks of columns run on `threads` threads (SparseCholeskyOptions).
   // Throws InputError when the B_j differ in size or pattern.
   std::vector<SparseMatrix> HalfSolve(const std::vector<SparseMatrix>& b) const;
+  // The floating-point operations of a half solve whose result has w's
+  // pattern (its rows are L's columns the substitution ran through), for
+  // `right_hand_sides` right-hand sides of that pattern: per entry in row c, a
+  // division and a multiplication and a subtraction for each of the other
+  // entries of L's column c, per right-hand side. InputError when w's rows are
+  // not the factor's size or right_hand_sides < 1.
+  double HalfSolveFlops(const SparseMatrix& w, int right_hand_sides) const;
 
  private:
   struct Impl;
