@@ -86,6 +86,27 @@ TEST(NormalCorrectionSystem, SameLeastSquaresProblemAsTheStackedFormWithEveryFem
   }
 }
 
+// Data the factors cannot fit (the paper chain's modes, made with all its
+// factors, for a model with its first two only): the offset carries the
+// residual the compact form's rows cannot, so that its smallest residual,
+// offset included, is the dense form's.
+TEST(NormalCorrectionSystem, OffsetCarriesTheResidualOfInconsistentData) {
+  const Case c = Chain();
+  ParametrisedModel few(c.model.stiffness(), c.model.mass(), c.model.dof_labels());
+  few.AddParameter(c.model.parameter(0));
+  few.AddParameter(c.model.parameter(1));
+  const Modes fem = SolveModes(few.stiffness(), few.mass());
+  const LinearProblem dense = BuildCorrectionSystem(few, fem, c.states, {});
+  const LinearProblem compact = BuildNormalCorrectionSystem(few, c.states);
+  const Eigen::VectorXd x = dense.A.completeOrthogonalDecomposition().solve(dense.b);
+  const double dense_min = (dense.A * x - dense.b).squaredNorm();
+  ASSERT_GT(dense_min, 1e-6 * dense.b.squaredNorm());
+  EXPECT_GT(compact.residual_offset, 0.0);
+  const double compact_min =
+      (compact.A * x - compact.b).squaredNorm() + compact.residual_offset;
+  EXPECT_NEAR(compact_min, dense_min, 1e-8 * dense_min);
+}
+
 // A small 3D space frame (space_frame.h), every member wet: the sparse half
 // solves of the Cholesky factor against the dense stacked form with every FEM
 // mode.
@@ -117,6 +138,8 @@ TEST(NormalCorrectionSystem, SpaceFrameMatchesTheDenseStackedForm) {
   EXPECT_GT(stats.nnz_l, 0);
   EXPECT_GE(stats.nnz_w, stats.nnz_z);
   EXPECT_GT(stats.nnz_z, 0);
+  // Consistent data: no residual of rounding size.
+  EXPECT_EQ(compact.residual_offset, 0.0);
 }
 
 // The half solves and G's products on threads: the same bits for 1 and 2

@@ -344,7 +344,14 @@ LinearProblem BuildNormalCorrectionSystem(const ParametrisedModel& model,
       .solveInPlace(problem.b.head(rank));
   const int dropped = p - rank;
   problem.source_rows = dofs * modes;
-  problem.residual_offset = std::max(0.0, f2 - problem.b.squaredNorm());
+  // f2 - |b|^2 cancels: both sum source_rows squares, each to within about
+  // source_rows eps f2. A difference below that is rounding and is taken as 0,
+  // so that consistent (noise-free) data give no residual of rounding size
+  // whose value would depend on the BLAS's kernels.
+  const double difference = f2 - problem.b.squaredNorm();
+  const double rounding = static_cast<double>(problem.source_rows) *
+                          std::numeric_limits<double>::epsilon() * f2;
+  problem.residual_offset = difference > rounding ? difference : 0.0;
   problem.names = model.ParameterNames();
   for (const Parameter& q : model.parameters())
     problem.groups.push_back(ToString(q.kind));
