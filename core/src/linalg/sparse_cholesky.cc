@@ -1,7 +1,6 @@
 #include "femup/core/linalg/sparse_cholesky.h"
 
 #include <cholmod.h>
-#include <cs.h>
 
 #include <algorithm>
 #include <chrono>
@@ -30,20 +29,6 @@ double Since(std::chrono::steady_clock::time_point t0) {
 cholmod_sparse ViewLower(SparseMatrix& lower) {
   return internal::CholmodLowerView(static_cast<int>(lower.rows()), lower.outerIndexPtr(),
                                     lower.innerIndexPtr(), lower.valuePtr());
-}
-
-// A CXSparse view (no copy) of compressed columns: rows x cols, column
-// pointers p (cols + 1), row indices i, values x (may be null for a pattern).
-cs_di CsView(int rows, int cols, int* p, int* i, double* x) {
-  cs_di a{};
-  a.nzmax = p[cols];
-  a.m = rows;
-  a.n = cols;
-  a.p = p;
-  a.i = i;
-  a.x = x;
-  a.nz = -1;  // compressed columns
-  return a;
 }
 
 // Forward substitution x <- L^-1 x on the reach (its `size` columns in
@@ -303,11 +288,11 @@ std::vector<SparseMatrix> SparseCholesky::HalfSolve(
 
   // Per worker: the dense accumulator (n x count, row-major, so that the
   // count values of one row sit together; entries are zeroed over each reach
-  // before use), the reach's stack and a copy of L's column pointers, which
-  // cs_di_reach marks while it runs.
+  // before use) and the marks of the reach's walk (the column index that last
+  // reached a row).
   struct Workspace {
     std::vector<double> x;
-    std::vector<int> xi, lp;
+    std::vector<int> mark;
   };
   const int workers = ParallelWorkers(blocks, m.threads);
   std::vector<Workspace> space(static_cast<std::size_t>(workers));
@@ -318,6 +303,19 @@ std::vector<SparseMatrix> SparseCholesky::HalfSolve(
   std::vector<Block> done(static_cast<std::size_t>(blocks));
   const int* li = m.li();
   const double* lx = m.lx();
+  const int* lp = m.lp();
+  // The elimination tree: the parent of column c is the first row below the
+  // diagonal in L's column c (-1 at a root). A column's reach in L is the set
+  // of the tree's ancestors of its right-hand side's rows (Gilbert), and
+  // ascending order is a topological order of it (L is lower triangular), so
+  // the reach is found by walking up the tree and substituted in the order it
+  // is output in.
+  std::vector<int> parent(static_cast<std::size_t>(n), -1);
+  for (int c = 0; c < n; ++c) {
+    for (int q = lp[c]; q < lp[c + 1]; ++q) {
+      if (li[q] > c && (parent[c] < 0 || li[q] < parent[c])) parent[c] = li[q];
+    }
+  }
   // L's dense tail: its last `tail` columns form a full lower triangle (the
   // top separator of the nested dissection, a chain in the elimination tree).
   // A column's reach holds a last part of it (from the first tail column it
@@ -327,31 +325,23 @@ std::vector<SparseMatrix> SparseCholesky::HalfSolve(
   // BLAS's triangular solve (dtrsm) on a dense copy of it: the same operations
   // as column by column, in blocked order.
   int tail = 0;
-  {
-    const int* lp0 = m.lp();
-    while (tail < n && lp0[n - tail] - lp0[n - tail - 1] == tail + 1) ++tail;
-    if (tail < kDenseTailMin) tail = 0;
-  }
+  while (tail < n && lp[n - tail] - lp[n - tail - 1] == tail + 1) ++tail;
+  if (tail < kDenseTailMin) tail = 0;
   const int tail_start = n - tail;
   Eigen::MatrixXd tail_l;  // tail x tail, lower triangle
   if (tail > 0) {
     tail_l = Eigen::MatrixXd::Zero(tail, tail);
-    const int* lp0 = m.lp();
     for (int c = tail_start; c < n; ++c) {
-      for (int q = lp0[c]; q < lp0[c + 1]; ++q)
+      for (int q = lp[c]; q < lp[c + 1]; ++q)
         tail_l(li[q] - tail_start, c - tail_start) = lx[q];
     }
   }
   ParallelForWorkers(blocks, m.threads, [&](int block, int worker) {
     Workspace& w = space[static_cast<std::size_t>(worker)];
-    if (w.lp.empty()) {
+    if (w.mark.empty()) {
       w.x.assign(static_cast<std::size_t>(n) * count, 0.0);
-      w.xi.assign(2 * static_cast<std::size_t>(n), 0);
-      w.lp.assign(m.lp(), m.lp() + n + 1);
+      w.mark.assign(static_cast<std::size_t>(n), -1);
     }
-    const int* lp = w.lp.data();
-    cs_di l = CsView(n, n, w.lp.data(), const_cast<int*>(li), const_cast<double*>(lx));
-    cs_di pattern = CsView(n, columns, outer.data(), rows.data(), nullptr);
     Block& out_block = done[static_cast<std::size_t>(block)];
     out_block.values.resize(count);
     std::vector<int> column;
@@ -361,25 +351,29 @@ std::vector<SparseMatrix> SparseCholesky::HalfSolve(
     std::vector<std::size_t> tail_at;
     std::vector<int> tail_first;
     for (int k = block_start[block]; k < block_start[block + 1]; ++k) {
-      const int top = cs_di_reach(&l, &pattern, k, w.xi.data(), nullptr);
-      for (int p = top; p < n; ++p) {
-        std::fill_n(w.x.data() + static_cast<std::size_t>(w.xi[p]) * count, count, 0.0);
-      }
-      // The reach without the tail, in its order, and the first tail row it
-      // reaches (n: none).
+      // The reach without the tail (ascending), and the first tail row it
+      // reaches (n: none; the tail is a chain, so the reach holds the rest).
       column.clear();
       int first_tail = n;
-      for (int p = top; p < n; ++p) {
-        if (w.xi[p] < tail_start) {
-          column.push_back(w.xi[p]);
-        } else {
-          first_tail = std::min(first_tail, w.xi[p]);
+      for (int p = outer[k]; p < outer[k + 1]; ++p) {
+        for (int r = rows[p]; r >= 0 && w.mark[static_cast<std::size_t>(r)] != k;
+             r = parent[static_cast<std::size_t>(r)]) {
+          if (r >= tail_start) {
+            first_tail = std::min(first_tail, r);
+            break;
+          }
+          w.mark[static_cast<std::size_t>(r)] = k;
+          column.push_back(r);
         }
+      }
+      std::sort(column.begin(), column.end());
+      for (int r : column) {
+        std::fill_n(w.x.data() + static_cast<std::size_t>(r) * count, count, 0.0);
       }
       const bool reaches_tail = first_tail < n;
       if (reaches_tail) {  // the tail's rows above the reach are zero in the dense solve
         std::fill_n(w.x.data() + static_cast<std::size_t>(tail_start) * count,
-                    static_cast<std::size_t>(first_tail - tail_start) * count, 0.0);
+                    static_cast<std::size_t>(n - tail_start) * count, 0.0);
       }
       for (int p = outer[k]; p < outer[k + 1]; ++p) {
         double* row = w.x.data() + static_cast<std::size_t>(rows[p]) * count;
@@ -387,7 +381,6 @@ std::vector<SparseMatrix> SparseCholesky::HalfSolve(
       }
       SubstituteOnReach(static_cast<int>(count), column.data(),
                         static_cast<int>(column.size()), lp, li, lx, w.x.data());
-      std::sort(column.begin(), column.end());
       for (int r : column) {
         out_block.inner.push_back(r);
         const double* xr = w.x.data() + static_cast<std::size_t>(r) * count;

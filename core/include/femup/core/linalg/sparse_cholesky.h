@@ -1,8 +1,8 @@
 // A sparse Cholesky factorisation P A P' = L L' of a symmetric positive
 // definite matrix (CHOLMOD, fill-reducing ordering by nested dissection or
 // AMD), with the half solve W = L^-1 P B for a SPARSE right-hand side B whose
-// cost is that of the columns of L reachable from B's pattern (found by
-// CXSparse's cs_reach), not that of n.
+// cost is that of the columns of L reachable from B's pattern (the
+// elimination-tree ancestors of its rows), not that of n.
 //
 // Its use: weighted inner products B' A^-1 C = (L^-1 P B)' (L^-1 P C) of
 // columns with small support, as the "all FEM modes" weighting M^-1 of the
@@ -73,8 +73,8 @@ class SparseCholesky {
   Eigen::MatrixXd HalfSolve(const Eigen::MatrixXd& b) const;
   // W = L^-1 P B for sparse B, column by column, touching only the columns of
   // L reachable from each column's pattern (the several-right-hand-side solve
-  // below with one of them). Each call has its own work space and its own copy
-  // of the column pointers the reach marks, so calls may run concurrently.
+  // below with one of them). Each call has its own work space, so calls may
+  // run concurrently.
   SparseMatrix HalfSolve(const SparseMatrix& b) const;
   // W_j = L^-1 P B_j for several right-hand sides B_j that share one sparsity
   // pattern (the same outer and inner index arrays; values may differ, zeros
