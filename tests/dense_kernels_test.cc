@@ -55,6 +55,10 @@ TEST(RankUpdateLower, NoRowsScalesAndWrongSizeIsNamed) {
   RankUpdateLower(Eigen::MatrixXd(0, 3), 1.0, 3.0, c);
   EXPECT_EQ(c(2, 0), 3.0);
   EXPECT_EQ(c(0, 2), 1.0);
+  // beta = 0: c's lower triangle is not read (a NaN there becomes 0).
+  c(2, 0) = std::numeric_limits<double>::quiet_NaN();
+  RankUpdateLower(Eigen::MatrixXd(0, 3), 1.0, 0.0, c);
+  EXPECT_EQ(c(2, 0), 0.0);
   try {
     RankUpdateLower(Eigen::MatrixXd::Ones(2, 4), 1.0, 0.0, c);
     FAIL() << "a 3 x 3 c accepted for 4 columns";

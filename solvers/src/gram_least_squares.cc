@@ -27,7 +27,7 @@ bool LeastSquaresByGram(const ReducedProblem& reduced, double relative_tolerance
   if (n == 0 || !a.allFinite()) return false;
   const Eigen::VectorXd scale = IdentifiabilityScale(a, scale_columns);
   const Eigen::MatrixXd scaled = a * scale.cwiseInverse().asDiagonal();
-  Eigen::MatrixXd gram(n, n);  // lower triangle only
+  Eigen::MatrixXd gram = Eigen::MatrixXd::Zero(n, n);  // lower triangle used
   RankUpdateLower(scaled, 1.0, 0.0, gram);
 
   Eigen::VectorXd w;  // ascending

@@ -37,8 +37,12 @@ void RankUpdateLower(const Eigen::Ref<const Eigen::MatrixXd>& a, double alpha,
                               std::to_string(c.cols()));
   }
   if (n == 0) return;
-  if (k == 0) {  // c = beta c: dsyrk would do it too, but lda must be >= 1
-    c.triangularView<Eigen::Lower>() *= beta;
+  if (k == 0) {  // c = beta c (dsyrk would do it too, but lda must be >= 1)
+    if (beta == 0) {
+      c.triangularView<Eigen::Lower>().setZero();  // as the BLAS: c need not be set
+    } else {
+      c.triangularView<Eigen::Lower>() *= beta;
+    }
     return;
   }
   const int lda = static_cast<int>(a.outerStride());

@@ -88,6 +88,24 @@ struct SparseCholesky::Impl {
   std::vector<int> inverse;          // inverse[perm[i]] = i
   SparseCholeskyInfo info;
   int threads = 0;  // of the sparse half-solve (0: one per core)
+  // The elimination tree: the parent of column c is the first row below the
+  // diagonal in L's column c (-1 at a root). A column's reach in L is the set
+  // of the tree's ancestors of its right-hand side's rows (Gilbert), and
+  // ascending order is a topological order of it (L is lower triangular), so
+  // the half solve finds the reach by walking up the tree and substitutes in
+  // the order it outputs.
+  std::vector<int> parent;
+  // L's dense tail: its last `tail` columns form a full lower triangle (the
+  // top separator of the nested dissection, a chain in the elimination tree),
+  // copied dense into tail_l (tail x tail, lower triangle); 0 when shorter
+  // than kDenseTailMin. A column's reach holds a last part of it (from the
+  // first tail column it reaches to the end), or none of it; no other column
+  // of the reach depends on a tail column. The half solve runs the tail's
+  // substitution for all the columns of a block at once, by the BLAS's
+  // triangular solve (dtrsm): the same operations as column by column, in
+  // blocked order.
+  int tail = 0;
+  Eigen::MatrixXd tail_l;
 
   ~Impl() {
     if (factor != nullptr) cholmod_free_factor(&factor, &common);
@@ -212,6 +230,25 @@ SparseCholesky::SparseCholesky(const SparseMatrix& a,
     m.inverse[m.perm[i]] = i;
   }
   m.info.nnz_l = m.lp()[n];
+  const int* lp = m.lp();
+  const int* li = m.li();
+  const double* lx = m.lx();
+  m.parent.assign(static_cast<std::size_t>(n), -1);
+  for (int c = 0; c < n; ++c) {
+    int& up = m.parent[static_cast<std::size_t>(c)];
+    for (int q = lp[c]; q < lp[c + 1]; ++q) {
+      if (li[q] > c && (up < 0 || li[q] < up)) up = li[q];
+    }
+  }
+  while (m.tail < n && lp[n - m.tail] - lp[n - m.tail - 1] == m.tail + 1) ++m.tail;
+  if (m.tail < kDenseTailMin) m.tail = 0;
+  if (m.tail > 0) {
+    const int start = n - m.tail;
+    m.tail_l = Eigen::MatrixXd::Zero(m.tail, m.tail);
+    for (int c = start; c < n; ++c) {
+      for (int q = lp[c]; q < lp[c + 1]; ++q) m.tail_l(li[q] - start, c - start) = lx[q];
+    }
+  }
 }
 
 SparseCholesky::~SparseCholesky() = default;
@@ -304,38 +341,9 @@ std::vector<SparseMatrix> SparseCholesky::HalfSolve(
   const int* li = m.li();
   const double* lx = m.lx();
   const int* lp = m.lp();
-  // The elimination tree: the parent of column c is the first row below the
-  // diagonal in L's column c (-1 at a root). A column's reach in L is the set
-  // of the tree's ancestors of its right-hand side's rows (Gilbert), and
-  // ascending order is a topological order of it (L is lower triangular), so
-  // the reach is found by walking up the tree and substituted in the order it
-  // is output in.
-  std::vector<int> parent(static_cast<std::size_t>(n), -1);
-  for (int c = 0; c < n; ++c) {
-    for (int q = lp[c]; q < lp[c + 1]; ++q) {
-      if (li[q] > c && (parent[c] < 0 || li[q] < parent[c])) parent[c] = li[q];
-    }
-  }
-  // L's dense tail: its last `tail` columns form a full lower triangle (the
-  // top separator of the nested dissection, a chain in the elimination tree).
-  // A column's reach holds a last part of it (from the first tail column it
-  // reaches to the end), or none of it; no other column of the reach depends
-  // on a tail column. Where the tail is long enough, the
-  // tail's substitution runs for all the columns of a block at once, by the
-  // BLAS's triangular solve (dtrsm) on a dense copy of it: the same operations
-  // as column by column, in blocked order.
-  int tail = 0;
-  while (tail < n && lp[n - tail] - lp[n - tail - 1] == tail + 1) ++tail;
-  if (tail < kDenseTailMin) tail = 0;
+  const std::vector<int>& parent = m.parent;
+  const int tail = m.tail;
   const int tail_start = n - tail;
-  Eigen::MatrixXd tail_l;  // tail x tail, lower triangle
-  if (tail > 0) {
-    tail_l = Eigen::MatrixXd::Zero(tail, tail);
-    for (int c = tail_start; c < n; ++c) {
-      for (int q = lp[c]; q < lp[c + 1]; ++q)
-        tail_l(li[q] - tail_start, c - tail_start) = lx[q];
-    }
-  }
   ParallelForWorkers(blocks, m.threads, [&](int block, int worker) {
     Workspace& w = space[static_cast<std::size_t>(worker)];
     if (w.mark.empty()) {
@@ -371,7 +379,7 @@ std::vector<SparseMatrix> SparseCholesky::HalfSolve(
         std::fill_n(w.x.data() + static_cast<std::size_t>(r) * count, count, 0.0);
       }
       const bool reaches_tail = first_tail < n;
-      if (reaches_tail) {  // the tail's rows above the reach are zero in the dense solve
+      if (reaches_tail) {  // all tail rows zero: those above the reach stay so in dtrsm
         std::fill_n(w.x.data() + static_cast<std::size_t>(tail_start) * count,
                     static_cast<std::size_t>(n - tail_start) * count, 0.0);
       }
@@ -401,7 +409,7 @@ std::vector<SparseMatrix> SparseCholesky::HalfSolve(
     if (tail_at.empty()) return;
     Eigen::Map<Eigen::MatrixXd> x(tail_x.data(), tail,
                                   static_cast<Eigen::Index>(tail_at.size() * count));
-    SolveLowerInPlace(tail_l, x);
+    SolveLowerInPlace(m.tail_l, x);
     for (std::size_t i = 0; i < tail_at.size(); ++i) {
       for (std::size_t j = 0; j < count; ++j) {
         const int skip = tail_first[i] - tail_start;  // rows above the reach

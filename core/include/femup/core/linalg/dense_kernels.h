@@ -11,7 +11,8 @@
 namespace femup {
 
 // The lower triangle of c = beta c + alpha a' a (BLAS dsyrk, "L", "T"):
-// a is k x n, c is n x n (its strict upper triangle is not touched). Any
+// a is k x n, c is n x n (its strict upper triangle is not touched; with
+// beta = 0 its lower triangle need not be set, as for the BLAS). Any
 // stride Eigen::Ref allows for an inner stride of 1 (a block of a larger
 // matrix). InputError (naming "c") when c is not n x n.
 void RankUpdateLower(const Eigen::Ref<const Eigen::MatrixXd>& a, double alpha,
