@@ -119,7 +119,7 @@ std::map<std::string, Eigen::VectorXd> Truths() {
   return {
       {"added_mass", Vec({std::log(0.4), 0.63 * kLength, 0.25})},
       {"support_flexibility", Vec({std::log(0.05), std::log(0.02)})},
-      {"attached_mass", Vec({std::log(0.15), 0.57 * kLength})},
+      {"attached_mass", Vec({std::log(0.15), 0.57 * kLength, std::log(0.15)})},
       {"stiffness_loss", Vec({std::log(0.35), 0.37 * kLength, std::log(0.1)})},
       {"material_scaling", Vec({0.23})},
       {"axial_load", Vec({1.5})},
@@ -242,7 +242,7 @@ TEST(EffectFit, ExactDataGiveZeroResiduals) {
   EXPECT_LT(r.cwiseAbs().maxCoeff(), 1e-7) << r.transpose();
 
   // Off the truth the residuals are what the header defines, computed here.
-  const Eigen::VectorXd other = Vec({std::log(0.05), 0.3 * kLength});
+  const Eigen::VectorXd other = Vec({std::log(0.05), 0.3 * kLength, std::log(0.05)});
   const Modes mod = ReferenceModes(Applied(*e, other), sensors);
   ASSERT_TRUE(PredictEffectModes(data, {e.get()}, other, &pred, &why)) << why;
   const Eigen::VectorXd r2 = EffectResiduals(data, pred);
@@ -438,7 +438,8 @@ TEST(EffectFit, SemiAnalyticJacobianOfPairsAndWetStatesAgreesWithDifferences) {
 }
 
 TEST(EffectFit, ProblemCarriesNamesBoundsAndStart) {
-  const std::unique_ptr<Effect> a = CreateEffect("attached_mass");
+  const std::unique_ptr<Effect> a =
+      CreateEffect("attached_mass", {false});  // a point mass
   const std::unique_ptr<Effect> m = CreateEffect("material_scaling");
   const Modes ref = ReferenceModes(Nominal(), TenSensors());
   EffectFitData data;
@@ -603,7 +604,8 @@ TEST(EffectFitInput, BadCompanion) {
 TEST(EffectFitInput, StartOutsideTheRangeOrOfTheWrongSize) {
   const EffectFitData data = ValidData();
   const std::unique_ptr<Effect> e = CreateEffect("material_scaling");
-  const std::unique_ptr<Effect> a = CreateEffect("attached_mass");
+  const std::unique_ptr<Effect> a =
+      CreateEffect("attached_mass", {false});  // a point mass
   ExpectInputError([&] { BuildEffectFitProblem(data, {e.get()}, Vec({0.9})); },
                    {"start", "material_scaling.ln_e_factor"});
   ExpectInputError([&] { BuildEffectFitProblem(data, {e.get()}, Vec({-0.71})); },

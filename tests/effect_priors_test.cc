@@ -212,7 +212,7 @@ TEST(EffectPriors, RegionsKeepTheNamedElementsAndNodes) {
   ASSERT_EQ(kept.size(), 2u);
   for (const auto& k : kept) {
     EXPECT_NE(k->region().name.find("n7"), std::string::npos) << k->region().name;
-    EXPECT_EQ(k->Parameters().size(), 2u);
+    EXPECT_EQ(k->Parameters().size(), 3u);  // mass, position, radius of gyration
   }
 }
 

@@ -233,7 +233,7 @@ TEST(Effects, EachKindLowersOrScalesTheBendingFrequencies) {
   const std::map<std::string, Eigen::VectorXd> theta = {
       {"added_mass", Theta({std::log(0.5), 0.6 * kLength, 0.0})},
       {"support_flexibility", Theta({std::log(0.1), std::log(0.1)})},
-      {"attached_mass", Theta({std::log(0.2), 0.55 * kLength})},
+      {"attached_mass", Theta({std::log(0.2), 0.55 * kLength, std::log(0.1)})},
       {"stiffness_loss", Theta({std::log(0.5), 0.37 * kLength, std::log(0.1)})},
   };
   for (const auto& [kind, t] : theta) {
@@ -470,7 +470,7 @@ TEST(Effects, SupportFlexibilityActsInSeriesWithANominalSpring) {
 TEST(Effects, AttachedMassAtTheTipMatchesTheTipMassFrequencyEquation) {
   // Clamped-free beam with a tip mass mu rho A L (no rotary inertia):
   //   1 + cos cosh + mu lambda (cos sinh - sin cosh) = 0.
-  const std::unique_ptr<Effect> e = CreateEffect("attached_mass");
+  const std::unique_ptr<Effect> e = CreateEffect("attached_mass", {false});
   for (double mu : {0.05, 0.5, 2.0}) {
     SCOPED_TRACE(mu);
     const auto g = [mu](double l) {
@@ -491,8 +491,37 @@ TEST(Effects, AttachedMassAtTheTipMatchesTheTipMassFrequencyEquation) {
   }
 }
 
-TEST(Effects, AttachedMassAtTheTipLowersModeOneMoreThanAtMidHeight) {
+// With its rotary inertia j rho A L^3 (j = mu (r / L)^2), the tip's moment
+// balancing it too:
+//   1 + cos cosh + mu l (cos sinh - sin cosh) - j l^3 (cosh sin + sinh cos)
+//     + mu j l^4 (1 - cos cosh) = 0
+// (checked against a 200-element numpy beam to 1e-6 when written).
+TEST(Effects, AttachedMassWithRotaryInertiaMatchesTheTipBodyFrequencyEquation) {
   const std::unique_ptr<Effect> e = CreateEffect("attached_mass");
+  ASSERT_EQ(e->Parameters(Nominal()).size(), 3u);
+  EXPECT_EQ(e->Parameters(Nominal())[2].quantity, "radius_of_gyration_m");
+  for (const auto& [mu, rel] : {std::pair{0.3, 0.26}, std::pair{1.0, 0.1}}) {
+    SCOPED_TRACE(mu);
+    const double j = mu * rel * rel;
+    const auto g = [mu = mu, j](double l) {
+      const double c = std::cos(l), s = std::sin(l), ch = std::cosh(l), sh = std::sinh(l);
+      return 1 + c * ch + mu * l * (c * sh - s * ch) - j * l * l * l * (ch * s + sh * c) +
+             mu * j * l * l * l * l * (1 - c * ch);
+    };
+    const double lambda1 = FirstRoot(g, 0.1, 0.01);
+    const double lambda2 = FirstRoot(g, lambda1 + 0.05, 0.01);
+    const Eigen::VectorXd t = Theta({std::log(mu), kLength, std::log(rel)});
+    const Eigen::VectorXd f = BendingFrequencies(Applied(*e, t));
+    EXPECT_NEAR(f[0] / EulerBernoulliHz(lambda1), 1.0, 1e-5);
+    EXPECT_NEAR(f[1] / EulerBernoulliHz(lambda2), 1.0, 1e-4);
+    const auto m = e->Magnitudes(Nominal(), t);
+    ExpectMagnitude(m, "radius_of_gyration", "m", rel * kLength);
+    ExpectMagnitude(m, "rotary_inertia", "kg m^2", j * RhoA() * std::pow(kLength, 3));
+  }
+}
+
+TEST(Effects, AttachedMassAtTheTipLowersModeOneMoreThanAtMidHeight) {
+  const std::unique_ptr<Effect> e = CreateEffect("attached_mass", {false});
   const Eigen::VectorXd f0 = BendingFrequencies(Nominal());
   const double ln_mu = std::log(0.1);
   const Eigen::VectorXd tip = BendingFrequencies(Applied(*e, Theta({ln_mu, kLength})));
@@ -510,7 +539,7 @@ TEST(Effects, AttachedMassAtANodeOfModeTwoLeavesModeTwoAlone) {
   // At the node of mode 2 (from the closed-form shape, x / L ~ 0.7834, between
   // mesh nodes) the mass does no work in mode 2 to first order; modes 1 and 3
   // still drop. The same mass at the tip moves mode 2 by orders of magnitude more.
-  const std::unique_ptr<Effect> e = CreateEffect("attached_mass");
+  const std::unique_ptr<Effect> e = CreateEffect("attached_mass", {false});
   const double node = SecondModeNode();
   EXPECT_NEAR(node, 0.7834, 2e-4);
   const Eigen::VectorXd f0 = BendingFrequencies(Nominal());

@@ -175,48 +175,59 @@ TEST(RefinedModel, NamesTheFinerMeshAsTheModel) {
 }
 
 // A mass on a line of finer segments sits on the segment its position falls
-// in: at a finer node, it is that node's point mass; its slope is the change's
-// derivative with respect to the position.
+// in: at a finer node, it is that node's point mass (and its rotary inertia
+// that node's, on its rotation); its slope is the change's derivative with
+// respect to the position.
 TEST(RefinedModel, AMassAlongALineIsOnTheSegmentItFallsIn) {
   const Structure model = BuildPlaneFrameStructure(HeavyPortal(2));
   const Structure& fine = *model.form_variants[1].model;
-  const auto effects = CreateModelEffects("attached_mass", fine);
-  const ModelEffect* line = nullptr;
-  for (const auto& e : effects)
-    if (e->region().name == "n1-n5") line = e.get();  // the beam's first half
-  ASSERT_NE(line, nullptr);
-  // Half way along n1-n5: a finer node (4 segments on the line).
-  const Eigen::Vector3d middle = 0.5 * (model.nodes[0].xyz + model.nodes[4].xyz);
-  int node = -1;
-  for (std::size_t k = 0; k < fine.nodes.size(); ++k)
-    if ((fine.nodes[k].xyz - middle).norm() < 1e-9) node = static_cast<int>(k);
-  ASSERT_GE(node, 0);
-  const std::string name = fine.nodes[static_cast<std::size_t>(node)].name;
-  Eigen::VectorXd theta(2);
-  theta << std::log(0.01), 0.5;
-  const SparseMatrix dm = line->Change(theta, Immersion::kDry).mass;
-  const double m = 0.01 * ReferenceMass(fine);
-  Eigen::MatrixXd expected = Eigen::MatrixXd::Zero(dm.rows(), dm.cols());
-  for (std::size_t i = 0; i < fine.dof_labels.size(); ++i) {
-    if (fine.dof_labels[i] == name + ":ux" || fine.dof_labels[i] == name + ":uy")
-      expected(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i)) = m;
-  }
-  EXPECT_LT((Eigen::MatrixXd(dm) - expected).cwiseAbs().maxCoeff(), 1e-9 * m);
-  // d(dM)/dxi by central differences, inside a segment (xi = 0.4: the second).
-  for (const double xi : {0.4, 0.8}) {
-    theta[1] = xi;
-    const double h = 1e-6;
-    Eigen::VectorXd up = theta, down = theta;
-    up[1] += h;
-    down[1] -= h;
-    const Eigen::MatrixXd numeric =
-        Eigen::MatrixXd(line->Change(up, Immersion::kDry).mass -
-                        line->Change(down, Immersion::kDry).mass) /
-        (2 * h);
-    const Eigen::MatrixXd analytic = line->Derivative(theta, 1, Immersion::kDry).mass;
-    EXPECT_LT((numeric - analytic).cwiseAbs().maxCoeff(),
-              1e-5 * analytic.cwiseAbs().maxCoeff())
-        << xi;
+  for (const bool rotary : {false, true}) {
+    SCOPED_TRACE(rotary ? "with rotary inertia" : "translations only");
+    ModelEffectOptions options;
+    options.rotary_inertia = rotary;
+    const auto effects = CreateModelEffects("attached_mass", fine, options);
+    const ModelEffect* line = nullptr;
+    for (const auto& e : effects)
+      if (e->region().name == "n1-n5") line = e.get();  // the beam's first half
+    ASSERT_NE(line, nullptr);
+    // Half way along n1-n5: a finer node (4 segments on the line).
+    const Eigen::Vector3d middle = 0.5 * (model.nodes[0].xyz + model.nodes[4].xyz);
+    int node = -1;
+    for (std::size_t k = 0; k < fine.nodes.size(); ++k)
+      if ((fine.nodes[k].xyz - middle).norm() < 1e-9) node = static_cast<int>(k);
+    ASSERT_GE(node, 0);
+    const std::string name = fine.nodes[static_cast<std::size_t>(node)].name;
+    Eigen::VectorXd theta(rotary ? 3 : 2);
+    theta << std::log(0.01), 0.5;
+    if (rotary) theta[2] = std::log(0.1);  // r a tenth of the frame's extent
+    ASSERT_EQ(line->Parameters().size(), static_cast<std::size_t>(theta.size()));
+    const SparseMatrix dm = line->Change(theta, Immersion::kDry).mass;
+    const double m = 0.01 * ReferenceMass(fine);
+    const double j = rotary ? m * std::pow(0.1 * ReferenceLength(fine), 2) : 0.0;
+    Eigen::MatrixXd expected = Eigen::MatrixXd::Zero(dm.rows(), dm.cols());
+    for (std::size_t i = 0; i < fine.dof_labels.size(); ++i) {
+      const auto at = static_cast<Eigen::Index>(i);
+      if (fine.dof_labels[i] == name + ":ux" || fine.dof_labels[i] == name + ":uy")
+        expected(at, at) = m;
+      if (fine.dof_labels[i] == name + ":rz") expected(at, at) = j;
+    }
+    EXPECT_LT((Eigen::MatrixXd(dm) - expected).cwiseAbs().maxCoeff(), 1e-9 * m);
+    // d(dM)/dxi by central differences, inside a segment (xi = 0.4: the second).
+    for (const double xi : {0.4, 0.8}) {
+      theta[1] = xi;
+      const double h = 1e-6;
+      Eigen::VectorXd up = theta, down = theta;
+      up[1] += h;
+      down[1] -= h;
+      const Eigen::MatrixXd numeric =
+          Eigen::MatrixXd(line->Change(up, Immersion::kDry).mass -
+                          line->Change(down, Immersion::kDry).mass) /
+          (2 * h);
+      const Eigen::MatrixXd analytic = line->Derivative(theta, 1, Immersion::kDry).mass;
+      EXPECT_LT((numeric - analytic).cwiseAbs().maxCoeff(),
+                1e-5 * analytic.cwiseAbs().maxCoeff())
+          << xi;
+    }
   }
 }
 

@@ -31,6 +31,9 @@ void AddOptions(CLI::App* cmd, BenchmarkCommandOptions* o) {
   cmd->add_option("--form-error", b.form_error,
                   "the diagnosis's form error, a fraction of the nominal misfit "
                   "(default: diagnose's, 0.05)");
+  cmd->add_option("--rotary-inertia", b.rotary_inertia,
+                  "the diagnosis's attached masses carry a fitted rotary inertia: true "
+                  "(the default) or false (translational point masses)");
   cmd->add_flag("--noise-free", b.noise_free,
                 "the same cases without the noise added to their data (the noise "
                 "still stated): which misses the noise causes");

@@ -271,6 +271,7 @@ Generated GenerateCase(const BenchmarkOptions& opt, int index) {
     << ", shape: " << Num(c.shape_noise)
     << "}\n  localise: false\n  evidence: " << opt.evidence << "\n";
   if (opt.form_error >= 0) y << "  form_error: " << Num(opt.form_error) << "\n";
+  if (!opt.rotary_inertia) y << "  rotary_inertia: false\n";
   g.yaml = y.str();
 
   nlohmann::json tj;

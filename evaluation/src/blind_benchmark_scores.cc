@@ -189,6 +189,7 @@ void WriteBenchmarkOutputs(const BenchmarkResult& r, bool plots, OutputDir* out,
   j["sizes"] = r.options.sizes;
   j["evidence"] = r.options.evidence;
   if (r.options.form_error >= 0) j["form_error"] = r.options.form_error;
+  j["rotary_inertia"] = r.options.rotary_inertia;
   j["noise_free"] = r.options.noise_free;
   j["failed"] = s.failed;
   j["top1"] = s.overall.Json();
@@ -349,6 +350,9 @@ std::string BenchmarkReport(const BenchmarkResult& r) {
     << ", " << r.options.evidence << " evidence"
     << (r.options.form_error >= 0 ? ", form error " + Num(r.options.form_error)
                                   : std::string())
+    << (r.options.rotary_inertia
+            ? std::string()
+            : std::string(", attached masses without rotary inertia"))
     << (r.options.noise_free ? ", noise-free data (the noise stated, not added)"
                              : std::string())
     << "\n\n";

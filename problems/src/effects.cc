@@ -123,24 +123,35 @@ class SupportFlexibilityEffect : public Effect {
   }
 };
 
-// A point mass at height x.
+// A point mass at height x, with its rotary inertia m r^2 where fitted.
 class AttachedMassEffect : public Effect {
  public:
+  explicit AttachedMassEffect(bool rotary) : rotary_(rotary) {}
   std::string kind() const override { return "attached_mass"; }
   std::vector<EffectParameter> Parameters(const CantileverSpec& s) const override {
     const double length = BeamLength(s);
-    return {
+    std::vector<EffectParameter> p = {
         LogQuantity(
             {"ln_mass_ratio", "ln(mass / rho A L)", std::log(1e-4), std::log(2.0), false},
             "mass_kg", BeamMassPerLength(s) * length),
         LinearQuantity({"x", "height above the support (m)", 0.02 * length, length, true},
                        "x_m", 1.0, 0.0, length)};
+    if (rotary_) {
+      p.push_back(LogQuantity({"ln_radius_ratio", "ln(radius of gyration / L)",
+                               std::log(1e-3), std::log(0.3), false},
+                              "radius_of_gyration_m", length));
+    }
+    return p;
   }
   std::vector<Eigen::VectorXd> Starts(const CantileverSpec& s) const override {
     const double length = BeamLength(s);
     std::vector<Eigen::VectorXd> out;
-    for (double f : {0.25, 0.5, 0.75, 1.0})
-      out.push_back(VectorOf({std::log(0.02), f * length}));
+    for (double f : {0.25, 0.5, 0.75, 1.0}) {
+      out.push_back(rotary_ ? VectorOf({std::log(0.02), f * length, std::log(0.01)})
+                            : VectorOf({std::log(0.02), f * length}));
+    }
+    // A mass at the top whose inertia matters (a tip body of a tenth of L).
+    if (rotary_) out.push_back(VectorOf({std::log(0.1), length, std::log(0.1)}));
     return out;
   }
   void Apply(const Eigen::VectorXd& t, Immersion, bool, const CantileverSpec& nominal,
@@ -148,6 +159,10 @@ class AttachedMassEffect : public Effect {
     CantileverSpec::PointMass p;
     p.height = std::min(t[1], BeamLength(nominal));
     p.mass = std::exp(t[0]) * BeamMassPerLength(nominal) * BeamLength(nominal);
+    if (rotary_) {
+      const double r = std::exp(t[2]) * BeamLength(nominal);
+      p.rotary_inertia = p.mass * r * r;
+    }
     spec->point_masses.push_back(p);
   }
   EffectLocation Location(const CantileverSpec&,
@@ -158,9 +173,19 @@ class AttachedMassEffect : public Effect {
   }
   std::vector<EffectMagnitude> Magnitudes(const CantileverSpec& s,
                                           const Eigen::VectorXd& t) const override {
-    return {{"mass", "kg", std::exp(t[0]) * BeamMassPerLength(s) * BeamLength(s)},
-            {"mass_ratio", "1 (per beam mass)", std::exp(t[0])}};
+    const double m = std::exp(t[0]) * BeamMassPerLength(s) * BeamLength(s);
+    std::vector<EffectMagnitude> out = {
+        {"mass", "kg", m}, {"mass_ratio", "1 (per beam mass)", std::exp(t[0])}};
+    if (rotary_) {
+      const double r = std::exp(t[2]) * BeamLength(s);
+      out.push_back({"radius_of_gyration", "m", r});
+      out.push_back({"rotary_inertia", "kg m^2", m * r * r});
+    }
+    return out;
   }
+
+ private:
+  bool rotary_;
 };
 
 // EI times (1 - fraction) over a region a tenth of the length wide.
@@ -296,10 +321,12 @@ std::vector<std::string> AvailableEffects() {
   return out;
 }
 
-std::unique_ptr<Effect> CreateEffect(const std::string& kind) {
+std::unique_ptr<Effect> CreateEffect(const std::string& kind,
+                                     const EffectOptions& options) {
   if (kind == "added_mass") return std::make_unique<AddedMassEffect>();
   if (kind == "support_flexibility") return std::make_unique<SupportFlexibilityEffect>();
-  if (kind == "attached_mass") return std::make_unique<AttachedMassEffect>();
+  if (kind == "attached_mass")
+    return std::make_unique<AttachedMassEffect>(options.rotary_inertia);
   if (kind == "stiffness_loss") return std::make_unique<StiffnessLossEffect>();
   if (kind == "material_scaling") return std::make_unique<MaterialScalingEffect>();
   if (kind == "axial_load") return std::make_unique<AxialLoadEffect>();

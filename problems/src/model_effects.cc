@@ -26,6 +26,27 @@ bool IsTranslation(const std::string& component) {
   return component.empty() || component == "ux" || component == "uy" || component == "uz";
 }
 
+bool IsRotation(const std::string& component) {
+  return component == "rx" || component == "ry" || component == "rz";
+}
+
+// The unit axes along which (kind 'u') or about which (kind 'r') the model has
+// DOFs anywhere ("n3:uy", "n3:rz"), in x, y, z order.
+std::vector<Eigen::Vector3d> AxesWithDofs(const Structure& s, char kind) {
+  std::vector<Eigen::Vector3d> axes;
+  for (int k = 0; k < 3; ++k) {
+    const std::string tail = std::string(":") + kind + "xyz"[k];
+    for (const std::string& l : s.dof_labels) {
+      if (l.size() > tail.size() &&
+          l.compare(l.size() - tail.size(), tail.size(), tail) == 0) {
+        axes.push_back(Eigen::Vector3d::Unit(k));
+        break;
+      }
+    }
+  }
+  return axes;
+}
+
 // Elements whose positions along the structure are heights (x0 < x1 in m).
 bool HasHeights(const Structure& s) {
   if (s.type != "cantilever" || s.elements.empty()) return false;
@@ -137,31 +158,70 @@ class StiffnessLoss : public Base {
   double x0_, x1_;
 };
 
-// A point mass m = m_ref exp(theta_0) on one node's translational DOFs.
+// The prior range of a point mass's radius of gyration, as a fraction of the
+// structure's extent (ReferenceLength): from a negligible 1e-3 to 0.3 (a deck
+// module of 8 m on a 30 m jacket has about 0.11).
+const double kMinRadiusRatio = 1e-3, kMaxRadiusRatio = 0.3;
+
+EffectParameter RadiusParameter(double reference_length) {
+  return LogQuantity(
+      {"ln_radius_ratio", "ln(radius of gyration / the structure's extent)",
+       std::log(kMinRadiusRatio), std::log(kMaxRadiusRatio), false},
+      "radius_of_gyration_m", reference_length);
+}
+
+// A point mass m = m_ref exp(theta_0) on one node's translational DOFs and,
+// where the node has rotational DOFs and rotary inertia is fitted, a rotary
+// inertia m r^2 about each of its axes, r = l_ref exp(theta_1):
+// dM = m (U_t + r^2 U_r).
 class AttachedMass : public Base {
  public:
   AttachedMass(const Structure& s, EffectRegion region, double reference_mass,
-               double position)
-      : Base(s, std::move(region)), m_ref_(reference_mass), position_(position) {
+               double position, const std::vector<int>& rotation_dofs,
+               double reference_length)
+      : Base(s, std::move(region)),
+        m_ref_(reference_mass),
+        l_ref_(reference_length),
+        position_(position) {
     std::vector<Eigen::Triplet<double>> t;
     for (int d : region_.dofs) t.emplace_back(d, d, 1.0);
     unit_ = Zero(n());
     unit_.setFromTriplets(t.begin(), t.end());
+    if (!rotation_dofs.empty() && l_ref_ > 0) {
+      t.clear();
+      for (int d : rotation_dofs) t.emplace_back(d, d, 1.0);
+      rotary_ = Zero(n());
+      rotary_.setFromTriplets(t.begin(), t.end());
+    }
   }
   std::string kind() const override { return "attached_mass"; }
   std::vector<EffectParameter> Parameters() const override {
-    return {LogQuantity({"ln_mass_ratio", "ln(mass / the structure's mass)",
-                         std::log(1e-4), std::log(2.0), false},
-                        "mass_kg", m_ref_)};
+    std::vector<EffectParameter> p = {
+        LogQuantity({"ln_mass_ratio", "ln(mass / the structure's mass)", std::log(1e-4),
+                     std::log(2.0), false},
+                    "mass_kg", m_ref_)};
+    if (Rotary()) p.push_back(RadiusParameter(l_ref_));
+    return p;
   }
   std::vector<Eigen::VectorXd> Starts() const override {
-    return {VectorOf({std::log(0.003)}), VectorOf({std::log(0.1)})};
+    if (!Rotary()) return {VectorOf({std::log(0.003)}), VectorOf({std::log(0.1)})};
+    // Small and large masses of negligible inertia, and a large one of a
+    // radius a tenth of the extent.
+    return {VectorOf({std::log(0.003), std::log(0.01)}),
+            VectorOf({std::log(0.1), std::log(0.01)}),
+            VectorOf({std::log(0.1), std::log(0.1)})};
   }
   ModelChange Change(const Eigen::VectorXd& t, Immersion) const override {
-    return {{}, m_ref_ * std::exp(t[0]) * unit_};
+    const double m = m_ref_ * std::exp(t[0]);
+    if (!Rotary()) return {{}, m * unit_};
+    const double r2 = Square(l_ref_ * std::exp(t[1]));
+    return {{}, m * unit_ + (m * r2) * rotary_};
   }
-  ModelChange Derivative(const Eigen::VectorXd& t, int, Immersion) const override {
-    return {{}, m_ref_ * std::exp(t[0]) * unit_};
+  ModelChange Derivative(const Eigen::VectorXd& t, int i,
+                         Immersion immersion) const override {
+    if (i == 0) return Change(t, immersion);  // linear in m = m_ref exp(theta_0)
+    const double m = m_ref_ * std::exp(t[0]);
+    return {{}, (2 * m * Square(l_ref_ * std::exp(t[1]))) * rotary_};
   }
   EffectLocation Location(const Eigen::VectorXd&) const override {
     EffectLocation l;
@@ -169,14 +229,25 @@ class AttachedMass : public Base {
     return l;
   }
   std::vector<EffectMagnitude> Magnitudes(const Eigen::VectorXd& t) const override {
-    return {{"mass", "kg", m_ref_ * std::exp(t[0])},
-            {"mass_ratio", "1 (of the structure's mass)", std::exp(t[0])}};
+    const double m = m_ref_ * std::exp(t[0]);
+    std::vector<EffectMagnitude> out = {
+        {"mass", "kg", m}, {"mass_ratio", "1 (of the structure's mass)", std::exp(t[0])}};
+    if (Rotary()) {
+      const double r = l_ref_ * std::exp(t[1]);
+      out.push_back({"radius_of_gyration", "m", r});
+      out.push_back({"rotary_inertia", "kg m^2", m * r * r});
+    }
+    return out;
   }
 
  private:
+  static double Square(double v) { return v * v; }
+  bool Rotary() const { return rotary_.size() > 0; }
   double m_ref_;
+  double l_ref_;
   double position_;
   SparseMatrix unit_;
+  SparseMatrix rotary_;  // 0 x 0: no rotary inertia fitted
 };
 
 // A point mass between the end nodes of a line element, at a fraction xi of
@@ -188,15 +259,23 @@ class AttachedMass : public Base {
 // of several segments end to end (Structure::attached_mass_lines: a refined
 // mesh's elements along one of the model's) is one candidate: xi is the
 // fraction of the whole line, and the mass sits on the segment it falls in.
+// With rotary inertia, + m r^2 sum_a v_a(xi) v_a(xi)', v_a the weights that
+// read the element's rotation about each of the model's rotation axes.
 class SegmentMass : public Base {
  public:
+  // `rotation_axes`: the axes the model has rotational DOFs about where rotary
+  // inertia is fitted (a third parameter, ln(r / l_ref)); empty: none.
   SegmentMass(const Structure& s, EffectRegion region, double reference_mass,
               std::vector<LineSegment> line, std::vector<Eigen::Vector3d> axes,
-              double position_a, double position_b)
+              double position_a, double position_b,
+              std::vector<Eigen::Vector3d> rotation_axes, double reference_length)
       : Base(s, std::move(region)),
         m_ref_(reference_mass),
+        l_ref_(reference_length),
         line_(std::move(line)),
         axes_(std::move(axes)),
+        rotation_axes_(l_ref_ > 0 ? std::move(rotation_axes)
+                                  : std::vector<Eigen::Vector3d>()),
         position_a_(position_a),
         position_b_(position_b) {
     ends_.push_back(0.0);
@@ -204,20 +283,34 @@ class SegmentMass : public Base {
   }
   std::string kind() const override { return "attached_mass"; }
   std::vector<EffectParameter> Parameters() const override {
-    return {LogQuantity({"ln_mass_ratio", "ln(mass / the structure's mass)",
-                         std::log(1e-4), std::log(2.0), false},
-                        "mass_kg", m_ref_),
-            {"xi", "position along the element from its first node (fraction)", 0.05,
-             0.95, false}};
+    std::vector<EffectParameter> p = {
+        LogQuantity({"ln_mass_ratio", "ln(mass / the structure's mass)", std::log(1e-4),
+                     std::log(2.0), false},
+                    "mass_kg", m_ref_),
+        {"xi", "position along the element from its first node (fraction)", 0.05, 0.95,
+         false}};
+    if (Rotary()) p.push_back(RadiusParameter(l_ref_));
+    return p;
   }
   std::vector<Eigen::VectorXd> Starts() const override {
-    return {VectorOf({std::log(0.003), 0.3}), VectorOf({std::log(0.1), 0.7})};
+    if (!Rotary())
+      return {VectorOf({std::log(0.003), 0.3}), VectorOf({std::log(0.1), 0.7})};
+    return {VectorOf({std::log(0.003), 0.3, std::log(0.01)}),
+            VectorOf({std::log(0.1), 0.7, std::log(0.01)}),
+            VectorOf({std::log(0.1), 0.5, std::log(0.1)})};
   }
   ModelChange Change(const Eigen::VectorXd& t, Immersion) const override {
-    return {{}, Outer(t[1], false) * (m_ref_ * std::exp(t[0]))};
+    const double m = m_ref_ * std::exp(t[0]);
+    if (!Rotary()) return {{}, Outer(t[1], false, false) * m};
+    return {{}, Outer(t[1], false, false) * m + Outer(t[1], false, true) * (m * R2(t))};
   }
-  ModelChange Derivative(const Eigen::VectorXd& t, int i, Immersion) const override {
-    return {{}, Outer(t[1], i == 1) * (m_ref_ * std::exp(t[0]))};
+  ModelChange Derivative(const Eigen::VectorXd& t, int i,
+                         Immersion immersion) const override {
+    if (i == 0) return Change(t, immersion);  // linear in m = m_ref exp(theta_0)
+    const double m = m_ref_ * std::exp(t[0]);
+    if (i == 2) return {{}, Outer(t[1], false, true) * (2 * m * R2(t))};
+    if (!Rotary()) return {{}, Outer(t[1], true, false) * m};
+    return {{}, Outer(t[1], true, false) * m + Outer(t[1], true, true) * (m * R2(t))};
   }
   EffectLocation Location(const Eigen::VectorXd& t) const override {
     EffectLocation l;
@@ -225,16 +318,29 @@ class SegmentMass : public Base {
     return l;
   }
   std::vector<EffectMagnitude> Magnitudes(const Eigen::VectorXd& t) const override {
-    return {{"mass", "kg", m_ref_ * std::exp(t[0])},
-            {"mass_ratio", "1 (of the structure's mass)", std::exp(t[0])},
-            {"distance_from_first_node", "m", t[1] * ends_.back()}};
+    const double m = m_ref_ * std::exp(t[0]);
+    std::vector<EffectMagnitude> out = {
+        {"mass", "kg", m},
+        {"mass_ratio", "1 (of the structure's mass)", std::exp(t[0])},
+        {"distance_from_first_node", "m", t[1] * ends_.back()}};
+    if (Rotary()) {
+      out.push_back({"radius_of_gyration", "m", std::sqrt(R2(t))});
+      out.push_back({"rotary_inertia", "kg m^2", m * R2(t)});
+    }
+    return out;
   }
 
  private:
+  bool Rotary() const { return !rotation_axes_.empty(); }
+  double R2(const Eigen::VectorXd& t) const {
+    const double r = l_ref_ * std::exp(t[2]);
+    return r * r;
+  }
   // sum_d w_d w_d', or with `slope` its derivative sum_d (w_d' w_d + w_d w_d'),
   // on the segment xi falls in (its own fraction: d local / d xi = the line's
-  // length over the segment's).
-  SparseMatrix Outer(double xi, bool slope) const {
+  // length over the segment's); w_d reads the translation along each of the
+  // model's axes, or with `rotation` the rotation about each rotation axis.
+  SparseMatrix Outer(double xi, bool slope, bool rotation) const {
     const double at = xi * ends_.back();
     std::size_t k = 0;
     while (k + 1 < line_.size() && at > ends_[k + 1]) ++k;
@@ -242,9 +348,9 @@ class SegmentMass : public Base {
     const double local = std::clamp((at - ends_[k]) / length, 0.0, 1.0);
     const double stretch = ends_.back() / length;
     std::vector<Eigen::Triplet<double>> t;
-    for (const Eigen::Vector3d& d : axes_) {
-      const auto w = SegmentWeights(s_, line_[k], local, d, false);
-      const auto dw = slope ? SegmentWeights(s_, line_[k], local, d, false, true) : w;
+    for (const Eigen::Vector3d& d : rotation ? rotation_axes_ : axes_) {
+      const auto w = SegmentWeights(s_, line_[k], local, d, rotation);
+      const auto dw = slope ? SegmentWeights(s_, line_[k], local, d, rotation, true) : w;
       for (const auto& [i, wi] : dw) {
         for (const auto& [j, wj] : w) {
           const double v = slope ? stretch * wi * wj : wi * wj;
@@ -258,9 +364,11 @@ class SegmentMass : public Base {
     return m;
   }
   double m_ref_;
+  double l_ref_;
   std::vector<LineSegment> line_;
   std::vector<double> ends_;  // distance from the line's start to each segment's ends
   std::vector<Eigen::Vector3d> axes_;
+  std::vector<Eigen::Vector3d> rotation_axes_;
   double position_a_, position_b_;
 };
 
@@ -398,6 +506,20 @@ std::vector<std::string> ModelEffectKinds() {
           "material_scaling"};
 }
 
+double ReferenceLength(const Structure& structure) {
+  if (structure.nodes.empty()) return 0.0;
+  Eigen::Vector3d lo = structure.nodes.front().xyz, hi = lo;
+  for (const ModelNode& node : structure.nodes) {
+    lo = lo.cwiseMin(node.xyz);
+    hi = hi.cwiseMax(node.xyz);
+  }
+  for (const LineSegment& g : structure.segments) {  // supports beyond the nodes
+    lo = lo.cwiseMin(g.a).cwiseMin(g.b);
+    hi = hi.cwiseMax(g.a).cwiseMax(g.b);
+  }
+  return (hi - lo).maxCoeff();
+}
+
 double ReferenceMass(const Structure& s) {
   std::map<std::string, Eigen::VectorXd> rigid;  // component -> unit translation
   const int n = static_cast<int>(s.dof_labels.size());
@@ -497,11 +619,14 @@ std::vector<std::unique_ptr<ModelEffect>> CreateModelEffects(
     // One instance per node with translational DOFs, in DOF order (only the
     // structure's attached_mass_nodes where it names them).
     const double m_ref = ReferenceMass(s);
+    // Rotary inertia where the model has rotations and node coordinates.
+    const double l_ref = options.rotary_inertia ? ReferenceLength(s) : 0.0;
     std::vector<std::string> order;
-    std::map<std::string, std::vector<int>> dofs;
+    std::map<std::string, std::vector<int>> dofs, rotations;
     std::map<std::string, double> position;
     for (int i = 0; i < static_cast<int>(s.dof_labels.size()); ++i) {
       const auto [node, component] = internal::SplitDofLabel(s.dof_labels[i]);
+      if (IsRotation(component)) rotations[node].push_back(i);
       if (!IsTranslation(component)) continue;
       if (!dofs.count(node)) {
         order.push_back(node);
@@ -515,25 +640,18 @@ std::vector<std::unique_ptr<ModelEffect>> CreateModelEffects(
       const auto& only = s.attached_mass_nodes;
       if (!only.empty() && std::find(only.begin(), only.end(), node) == only.end())
         continue;
-      out.push_back(std::make_unique<AttachedMass>(
-          s, EffectRegion{"node " + node, {}, dofs[node]}, m_ref, position[node]));
+      out.push_back(
+          std::make_unique<AttachedMass>(s, EffectRegion{"node " + node, {}, dofs[node]},
+                                         m_ref, position[node], rotations[node], l_ref));
     }
     // Between the nodes, where the model has line elements: one instance per
     // element segment (only the structure's attached_mass_segments where it
     // names its few candidate nodes), its position fitted. The region is the member it
     // belongs to, so a stated region that names a member keeps its segments and one that
     // names a node its node.
-    std::vector<Eigen::Vector3d> axes;
-    for (int k = 0; k < 3; ++k) {
-      const std::string tail = std::string(":u") + "xyz"[k];
-      for (const std::string& l : s.dof_labels) {
-        if (l.size() > tail.size() &&
-            l.compare(l.size() - tail.size(), tail.size(), tail) == 0) {
-          axes.push_back(Eigen::Vector3d::Unit(k));
-          break;
-        }
-      }
-    }
+    const std::vector<Eigen::Vector3d> axes = AxesWithDofs(s, 'u');
+    const std::vector<Eigen::Vector3d> rotation_axes =
+        l_ref > 0 ? AxesWithDofs(s, 'r') : std::vector<Eigen::Vector3d>();
     std::vector<std::vector<LineSegment>> between;
     if (!s.attached_mass_lines.empty()) {
       for (const std::vector<int>& line : s.attached_mass_lines) {
@@ -556,9 +674,9 @@ std::vector<std::unique_ptr<ModelEffect>> CreateModelEffects(
       const auto at = [&](const std::string& node) {
         return position.count(node) ? position[node] : 0.0;
       };
-      out.push_back(std::make_unique<SegmentMass>(s, std::move(r), m_ref, std::move(line),
-                                                  axes, node_a >= 0 ? at(a) : 0.0,
-                                                  node_b >= 0 ? at(b) : 0.0));
+      out.push_back(std::make_unique<SegmentMass>(
+          s, std::move(r), m_ref, std::move(line), axes, node_a >= 0 ? at(a) : 0.0,
+          node_b >= 0 ? at(b) : 0.0, rotation_axes, l_ref));
     }
   } else if (kind == "added_mass") {
     const bool level = HasHeights(s);

@@ -114,3 +114,6 @@ def test_noise_and_diagnosis_settings_are_changed_in_place():
     assert study.diagnosis.form_step and not study.diagnosis.refine_mesh
     study.diagnosis.form_step = False
     assert not study.diagnosis.form_step
+    assert study.diagnosis.rotary_inertia
+    study.diagnosis.rotary_inertia = False
+    assert not study.diagnosis.rotary_inertia

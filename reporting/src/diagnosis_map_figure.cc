@@ -86,10 +86,11 @@ Figure DiagnosisMapFigure(const DiagnosisMap& map, const EffectRanking& ranking,
       s.x.push_back(n.x);
       s.y.push_back(n.y);
     }
-    // Masses between nodes ("n1-n7", position xi fitted): at their fitted point.
+    // Masses between nodes ("n1-n7", position xi = theta[1] fitted, then the
+    // radius of gyration where there is one): at their fitted point.
     for (const RankedClass& c : ranking.classes) {
       const std::size_t dash = c.region.find('-');
-      if (c.kind != "attached_mass" || dash == std::string::npos || c.theta.size() != 2 ||
+      if (c.kind != "attached_mass" || dash == std::string::npos || c.theta.size() < 2 ||
           c.probability < kBands[k].low || c.probability >= kBands[k].high)
         continue;
       const auto a = at.find("node " + c.region.substr(0, dash));

@@ -48,6 +48,8 @@ DiagnosisResult RunDiagnosis(const Study& study) {
   // are placed by a fitted height), no normal prior with sampled evidence.
   const std::vector<std::string> kinds =
       spec.candidates.empty() ? DefaultEffects() : spec.candidates;
+  EffectOptions effect_options;
+  effect_options.rotary_inertia = spec.rotary_inertia;
   {
     auto fail = [&](const std::string& field, const std::string& what) {
       throw InputError(study.path, "diagnosis." + field + ": " + what);
@@ -73,7 +75,7 @@ DiagnosisResult RunDiagnosis(const Study& study) {
                "a normal prior needs evidence: laplace (the sampled evidence draws from "
                "uniform priors)");
       try {
-        WithFamilyPrior(CreateEffect(f.kind), f, nominal);
+        WithFamilyPrior(CreateEffect(f.kind, effect_options), f, nominal);
       } catch (const InputError& e) {
         fail(field + "." + e.where(), std::string(e.what()).substr(e.where().size() + 2));
       }
@@ -81,7 +83,7 @@ DiagnosisResult RunDiagnosis(const Study& study) {
   }
   // A family's effect with its stated priors.
   auto make_effect = [&](const std::string& kind) {
-    std::unique_ptr<Effect> e = CreateEffect(kind);
+    std::unique_ptr<Effect> e = CreateEffect(kind, effect_options);
     if (const FamilyPrior* f = spec.priors.Find(kind))
       e = WithFamilyPrior(std::move(e), *f, nominal);
     return e;

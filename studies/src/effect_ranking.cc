@@ -341,6 +341,7 @@ EffectRanking RankModelEffects(const Structure& structure_in,
   // before any fit.
   std::vector<std::vector<std::unique_ptr<ModelEffect>>> instances;
   effect_options.max_members = options.max_members;
+  effect_options.rotary_inertia = options.rotary_inertia;
   for (const std::string& kind : kinds) {
     const FamilyPrior* prior = options.priors.Find(kind);
     // Stated regions pick their places among every member.

@@ -116,6 +116,7 @@ StructureDiagnosisResult RunStructureDiagnosis(const Study& study) {
   options.form_step = spec.form_step;
   options.bagging_copies = spec.bagging_copies;
   options.max_members = spec.max_members;
+  options.rotary_inertia = spec.rotary_inertia;
   options.members_fitted = spec.members_fitted;
   r.priors = spec.priors;
   // A named family that does not apply is the study's error, before any fit.

@@ -197,7 +197,8 @@ DiagnosisSpec ReadDiagnosis(const Field& f, const Study& study) {
                 "evidence_samples",
                 "priors",
                 "weights",
-                "form_step"});
+                "form_step",
+                "rotary_inertia"});
   DiagnosisSpec d;
   if (f.Has("noise")) {
     const Field n = f["noise"];
@@ -251,6 +252,7 @@ DiagnosisSpec ReadDiagnosis(const Field& f, const Study& study) {
   if (f.Has("mesh_error")) d.mesh_error = f["mesh_error"].Bool();
   if (f.Has("formulation_error")) d.formulation_error = f["formulation_error"].Bool();
   if (f.Has("form_step")) d.form_step = f["form_step"].Bool();
+  if (f.Has("rotary_inertia")) d.rotary_inertia = f["rotary_inertia"].Bool();
   if (f.Has("refine_mesh")) d.refine_mesh = f["refine_mesh"].Bool();
   if (f.Has("bagging_copies")) {
     d.bagging_copies = f["bagging_copies"].Int();

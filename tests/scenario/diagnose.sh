@@ -90,7 +90,7 @@ PY
 #     most 20 % whatever the case's noise (at least 0.5 % unless even the
 #     family's largest strength cannot reach the drawn size).
 "$FEMUP" benchmark --suite mixed --cases 3 --seed 7 --sizes absolute --evidence sampled \
-  --form-error 0.02 --no-plots -o bench_abs -q > bench_abs.txt 2>&1 \
+  --form-error 0.02 --rotary-inertia false --no-plots -o bench_abs -q > bench_abs.txt 2>&1 \
   || fail "benchmark --sizes absolute exit $?: $(cat bench_abs.txt)"
 [ "$(json bench_abs/scores.json "j['sizes']")" = absolute ] \
   || fail "scores.json sizes: $(json bench_abs/scores.json "j.get('sizes')")"
@@ -98,10 +98,15 @@ PY
   || fail "scores.json evidence: $(json bench_abs/scores.json "j.get('evidence')")"
 [ "$(json bench_abs/scores.json "j['form_error']")" = 0.02 ] \
   || fail "scores.json form_error: $(json bench_abs/scores.json "j.get('form_error')")"
+[ "$(json bench_abs/scores.json "j['rotary_inertia']")" = False ] \
+  || fail "scores.json rotary_inertia: $(json bench_abs/scores.json "j.get('rotary_inertia')")"
+[ "$(json bench/scores.json "j['rotary_inertia']")" = True ] || fail "default: rotary_inertia"
 for f in bench_abs/cases/*.yaml; do
   grep -q "evidence: sampled" "$f" || fail "$f: no evidence method"
   grep -q "form_error: 0.02" "$f" || fail "$f: no form error"
+  grep -q "rotary_inertia: false" "$f" || fail "$f: no rotary_inertia: false"
 done
+if grep -q "rotary_inertia" bench/cases/*.yaml; then fail "default cases state rotary_inertia"; fi
 python3 - bench_abs <<'PY' || fail "absolute sizes out of range"
 import json, os, sys
 d = sys.argv[1]

@@ -6,7 +6,6 @@
 #include <limits>
 #include <map>
 #include <sstream>
-#include <stdexcept>
 
 #include "femup/core/errors.h"
 
@@ -94,6 +93,12 @@ std::vector<std::pair<int, double>> Weights(const Structure& s,
     const double n3 = 3 * x2 - 2 * x3, n4 = -x2 + x3;
     add(a, (1 - xi) * ed + n1 * pd, length * n2 * exd);
     add(b, xi * ed + n3 * pd, length * n4 * exd);
+  } else if (slope) {  // d/dxi of the rotation's functions below
+    const Eigen::Vector3d pd = across * d, ed = along * d, dxe = d.cross(e);
+    const double n1 = -6 + 12 * xi, n2 = -4 + 6 * xi;
+    const double n3 = 6 - 12 * xi, n4 = -2 + 6 * xi;
+    add(a, n1 / length * dxe, -ed + n2 * pd);
+    add(b, n3 / length * dxe, ed + n4 * pd);
   } else {
     const Eigen::Vector3d pd = across * d, ed = along * d, dxe = d.cross(e);
     const double n1 = -6 * xi + 6 * x2, n2 = 1 - 4 * xi + 3 * x2;
@@ -151,7 +156,6 @@ std::vector<std::pair<int, double>> SegmentWeights(const Structure& structure,
                                                    const LineSegment& segment, double xi,
                                                    const Eigen::Vector3d& direction,
                                                    bool rotation, bool slope) {
-  if (rotation && slope) throw std::invalid_argument("SegmentWeights: no rotation slope");
   return Weights(structure, DofIndex(structure), segment, xi, direction, rotation, slope);
 }
 

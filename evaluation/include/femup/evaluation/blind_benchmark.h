@@ -48,6 +48,10 @@ struct BenchmarkOptions {
   // The diagnosis's form error (DiagnosisSpec::form_error), written into every
   // case's study file when >= 0; below 0, diagnose's default applies.
   double form_error = -1;
+  // The diagnosis's attached masses carry a fitted rotary inertia (the
+  // default of diagnose); false writes `rotary_inertia: false` into every
+  // case's study file (translational point masses, as before session 40).
+  bool rotary_inertia = true;
   // The "measured" modes exactly as the truth model gives them: the noise is
   // drawn (so that every case is the same as without this flag) but not added,
   // and the study files state the same noise. What the diagnosis still misses

@@ -19,7 +19,9 @@
 //   support_flexibility rotational and translational springs at the base, as
 //                       compliances relative to the beam's own: ln(EI / (k_r L)),
 //                       ln(3 EI / (k_t L^3)).
-//   attached_mass       a point mass at a height: ln(m / (rho A L)), x.
+//   attached_mass       a point mass at a height: ln(m / (rho A L)), x, and
+//                       its rotary inertia m r^2: ln(r / L) from a negligible
+//                       1e-3 to 0.3 (EffectOptions::rotary_inertia).
 //   stiffness_loss      EI reduced by a fraction over a short region (2 % to 40 %
 //                       of the length) centred at x: ln(loss fraction), x,
 //                       ln(width / L).
@@ -133,8 +135,14 @@ class Effect {
 // (the list: every kind but axial_load).
 std::vector<std::string> AvailableEffects();
 std::vector<std::string> DefaultEffects();
+struct EffectOptions {
+  // attached_mass fits the mass's rotary inertia (a radius of gyration) as
+  // well; false: a point mass on the transverse translation only.
+  bool rotary_inertia = true;
+};
 // Throws InputError("effect", ...) for an unknown kind, listing the known ones.
-std::unique_ptr<Effect> CreateEffect(const std::string& kind);
+std::unique_ptr<Effect> CreateEffect(const std::string& kind,
+                                     const EffectOptions& options = {});
 
 // The nominal beam's properties the ranges refer to (first element's section).
 double BeamMassPerLength(const CantileverSpec& spec);     // rho A, kg/m

@@ -31,6 +31,15 @@
 //                       xi in [0.05, 0.95]
 //                       fitted: a point mass between the nodes, read through
 //                       the element's shape functions (femup/sensor.h).
+//                       Where the model has rotational DOFs and node
+//                       coordinates (a cantilever, a plane or space frame),
+//                       the mass also carries a rotary inertia m r^2 about
+//                       each of the model's rotation axes (equipment, a deck
+//                       module), its radius of gyration r = l_ref exp(theta)
+//                       fitted from a negligible 1e-3 l_ref to 0.3 l_ref
+//                       (l_ref: the structure's extent, ReferenceLength); at
+//                       a point between nodes the rotation is the element's
+//                       (the slope of its transverse field, its twist).
 //   added_mass          ln(ratio) [, level]: the elements' added-mass bases
 //                       (water acting on the wet part) times ratio. Where the
 //                       elements have heights (x0 < x1 along the structure:
@@ -104,6 +113,9 @@ struct ModelEffectOptions {
   // this many members (each is one more fit; the 10^4-DOF jacket has 530); -1:
   // all of them, however many.
   int max_members = 200;
+  // Attached masses carry a fitted rotary inertia where the structure has
+  // rotational DOFs and node coordinates; false: translational masses only.
+  bool rotary_inertia = true;
 };
 
 // The region name of stiffness loss on part of a member (one of its finite
@@ -141,5 +153,11 @@ void ApplyModelEffects(const Structure& structure,
 // with a unit rigid translation along its most massive translational direction
 // (every ":ux" DOF, every ":uy" DOF, ..., or every DOF of a chain), kg.
 double ReferenceMass(const Structure& structure);
+
+// The reference length of an attached mass's radius of gyration: the
+// structure's largest extent along x, y or z (its nodes and line elements), m;
+// 0 where it has no node coordinates (a chain, a Matrix Market model without
+// them).
+double ReferenceLength(const Structure& structure);
 
 }  // namespace femup

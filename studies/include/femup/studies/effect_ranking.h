@@ -101,6 +101,10 @@ struct EffectRankingOptions {
   // (-1: however many), or where the study states its regions: each member is
   // one more fit.
   int max_members = 200;
+  // Attached masses carry a fitted rotary inertia (a radius of gyration) where
+  // the structure has rotational DOFs and node coordinates; false: point
+  // masses on the translations only (ModelEffectOptions::rotary_inertia).
+  bool rotary_inertia = true;
   // Where more members than this are tried, each is first screened by the
   // misfit one linearised (Gauss-Newton) step from each of its starts
   // predicts, its step kept in range: two evaluations where a fit takes tens.

@@ -173,6 +173,12 @@ struct DiagnosisSpec {
   // Of more members than this, only the ones a linearised screen ranks best
   // are fitted (-1: all); EffectRankingOptions::members_fitted.
   int members_fitted = 12;
+  // Attached masses carry a fitted rotary inertia (a radius of gyration, from
+  // a negligible one to 0.3 of the structure's extent) where the model has
+  // rotations and node coordinates; false: translational point masses only.
+  // EffectRankingOptions::rotary_inertia; on a cantilever,
+  // EffectOptions::rotary_inertia.
+  bool rotary_inertia = true;
   // The candidate families' form error, as a fraction of the nominal model's
   // misfit per frequency and shape entry, added to the noise in quadrature: a
   // family of a few parameters describes a real effect only to some fraction

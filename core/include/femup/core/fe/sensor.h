@@ -69,8 +69,8 @@ Invalid LocateSensor(const Structure& structure, const SensorSpec& spec, SensorR
 
 // Interpolation weights at a point xi in [0, 1] of a line element: the
 // translation along `direction` (rotation = false) or the rotation about it
-// (rotation = true); with `slope`, the translation weights' derivatives with
-// respect to xi (a point mass whose position is fitted). DOFs the model lacks
+// (rotation = true); with `slope`, the weights' derivatives with respect to xi
+// (a point mass whose position is fitted). DOFs the model lacks
 // are left out (held at zero).
 std::vector<std::pair<int, double>> SegmentWeights(const Structure& structure,
                                                    const LineSegment& segment, double xi,
