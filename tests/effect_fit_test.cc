@@ -432,7 +432,12 @@ TEST(EffectFit, SemiAnalyticJacobianOfPairsAndWetStatesAgreesWithDifferences) {
       Eigen::VectorXd x(xa.size() + xb.size());
       x << xa, xb;
       const NonlinearProblem p = BuildEffectFitProblem(data, {ea.get(), eb.get()}, x);
-      ExpectJacobianMatchesCentralDifferences(p, x, 1e-4);
+      // 2e-4: the matrices' one-sided step (1e-6 of the range) leaves 1.0e-4 in
+      // attached_mass.x with the mass's rotary inertia, whose weights follow the
+      // slope of the element's cubic (at a step of 1e-7 it is below 1e-4; a
+      // central step made the command line's and the Python module's fits
+      // differ in their last digits, so the step stays as it was).
+      ExpectJacobianMatchesCentralDifferences(p, x, 2e-4);
     }
   }
 }

@@ -357,10 +357,7 @@ bool Predict(const EffectFitData& data, const std::vector<const Effect*>& effect
 // Column i of the Jacobian of EffectResiduals at x, from the eigen-solution
 // kept at x (`models`, `details`): dK and dM by a forward (backward at the
 // upper bound) difference of the assembled bending matrices over a step of
-// 1e-6 of the parameter's range, or with `central` a central difference over
-// +-step (a position along the beam: a point mass's rotary inertia follows
-// the slope of the element's cubic, whose curvature on an element's scale
-// makes a one-sided step's error 1e-4), then exact eigenpair derivatives for that
+// 1e-6 of the parameter's range, then exact eigenpair derivatives for that
 // dK and dM: d lambda = phi'(dK - lambda dM) phi, and d phi by the expansion on
 // all the model's bending modes (a complete basis of the dense problem):
 //   d phi_p = sum_{q != p} phi_q phi_q'(dK - lambda_p dM) phi_p / (lambda_p - lambda_q)
@@ -372,33 +369,25 @@ bool Predict(const EffectFitData& data, const std::vector<const Effect*>& effect
 bool SemiAnalyticColumn(const EffectFitData& data,
                         const std::vector<const Effect*>& effects,
                         const std::vector<int>& offsets, const Eigen::VectorXd& x,
-                        Eigen::Index i, double step, bool central,
+                        Eigen::Index i, double step,
                         const std::map<Immersion, BendingModes>& models,
                         const std::vector<PredictionDetail>& details,
                         Eigen::Ref<Eigen::VectorXd> column, bool* failed,
                         std::string* why) {
   *failed = false;
-  Eigen::VectorXd xs = x, xb = x;
+  Eigen::VectorXd xs = x;
   xs[i] += step;
-  xb[i] -= step;
   std::map<Immersion, std::pair<Eigen::MatrixXd, Eigen::MatrixXd>> derivative;
   for (const auto& [immersion, bm] : models) {
-    Eigen::MatrixXd kb, mb, kback, mback;
-    std::vector<std::string> labels, back_labels;
+    Eigen::MatrixXd kb, mb;
+    std::vector<std::string> labels;
     if (!AssembleBendingMatrices(SpecFor(data, effects, offsets, xs, immersion), &kb, &mb,
-                                 &labels, why) ||
-        (central &&
-         !AssembleBendingMatrices(SpecFor(data, effects, offsets, xb, immersion), &kback,
-                                  &mback, &back_labels, why))) {
+                                 &labels, why)) {
       *failed = true;
       return false;
     }
-    if (labels != bm.labels || (central && back_labels != bm.labels)) return false;
-    if (central) {
-      derivative[immersion] = {(kb - kback) / (2 * step), (mb - mback) / (2 * step)};
-    } else {
-      derivative[immersion] = {(kb - bm.kb) / step, (mb - bm.mb) / step};
-    }
+    if (labels != bm.labels) return false;
+    derivative[immersion] = {(kb - bm.kb) / step, (mb - bm.mb) / step};
   }
   Eigen::Index k = 0;
   for (std::size_t s = 0; s < data.states.size(); ++s) {
@@ -574,11 +563,8 @@ NonlinearProblem BuildEffectFitProblem(const EffectFitData& data,
   }
   p.residuals_whitened = true;
   const Eigen::VectorXd lower = p.lower, upper = p.upper;
-  std::vector<bool> location(params.size());
-  for (std::size_t i = 0; i < params.size(); ++i) location[i] = params[i].location;
-  p.evaluate = [data, effects, lower, upper, location](
-                   const Eigen::VectorXd& x, Eigen::VectorXd* r, Eigen::MatrixXd* jac,
-                   std::string* why) {
+  p.evaluate = [data, effects, lower, upper](const Eigen::VectorXd& x, Eigen::VectorXd* r,
+                                             Eigen::MatrixXd* jac, std::string* why) {
     std::map<Immersion, BendingModes> models;
     std::vector<PredictionDetail> details;
     std::vector<PredictedState> pred;
@@ -591,9 +577,8 @@ NonlinearProblem BuildEffectFitProblem(const EffectFitData& data,
     for (Eigen::Index i = 0; i < x.size(); ++i) {
       const double h = 1e-6 * (upper[i] - lower[i]);
       const double step = x[i] + h <= upper[i] ? h : -h;
-      const bool central = location[i] && x[i] - h >= lower[i] && x[i] + h <= upper[i];
       bool failed = false;
-      if (SemiAnalyticColumn(data, effects, offsets, x, i, step, central, models, details,
+      if (SemiAnalyticColumn(data, effects, offsets, x, i, step, models, details,
                              jac->col(i), &failed, why))
         continue;
       if (failed) return false;
