@@ -797,12 +797,11 @@ ModalData JacketMeasured(const std::string& damaged, double loss, int num_modes,
 // whitened misfit's mode before its evidence: E is named, near its value.
 // Without that step (EffectRankingOptions::form_step false) the verdict is "none". (P
 // 0.90 and E 0.984 with it, when written.) The jacket is 12 m by 10 m: on the
-// square one an E error keeps its x and y bending modes in equal pairs, in the
-// truth and in the model, each pair's eigenvectors any rotation within it, and
-// the mode-by-mode shape residuals then depend on the rotation the solver's
-// last bits pick (session 40, on an AMD EPYC: "none" at chi2 1.5e6 and a leg
-// group's loss named, where an Intel Xeon's bits had passed; now P 0.85 and E
-// 0.984 here, raw "none" at P 0.81). Docs: diagnosis.md, "Equal pairs of modes".
+// square one (equal pairs of x and y modes in truth and model) an AMD EPYC
+// gave "none" a chi2 of 1.5e6 and named a leg group's loss, at a893e33 too and
+// with every OpenBLAS kernel set, where an Intel Xeon had passed; the cause is
+// not found yet (docs/diagnosis.md, "A square jacket's test that fails on this
+// machine"). Here: P 0.85 and E 0.984, raw "none" at P 0.81 (session 40).
 TEST(EffectRanking, NamesAUniformEErrorBesideTheModelsShearDeformation) {
   SpaceFrameSpec rectangular = SmallJacket();
   rectangular.bay_width_y = 10;
