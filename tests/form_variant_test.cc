@@ -198,7 +198,8 @@ TEST(RefinedModel, AMassAlongALineIsOnTheSegmentItFallsIn) {
     ASSERT_GE(node, 0);
     const std::string name = fine.nodes[static_cast<std::size_t>(node)].name;
     Eigen::VectorXd theta(rotary ? 3 : 2);
-    theta << std::log(0.01), 0.5;
+    theta[0] = std::log(0.01);
+    theta[1] = 0.5;
     if (rotary) theta[2] = std::log(0.1);  // r a tenth of the frame's extent
     ASSERT_EQ(line->Parameters().size(), static_cast<std::size_t>(theta.size()));
     const SparseMatrix dm = line->Change(theta, Immersion::kDry).mass;
