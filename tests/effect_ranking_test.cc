@@ -1131,11 +1131,10 @@ TEST(EffectRanking, NamesWhatTheFormErrorAloneCouldDoEquivalentToNone) {
 // the last bits of every solve: these counts were 7 to 9 (worse 5 or 6), run
 // to run, while METIS orderings on two threads at once could take each
 // other's random draws (internal::MetisMutex); now they are the same on any
-// number of threads, but not on every processor's BLAS kernels: with the
-// attached masses' rotary inertia (session 40, an AMD EPYC on OpenBLAS's
-// Cooperlake kernels) 10 ended elsewhere, 7 worse. So the counts are bounded
-// by a fraction of the classes, the probabilities and the near classes held
-// exactly.
+// number of threads. With the attached masses' rotary inertia (session 40, on
+// an AMD EPYC; which of the two moved it was not measured apart) 10 ended
+// elsewhere, 7 worse. So the counts are bounded by a fraction of the classes,
+// the probabilities and the near classes held exactly.
 TEST(EffectRanking, RitzSearchEndsInTheFullModelsOptima) {
   const Structure nominal = BuildSpaceFrameStructure(SmallJacket());
   const ModalData d = JacketMeasured("l1:braces1", 0.5, 6, 3);
