@@ -113,9 +113,25 @@ TEST(Sensor, RigidMotionOfASpaceFrameIsInterpolatedExactly) {
     SensorRow rot;
     rot.weights = SegmentWeights(s, g, xi, d, true);
     EXPECT_NEAR(Read(rot, u), d.dot(w), 1e-12);
+    // The same weights from an index of the segment's two nodes made once
+    // (IndexDofLabels), for translation and rotation and their slopes.
+    const DofLabelIndex own = IndexDofLabels(
+        s, {s.nodes[static_cast<std::size_t>(g.node_a)].name,
+            s.nodes[static_cast<std::size_t>(g.node_b)].name});
+    EXPECT_EQ(own.size(), 12u);
+    for (bool rotation : {false, true}) {
+      for (bool slope : {false, true}) {
+        EXPECT_EQ(SegmentWeights(s, own, g, xi, d, rotation, slope),
+                  SegmentWeights(s, g, xi, d, rotation, slope));
+      }
+    }
     ++checked;
   }
   EXPECT_GT(checked, 20);
+  const DofLabelIndex all = IndexDofLabels(s);
+  ASSERT_EQ(all.size(), s.dof_labels.size());
+  for (std::size_t i = 0; i < s.dof_labels.size(); ++i)
+    EXPECT_EQ(all.at(s.dof_labels[i]), static_cast<int>(i));
 }
 
 TEST(Sensor, OnANodeItReadsThatDof) {

@@ -137,9 +137,7 @@ class AttachedMassEffect : public Effect {
         LinearQuantity({"x", "height above the support (m)", 0.02 * length, length, true},
                        "x_m", 1.0, 0.0, length)};
     if (rotary_) {
-      p.push_back(LogQuantity({"ln_radius_ratio", "ln(radius of gyration / L)",
-                               std::log(1e-3), std::log(0.3), false},
-                              "radius_of_gyration_m", length));
+      p.push_back(RadiusOfGyrationParameter(length));
     }
     return p;
   }
@@ -344,6 +342,12 @@ EffectParameter LogQuantity(EffectParameter p, const std::string& key, double sc
   p.quantity_min = 0;
   p.quantity_max = max;
   return p;
+}
+
+EffectParameter RadiusOfGyrationParameter(double extent) {
+  return LogQuantity({"ln_radius_ratio", "ln(radius of gyration / the structure's extent)",
+                      std::log(1e-3), std::log(0.3), false},
+                     "radius_of_gyration_m", extent);
 }
 
 EffectParameter LinearQuantity(EffectParameter p, const std::string& key, double scale,

@@ -19,7 +19,10 @@
 namespace femup {
 namespace {
 
+using output_error::AlignRepeatedModes;
 using output_error::AtSensors;
+using output_error::kRepeatedEigenvalueTolerance;
+using output_error::LastOfRepeated;
 using output_error::Context;
 using output_error::PairMeasuredModes;
 using output_error::ScaleShape;
@@ -30,12 +33,6 @@ bool Fail(std::string* why, const std::string& message) {
   if (why != nullptr) *why = message;
   return false;
 }
-
-// Model eigenvalues this close (relative) are one repeated eigenvalue: a
-// symmetric structure's pairs (a square jacket's sway modes in x and y) come out
-// of the eigensolver equal to about 1e-12, with eigenvectors in an arbitrary
-// rotation of their eigenspace that changes from one solve to the next.
-constexpr double kRepeatedEigenvalueTolerance = 1e-6;
 
 // Where paired model modes have a repeated eigenvalue, their eigenvectors are
 // replaced by the M-orthonormal combinations of the eigenspace that best match
@@ -54,12 +51,7 @@ void RotateRepeatedModes(const StateTerms& st, const Modes& modes,
   const Eigen::Index num = modes.size();
   Eigen::Index first = 0;
   while (first < num) {
-    Eigen::Index last = first;  // the eigenspace is modes first..last
-    while (last + 1 < num &&
-           modes.eigenvalues[last + 1] - modes.eigenvalues[last] <=
-               kRepeatedEigenvalueTolerance * std::abs(modes.eigenvalues[last + 1])) {
-      ++last;
-    }
+    const Eigen::Index last = LastOfRepeated(modes, first);  // modes first..last
     std::vector<Eigen::Index> measured;
     for (std::size_t j = 0; j < pairing.size(); ++j) {
       if (pairing[j] >= first && pairing[j] <= last)
@@ -152,6 +144,7 @@ bool EvaluateState(const Context& c, const StateTerms& st, const Eigen::VectorXd
 
   // Measured mode j is paired with model mode pairing[j].
   std::vector<int> pairing;
+  if (st.pair_by_mac) AlignRepeatedModes(st, &modes);
   if (!PairMeasuredModes(c, st, modes, &pairing, why)) return false;
 
   // Residuals mode by mode; what the Jacobian rows of each mode need is kept.

@@ -158,18 +158,6 @@ class StiffnessLoss : public Base {
   double x0_, x1_;
 };
 
-// The prior range of a point mass's radius of gyration, as a fraction of the
-// structure's extent (ReferenceLength): from a negligible 1e-3 to 0.3 (a deck
-// module of 8 m on a 30 m jacket has about 0.11).
-const double kMinRadiusRatio = 1e-3, kMaxRadiusRatio = 0.3;
-
-EffectParameter RadiusParameter(double reference_length) {
-  return LogQuantity(
-      {"ln_radius_ratio", "ln(radius of gyration / the structure's extent)",
-       std::log(kMinRadiusRatio), std::log(kMaxRadiusRatio), false},
-      "radius_of_gyration_m", reference_length);
-}
-
 // A point mass m = m_ref exp(theta_0) on one node's translational DOFs and,
 // where the node has rotational DOFs and rotary inertia is fitted, a rotary
 // inertia m r^2 about each of its axes, r = l_ref exp(theta_1):
@@ -200,7 +188,7 @@ class AttachedMass : public Base {
         LogQuantity({"ln_mass_ratio", "ln(mass / the structure's mass)", std::log(1e-4),
                      std::log(2.0), false},
                     "mass_kg", m_ref_)};
-    if (Rotary()) p.push_back(RadiusParameter(l_ref_));
+    if (Rotary()) p.push_back(RadiusOfGyrationParameter(l_ref_));
     return p;
   }
   std::vector<Eigen::VectorXd> Starts() const override {
@@ -279,7 +267,13 @@ class SegmentMass : public Base {
         position_a_(position_a),
         position_b_(position_b) {
     ends_.push_back(0.0);
-    for (const LineSegment& g : line_) ends_.push_back(ends_.back() + (g.b - g.a).norm());
+    std::vector<std::string> nodes;
+    for (const LineSegment& g : line_) {
+      ends_.push_back(ends_.back() + (g.b - g.a).norm());
+      for (int node : {g.node_a, g.node_b})
+        if (node >= 0) nodes.push_back(s_.nodes[static_cast<std::size_t>(node)].name);
+    }
+    dofs_ = IndexDofLabels(s_, nodes);
   }
   std::string kind() const override { return "attached_mass"; }
   std::vector<EffectParameter> Parameters() const override {
@@ -289,7 +283,7 @@ class SegmentMass : public Base {
                     "mass_kg", m_ref_),
         {"xi", "position along the element from its first node (fraction)", 0.05, 0.95,
          false}};
-    if (Rotary()) p.push_back(RadiusParameter(l_ref_));
+    if (Rotary()) p.push_back(RadiusOfGyrationParameter(l_ref_));
     return p;
   }
   std::vector<Eigen::VectorXd> Starts() const override {
@@ -349,8 +343,9 @@ class SegmentMass : public Base {
     const double stretch = ends_.back() / length;
     std::vector<Eigen::Triplet<double>> t;
     for (const Eigen::Vector3d& d : rotation ? rotation_axes_ : axes_) {
-      const auto w = SegmentWeights(s_, line_[k], local, d, rotation);
-      const auto dw = slope ? SegmentWeights(s_, line_[k], local, d, rotation, true) : w;
+      const auto w = SegmentWeights(s_, dofs_, line_[k], local, d, rotation);
+      const auto dw =
+          slope ? SegmentWeights(s_, dofs_, line_[k], local, d, rotation, true) : w;
       for (const auto& [i, wi] : dw) {
         for (const auto& [j, wj] : w) {
           const double v = slope ? stretch * wi * wj : wi * wj;
@@ -367,6 +362,7 @@ class SegmentMass : public Base {
   double l_ref_;
   std::vector<LineSegment> line_;
   std::vector<double> ends_;  // distance from the line's start to each segment's ends
+  DofLabelIndex dofs_;        // the line's nodes' DOFs
   std::vector<Eigen::Vector3d> axes_;
   std::vector<Eigen::Vector3d> rotation_axes_;
   double position_a_, position_b_;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "femup/core/errors.h"
@@ -157,6 +158,28 @@ std::vector<std::pair<int, double>> SegmentWeights(const Structure& structure,
                                                    const Eigen::Vector3d& direction,
                                                    bool rotation, bool slope) {
   return Weights(structure, DofIndex(structure), segment, xi, direction, rotation, slope);
+}
+
+DofLabelIndex IndexDofLabels(const Structure& structure,
+                             const std::vector<std::string>& nodes) {
+  if (nodes.empty()) return DofIndex(structure);
+  const std::set<std::string> wanted(nodes.begin(), nodes.end());
+  DofLabelIndex index;
+  for (std::size_t i = 0; i < structure.dof_labels.size(); ++i) {
+    const std::string& label = structure.dof_labels[i];
+    const std::size_t colon = label.rfind(':');
+    if (colon != std::string::npos && wanted.count(label.substr(0, colon)))
+      index.emplace(label, static_cast<int>(i));
+  }
+  return index;
+}
+
+std::vector<std::pair<int, double>> SegmentWeights(const Structure& structure,
+                                                   const DofLabelIndex& dofs,
+                                                   const LineSegment& segment, double xi,
+                                                   const Eigen::Vector3d& direction,
+                                                   bool rotation, bool slope) {
+  return Weights(structure, dofs, segment, xi, direction, rotation, slope);
 }
 
 Invalid LocateSensor(const Structure& s, const SensorSpec& spec, SensorRow* row) {

@@ -22,6 +22,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -73,6 +74,20 @@ Invalid LocateSensor(const Structure& structure, const SensorSpec& spec, SensorR
 // (a point mass whose position is fitted). DOFs the model lacks
 // are left out (held at zero).
 std::vector<std::pair<int, double>> SegmentWeights(const Structure& structure,
+                                                   const LineSegment& segment, double xi,
+                                                   const Eigen::Vector3d& direction,
+                                                   bool rotation, bool slope = false);
+
+// The DOF indices of a structure by label ("n3:ux" -> 7), of every node or
+// only of `nodes` (names) where that is not empty: made once for SegmentWeights
+// in a loop (a point mass between nodes whose position is fitted asks at every
+// evaluation).
+using DofLabelIndex = std::map<std::string, int>;
+DofLabelIndex IndexDofLabels(const Structure& structure,
+                             const std::vector<std::string>& nodes = {});
+// SegmentWeights with the index made once; it must hold the segment's nodes.
+std::vector<std::pair<int, double>> SegmentWeights(const Structure& structure,
+                                                   const DofLabelIndex& dofs,
                                                    const LineSegment& segment, double xi,
                                                    const Eigen::Vector3d& direction,
                                                    bool rotation, bool slope = false);
