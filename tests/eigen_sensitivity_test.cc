@@ -215,8 +215,8 @@ TEST(EigenSensitivity, EqualPairsArePairedWhateverTheirRotation) {
     data.shapes.col(0) = std::cos(angle) * a + std::sin(angle) * b;
     data.shapes.col(1) = -std::sin(angle) * a + std::cos(angle) * b;
     const NonlinearProblem p = BuildEigenSensitivityProblem(model, {data}, {});
-    misfits.push_back(Residuals(p, Eigen::VectorXd::Zero(model.num_parameters()))
-                          .squaredNorm());
+    misfits.push_back(
+        Residuals(p, Eigen::VectorXd::Zero(model.num_parameters())).squaredNorm());
   }
   // Within 7e-6 of each other (measured; 1517 noise units squared): the
   // model's pair is turned to the measured shapes' least-squares combinations,

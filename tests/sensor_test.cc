@@ -115,9 +115,9 @@ TEST(Sensor, RigidMotionOfASpaceFrameIsInterpolatedExactly) {
     EXPECT_NEAR(Read(rot, u), d.dot(w), 1e-12);
     // The same weights from an index of the segment's two nodes made once
     // (IndexDofLabels), for translation and rotation and their slopes.
-    const DofLabelIndex own = IndexDofLabels(
-        s, {s.nodes[static_cast<std::size_t>(g.node_a)].name,
-            s.nodes[static_cast<std::size_t>(g.node_b)].name});
+    const DofLabelIndex own =
+        IndexDofLabels(s, {s.nodes[static_cast<std::size_t>(g.node_a)].name,
+                           s.nodes[static_cast<std::size_t>(g.node_b)].name});
     EXPECT_EQ(own.size(), 12u);
     for (bool rotation : {false, true}) {
       for (bool slope : {false, true}) {

@@ -64,8 +64,8 @@ void AlignRepeatedModes(const StateTerms& st, Modes* modes) {
       continue;
     }
     const Eigen::MatrixXd at_sensors = all_at_sensors.middleCols(first, dim);
-    const Eigen::JacobiSVD<Eigen::MatrixXd> span(at_sensors,
-                                                 Eigen::ComputeThinU | Eigen::ComputeThinV);
+    const Eigen::JacobiSVD<Eigen::MatrixXd> span(
+        at_sensors, Eigen::ComputeThinU | Eigen::ComputeThinV);
     // Each measured shape's MAC with the eigenspace (with its best combination,
     // the least-squares one) and with the best single mode outside it.
     struct Candidate {
@@ -83,7 +83,8 @@ void AlignRepeatedModes(const StateTerms& st, Modes* modes) {
       const double mac = Mac(psi, at_sensors * a);
       double outside = 0;
       for (Eigen::Index q = 0; q < num; ++q) {
-        if (q < first || q > last) outside = std::max(outside, Mac(psi, all_at_sensors.col(q)));
+        if (q < first || q > last)
+          outside = std::max(outside, Mac(psi, all_at_sensors.col(q)));
       }
       if (mac >= outside) candidates.push_back({j, mac, a / norm});
     }
@@ -91,15 +92,16 @@ void AlignRepeatedModes(const StateTerms& st, Modes* modes) {
       first = last + 1;
       continue;
     }
-    std::stable_sort(candidates.begin(), candidates.end(),
-                     [](const Candidate& a, const Candidate& b) { return a.mac > b.mac; });
+    std::stable_sort(
+        candidates.begin(), candidates.end(),
+        [](const Candidate& a, const Candidate& b) { return a.mac > b.mac; });
     const Eigen::Index k = std::min<Eigen::Index>(dim, candidates.size());
     Eigen::MatrixXd combination(dim, k);
     for (Eigen::Index q = 0; q < k; ++q) combination.col(q) = candidates[q].combination;
     // The nearest orthonormal set to the combinations (the polar factor),
     // completed by the rest of the eigenspace: an orthogonal dim x dim matrix.
-    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(combination,
-                                                Eigen::ComputeFullU | Eigen::ComputeThinV);
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(
+        combination, Eigen::ComputeFullU | Eigen::ComputeThinV);
     Eigen::MatrixXd rotation(dim, dim);
     rotation.leftCols(k) = svd.matrixU().leftCols(k) * svd.matrixV().transpose();
     rotation.rightCols(dim - k) = svd.matrixU().rightCols(dim - k);
