@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "expect_error.h"
 #include "femup/core/errors.h"
 #include "femup/core/fe/builders.h"
 #include "paper_beam.h"
@@ -381,6 +382,78 @@ void IncreasingChoices(int m, int c, int from, std::vector<int>* chosen,
     IncreasingChoices(m, c, j + 1, chosen, visit);
     chosen->pop_back();
   }
+}
+
+TEST(LastOfRepeated, GroupsEigenvaluesWithinTheTolerance) {
+  Modes m;
+  m.eigenvalues =
+      (Eigen::VectorXd(6) << 1, 2, 2 * (1 + 1e-9), 2 * (1 + 2e-9), 3, 3).finished();
+  EXPECT_EQ(LastOfRepeated(m, 0), 0);
+  EXPECT_EQ(LastOfRepeated(m, 1), 3);
+  EXPECT_EQ(LastOfRepeated(m, 4), 5);
+  EXPECT_EQ(LastOfRepeated(m, 1, 1e-10), 1);
+}
+
+// Five orthonormal modes (M = I) with eigenvalues 1, 2, 2, 3, 5, 5: the pair
+// at 2 is turned to a reference holding it in another rotation, exactly; the
+// others stay as they are, the pair at 5 too (it holds the last mode and may
+// extend beyond it). The shapes stay orthonormal.
+TEST(AlignRepeatedModes, TurnsEachPairToTheReferenceItReproduces) {
+  std::mt19937 rng(20261201);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  Eigen::MatrixXd random(8, 6);
+  for (Eigen::Index i = 0; i < random.size(); ++i) random(i) = normal(rng);
+  const Eigen::MatrixXd q = Eigen::HouseholderQR<Eigen::MatrixXd>(random).householderQ() *
+                            Eigen::MatrixXd::Identity(8, 6);
+  Modes modes;
+  modes.eigenvalues = (Eigen::VectorXd(6) << 1, 2, 2, 3, 5, 5).finished();
+  modes.shapes = q;
+  const double angle = 0.7;
+  Eigen::MatrixXd reference(8, 3);  // mode 1, the pair turned, mode 4
+  reference.col(0) = q.col(0);
+  reference.col(1) = -std::sin(angle) * q.col(1) + std::cos(angle) * q.col(2);
+  reference.col(2) = q.col(3);
+  // Before: the pair's MACs with the turned reference are cos^2 and sin^2.
+  EXPECT_NEAR(Mac(reference.col(1), q.col(1)), std::pow(std::sin(angle), 2), 1e-12);
+  Modes aligned = modes;
+  AlignRepeatedModes(reference, aligned.shapes, &aligned);
+  EXPECT_NEAR(Mac(reference.col(1), aligned.shapes.col(1)), 1.0, 1e-12);
+  EXPECT_NEAR(aligned.shapes.col(1).dot(reference.col(1)), 1.0, 1e-12);
+  for (int k : {0, 3, 4, 5}) EXPECT_EQ(aligned.shapes.col(k), q.col(k)) << k;
+  EXPECT_LT(
+      (aligned.shapes.transpose() * aligned.shapes - Eigen::MatrixXd::Identity(6, 6))
+          .cwiseAbs()
+          .maxCoeff(),
+      1e-12);
+  // The pair's span is kept.
+  const Eigen::MatrixXd pair = q.middleCols(1, 2);
+  const Eigen::MatrixXd turned = aligned.shapes.middleCols(1, 2);
+  EXPECT_LT((pair * (pair.transpose() * turned) - turned).cwiseAbs().maxCoeff(), 1e-12);
+
+  // Seen at 5 of the 8 rows, with both of the pair in the reference, in
+  // another rotation with a reflection: each is matched exactly.
+  const std::vector<int> rows = {0, 2, 3, 5, 7};
+  Eigen::MatrixXd both(8, 2);
+  both.col(0) = std::cos(2.0) * q.col(1) + std::sin(2.0) * q.col(2);
+  both.col(1) = std::sin(2.0) * q.col(1) - std::cos(2.0) * q.col(2);
+  aligned = modes;
+  AlignRepeatedModes(both(rows, Eigen::all), modes.shapes(rows, Eigen::all), &aligned);
+  // (in either order: both are reproduced alike)
+  for (int r = 0; r < 2; ++r) {
+    EXPECT_NEAR(std::max(Mac(both.col(r), aligned.shapes.col(1)),
+                         Mac(both.col(r), aligned.shapes.col(2))),
+                1.0, 1e-12)
+        << r;
+  }
+
+  // A reference another mode reproduces better is not taken by the pair.
+  aligned = modes;
+  AlignRepeatedModes(q.col(3) + 0.1 * q.col(1), modes.shapes, &aligned);
+  EXPECT_EQ(aligned.shapes, modes.shapes);
+
+  testing::ExpectInputError(
+      [&] { AlignRepeatedModes(reference, modes.shapes.topRows(5), &aligned); },
+      {"seen", "8 x 6"});
 }
 
 TEST(PairModesInOrder, MatchesExhaustiveSearchOnRandomShapes) {

@@ -22,8 +22,6 @@ namespace {
 using output_error::AlignRepeatedModes;
 using output_error::AtSensors;
 using output_error::Context;
-using output_error::kRepeatedEigenvalueTolerance;
-using output_error::LastOfRepeated;
 using output_error::PairMeasuredModes;
 using output_error::ScaleShape;
 using output_error::ShapeScale;

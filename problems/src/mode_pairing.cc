@@ -1,7 +1,5 @@
 #include "mode_pairing.h"
 
-#include <Eigen/SVD>
-#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -41,74 +39,9 @@ double ShapeMisfit(const StateTerms& st, Eigen::Index j, const Eigen::VectorXd& 
   return st.shape_weights.col(j).cwiseProduct(c * s - st.targets.col(j)).squaredNorm();
 }
 
-Eigen::Index LastOfRepeated(const Modes& modes, Eigen::Index first) {
-  Eigen::Index last = first;
-  while (last + 1 < modes.size() &&
-         modes.eigenvalues[last + 1] - modes.eigenvalues[last] <=
-             kRepeatedEigenvalueTolerance * std::abs(modes.eigenvalues[last + 1])) {
-    ++last;
-  }
-  return last;
-}
-
 void AlignRepeatedModes(const StateTerms& st, Modes* modes) {
-  const Eigen::Index num = modes->size();
-  if (st.shapes.cols() == 0 || num < 3) return;
-  const Eigen::MatrixXd all_at_sensors = AtSensors(st, modes->shapes);
-  const Eigen::Index num_measured = st.shapes.cols();
-  for (Eigen::Index first = 0; first < num;) {
-    const Eigen::Index last = LastOfRepeated(*modes, first);
-    const Eigen::Index dim = last - first + 1;
-    if (dim < 2 || last + 1 >= num) {
-      first = last + 1;
-      continue;
-    }
-    const Eigen::MatrixXd at_sensors = all_at_sensors.middleCols(first, dim);
-    const Eigen::JacobiSVD<Eigen::MatrixXd> span(
-        at_sensors, Eigen::ComputeThinU | Eigen::ComputeThinV);
-    // Each measured shape's MAC with the eigenspace (with its best combination,
-    // the least-squares one) and with the best single mode outside it.
-    struct Candidate {
-      Eigen::Index measured;
-      double mac;
-      Eigen::VectorXd combination;
-    };
-    std::vector<Candidate> candidates;
-    for (Eigen::Index j = 0; j < num_measured; ++j) {
-      const Eigen::VectorXd psi = st.shapes.col(j);
-      if (!(psi.squaredNorm() > 0)) continue;
-      Eigen::VectorXd a = span.solve(psi);
-      const double norm = a.norm();
-      if (!(norm > 0) || !std::isfinite(norm)) continue;
-      const double mac = Mac(psi, at_sensors * a);
-      double outside = 0;
-      for (Eigen::Index q = 0; q < num; ++q) {
-        if (q < first || q > last)
-          outside = std::max(outside, Mac(psi, all_at_sensors.col(q)));
-      }
-      if (mac >= outside) candidates.push_back({j, mac, a / norm});
-    }
-    if (candidates.empty()) {
-      first = last + 1;
-      continue;
-    }
-    std::stable_sort(
-        candidates.begin(), candidates.end(),
-        [](const Candidate& a, const Candidate& b) { return a.mac > b.mac; });
-    const Eigen::Index k = std::min<Eigen::Index>(dim, candidates.size());
-    Eigen::MatrixXd combination(dim, k);
-    for (Eigen::Index q = 0; q < k; ++q) combination.col(q) = candidates[q].combination;
-    // The nearest orthonormal set to the combinations (the polar factor),
-    // completed by the rest of the eigenspace: an orthogonal dim x dim matrix.
-    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(
-        combination, Eigen::ComputeFullU | Eigen::ComputeThinV);
-    Eigen::MatrixXd rotation(dim, dim);
-    rotation.leftCols(k) = svd.matrixU().leftCols(k) * svd.matrixV().transpose();
-    rotation.rightCols(dim - k) = svd.matrixU().rightCols(dim - k);
-    const Eigen::MatrixXd basis = modes->shapes.middleCols(first, dim);
-    modes->shapes.middleCols(first, dim) = basis * rotation;
-    first = last + 1;
-  }
+  if (st.shapes.cols() == 0) return;
+  femup::AlignRepeatedModes(st.shapes, AtSensors(st, modes->shapes), modes);
 }
 
 bool PairMeasuredModes(const Context& c, const StateTerms& st, const Modes& modes,

@@ -36,26 +36,9 @@ double ShapeMisfit(const StateTerms& st, Eigen::Index j, const Eigen::VectorXd& 
 bool PairMeasuredModes(const Context& c, const StateTerms& st, const Modes& modes,
                        std::vector<int>* pairing, std::string* why);
 
-// Model eigenvalues this close (relative) are one repeated eigenvalue: a
-// symmetric structure's pairs (a square jacket's sway modes in x and y) come out
-// of the eigensolver equal to about 1e-12, with eigenvectors in an arbitrary
-// rotation of their eigenspace that changes from one solve to the next.
-constexpr double kRepeatedEigenvalueTolerance = 1e-6;
-
-// The last mode of the repeated eigenvalue that starts at mode `first`
-// (`first` itself where the next eigenvalue is not within
-// kRepeatedEigenvalueTolerance of it).
-Eigen::Index LastOfRepeated(const Modes& modes, Eigen::Index first);
-
-// Before pairing by MAC: within each repeated eigenvalue's eigenspace, the
-// eigensolver's vectors are replaced by the M-orthonormal combinations that
-// best match, at the sensors, the measured shapes that eigenspace reproduces
-// best (at least as well as any single mode outside it, up to its dimension),
-// the rest of the eigenspace completing the set. Without this, measured modes
-// are paired against an arbitrary rotation of each pair (MAC about 0.5 each at
-// 45 degrees) and go to other modes. An eigenspace that may extend beyond the
-// modes solved (it holds the last one) is left as it is, as is every one where
-// the state has no measured shapes.
+// Before pairing by MAC: each repeated eigenvalue's eigenspace turned to the
+// state's measured shapes at the sensors (femup::AlignRepeatedModes, modal.h);
+// nothing where the state has no measured shapes.
 void AlignRepeatedModes(const StateTerms& st, Modes* modes);
 
 // Model modes whose shape misfits against a measured mode differ by less than

@@ -167,10 +167,16 @@ ModeChanges PairedModeChanges(const Structure& model, const FormVariant& variant
   const int rows = static_cast<int>(variant.stiffness.rows());
   EigenOptions finer;
   finer.num_modes = std::min(rows, modes + 4);  // kAuto: dense from rows - 1
-  const Modes v = SolveModes(variant.stiffness, variant.mass, finer);
-  const Eigen::MatrixXd at_model =
-      variant.dofs.empty() ? v.shapes
-                           : Eigen::MatrixXd(v.shapes(variant.dofs, Eigen::all));
+  Modes v = SolveModes(variant.stiffness, variant.mass, finer);
+  auto on_model = [&] {
+    return variant.dofs.empty() ? v.shapes
+                                : Eigen::MatrixXd(v.shapes(variant.dofs, Eigen::all));
+  };
+  // The variant's equal pairs (a square frame's x and y sway modes) turned to
+  // the model's modes, so that MAC pairing does not meet their arbitrary
+  // rotation (the model's own is as arbitrary; the variant follows it).
+  AlignRepeatedModes(out.modes.shapes, on_model(), &v);
+  const Eigen::MatrixXd at_model = on_model();
   constexpr double kMinMac = 0.8;
   const std::vector<ModePair> pairs = PairModesByMac(out.modes.shapes, at_model, kMinMac);
   out.eigenvalue_change = Eigen::VectorXd::Zero(out.modes.size());

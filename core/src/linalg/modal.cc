@@ -2,9 +2,12 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
+#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "femup/core/errors.h"
 #include "linalg/sparse_eigen.h"
@@ -171,6 +174,80 @@ std::vector<ModePair> PairModesByMac(const Eigen::MatrixXd& reference,
     mac.col(j).setConstant(-1.0);
   }
   return pairs;
+}
+
+Eigen::Index LastOfRepeated(const Modes& modes, Eigen::Index first, double tolerance) {
+  Eigen::Index last = first;
+  while (last + 1 < modes.size() &&
+         modes.eigenvalues[last + 1] - modes.eigenvalues[last] <=
+             tolerance * std::abs(modes.eigenvalues[last + 1])) {
+    ++last;
+  }
+  return last;
+}
+
+void AlignRepeatedModes(const Eigen::MatrixXd& reference, const Eigen::MatrixXd& seen,
+                        Modes* modes, double tolerance) {
+  const Eigen::Index num = modes->size();
+  if (seen.cols() != num || seen.rows() != reference.rows()) {
+    throw InputError("seen", "expected " + std::to_string(reference.rows()) + " x " +
+                                 std::to_string(num) + " (the reference's rows, one " +
+                                 "column per mode), got " + std::to_string(seen.rows()) +
+                                 " x " + std::to_string(seen.cols()));
+  }
+  if (reference.cols() == 0 || num < 3) return;
+  for (Eigen::Index first = 0; first < num;) {
+    const Eigen::Index last = LastOfRepeated(*modes, first, tolerance);
+    const Eigen::Index dim = last - first + 1;
+    if (dim < 2 || last + 1 >= num) {
+      first = last + 1;
+      continue;
+    }
+    const Eigen::MatrixXd space = seen.middleCols(first, dim);
+    const Eigen::JacobiSVD<Eigen::MatrixXd> span(
+        space, Eigen::ComputeThinU | Eigen::ComputeThinV);
+    // Each reference shape's MAC with the eigenspace (with its best
+    // combination, the least-squares one) and with the best single mode
+    // outside it.
+    struct Candidate {
+      double mac;
+      Eigen::VectorXd combination;
+    };
+    std::vector<Candidate> candidates;
+    for (Eigen::Index j = 0; j < reference.cols(); ++j) {
+      const Eigen::VectorXd psi = reference.col(j);
+      if (!(psi.squaredNorm() > 0)) continue;
+      const Eigen::VectorXd a = span.solve(psi);
+      const double norm = a.norm();
+      if (!(norm > 0) || !std::isfinite(norm)) continue;
+      const double mac = Mac(psi, space * a);
+      double outside = 0;
+      for (Eigen::Index q = 0; q < num; ++q) {
+        if (q < first || q > last) outside = std::max(outside, Mac(psi, seen.col(q)));
+      }
+      if (mac >= outside) candidates.push_back({mac, a / norm});
+    }
+    if (candidates.empty()) {
+      first = last + 1;
+      continue;
+    }
+    std::stable_sort(
+        candidates.begin(), candidates.end(),
+        [](const Candidate& a, const Candidate& b) { return a.mac > b.mac; });
+    const Eigen::Index k = std::min<Eigen::Index>(dim, candidates.size());
+    Eigen::MatrixXd combination(dim, k);
+    for (Eigen::Index q = 0; q < k; ++q) combination.col(q) = candidates[q].combination;
+    // The nearest orthonormal set to the combinations (the polar factor),
+    // completed by the rest of the eigenspace: an orthogonal dim x dim matrix.
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(
+        combination, Eigen::ComputeFullU | Eigen::ComputeThinV);
+    Eigen::MatrixXd rotation(dim, dim);
+    rotation.leftCols(k) = svd.matrixU().leftCols(k) * svd.matrixV().transpose();
+    rotation.rightCols(dim - k) = svd.matrixU().rightCols(dim - k);
+    const Eigen::MatrixXd basis = modes->shapes.middleCols(first, dim);
+    modes->shapes.middleCols(first, dim) = basis * rotation;
+    first = last + 1;
+  }
 }
 
 std::vector<ModePair> PairModesByMacAndMisfit(const Eigen::MatrixXd& mac,

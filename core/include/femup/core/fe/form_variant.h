@@ -39,8 +39,10 @@ Structure RefinedModel(const Structure& model, Structure finer);
 
 // The model's lowest `modes` modes, and how far the variant moves each: its
 // paired mode's eigenvalue less the model's, the modes paired by MAC >= 0.8
-// over the model's DOFs (0 where a mode pairs with none). 1 <= modes <= the
-// model's DOF count, and a variant's dofs sized as the model's, or InputError.
+// over the model's DOFs (0 where a mode pairs with none), the variant's equal
+// pairs first turned to the model's modes (AlignRepeatedModes). 1 <= modes <=
+// the model's DOF count, and a variant's dofs sized as the model's, or
+// InputError.
 struct ModeChanges {
   Modes modes;
   Eigen::VectorXd eigenvalue_change;  // rad^2/s^2, one per mode

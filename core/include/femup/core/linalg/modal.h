@@ -94,6 +94,32 @@ std::vector<ModePair> PairModesByMacAndMisfit(const Eigen::MatrixXd& mac,
                                               const Eigen::MatrixXd& shape_misfit,
                                               const Eigen::MatrixXd& frequency_misfit,
                                               double min_mac, double tie);
+// Eigenvalues this close (relative) are one repeated eigenvalue: a symmetric
+// structure's pairs (a square jacket's sway modes in x and y) come out of the
+// eigensolver equal to about 1e-12, with eigenvectors in an arbitrary rotation
+// of their eigenspace that depends on the machine's rounding.
+constexpr double kRepeatedEigenvalueTolerance = 1e-6;
+
+// The last mode of the repeated eigenvalue that starts at mode `first`:
+// `first` itself where the next eigenvalue is not within `tolerance`
+// (relative) of it.
+Eigen::Index LastOfRepeated(const Modes& modes, Eigen::Index first,
+                            double tolerance = kRepeatedEigenvalueTolerance);
+
+// Before pairing `modes` with the columns of `reference` by MAC: within each
+// repeated eigenvalue's eigenspace, the eigensolver's vectors are replaced by
+// the combinations that best match the reference shapes that eigenspace
+// reproduces best (at least as well as any single mode outside it), up to its
+// dimension, and the rest of the eigenspace completes the set. An orthogonal
+// turn within each eigenspace, so the shapes stay M-orthonormal eigenvectors.
+// `seen` is modes->shapes where `reference` is read (at sensors, on another
+// model's DOFs): one column per mode, reference.rows() rows. Without this,
+// MAC pairing meets an arbitrary rotation of each pair (MAC about 0.5 each at
+// 45 degrees), and modes go to other modes. An eigenspace that may extend
+// beyond the modes given (it holds the last one) is left as it is.
+void AlignRepeatedModes(const Eigen::MatrixXd& reference, const Eigen::MatrixXd& seen,
+                        Modes* modes, double tolerance = kRepeatedEigenvalueTolerance);
+
 // Pairs each reference mode with a distinct candidate keeping the order: when
 // reference i < j are both paired, candidate(i) < candidate(j). Among such
 // pairings it pairs as many as it can and, of those, maximises the sum of MACs
