@@ -294,6 +294,69 @@ TEST(EffectRanking, NoGapWhenTheNoiseExplainsTheData) {
   EXPECT_DOUBLE_EQ(r.temperature, 1.0);
 }
 
+// A gap is named only at the stated confidence: with the gap's probability
+// (1 - P(none)) below gap_confidence the verdict is "none" and comes first,
+// every probability as it was; just below it, the family is named as with
+// gap_confidence 0. The report says why none was named.
+TEST(EffectRanking, NamesAGapOnlyAtTheGapConfidence) {
+  EXPECT_EQ(EffectRankingOptions().gap_confidence, 0.0);  // by default: the most probable
+  ChainSpec truth = ShearBuilding();
+  truth.springs[2] *= 0.97;
+  const Structure nominal = BuildSpringMassChain(ShearBuilding());
+  EffectRankingOptions o = Options();
+  o.kinds = {"stiffness_loss", "attached_mass"};
+  o.gap_confidence = 0;
+  const std::vector<ModalData> data = {Measured(truth, 7)};
+  const EffectRanking named = RankModelEffects(nominal, data, o);
+  ASSERT_FALSE(named.classes.empty());
+  ASSERT_NE(named.classes[0].kind, "none");
+  EXPECT_FALSE(named.gap_below_confidence);
+  double p_none = -1;
+  for (const RankedClass& c : named.classes)
+    if (c.kind == "none") p_none = c.probability;
+  ASSERT_GE(p_none, 0);
+  EXPECT_NEAR(named.gap_probability, 1 - p_none, 1e-15);
+  ASSERT_LT(named.gap_probability, 1.0);
+  auto by_label = [](const EffectRanking& r) {
+    std::map<std::string, double> p;
+    for (const RankedClass& c : r.classes) p[c.kind + "@" + c.region] = c.probability;
+    return p;
+  };
+
+  o.gap_confidence = 0.5 * (named.gap_probability + 1);
+  const EffectRanking held = RankModelEffects(nominal, data, o);
+  ASSERT_FALSE(held.classes.empty());
+  EXPECT_EQ(held.classes[0].kind, "none");
+  EXPECT_TRUE(held.gap_below_confidence);
+  EXPECT_DOUBLE_EQ(held.gap_probability, named.gap_probability);
+  EXPECT_EQ(by_label(held), by_label(named));
+  EXPECT_EQ(held.kind_probabilities, named.kind_probabilities);
+  // The other classes keep their order after none.
+  for (std::size_t i = 1, j = 0; i < held.classes.size(); ++i, ++j) {
+    if (named.classes[j].kind == "none") ++j;
+    EXPECT_EQ(held.classes[i].kind + held.classes[i].region,
+              named.classes[j].kind + named.classes[j].region);
+  }
+  StructureDiagnosisResult r;
+  r.study_name = "s";
+  r.model_type = "chain";
+  r.gap_confidence = o.gap_confidence;
+  r.ranking = held;
+  EXPECT_NE(StructureDiagnosisReport(r).find(
+                "verdict: no significant gap: a gap of any kind has P"),
+            std::string::npos)
+      << StructureDiagnosisReport(r);
+
+  o.gap_confidence = 0.5 * named.gap_probability;
+  const EffectRanking again = RankModelEffects(nominal, data, o);
+  EXPECT_FALSE(again.gap_below_confidence);
+  EXPECT_EQ(again.classes[0].kind + again.classes[0].region,
+            named.classes[0].kind + named.classes[0].region);
+
+  o.gap_confidence = 1;
+  EXPECT_THROW(RankModelEffects(nominal, data, o), InputError);
+}
+
 // Without bagging the probabilities are the Laplace posterior's; with it both
 // are reported, each summing to 1, and the same fits (chi2, evidence) serve
 // both.

@@ -540,6 +540,22 @@ TEST(Study, MaxMembersIsReadAndChecked) {
               {"diagnosis.members_fitted", "expected >= 0, or -1 to fit every member"});
 }
 
+// diagnosis.gap_confidence: the probability a gap must reach to be named
+// (effect_ranking.h), 0 unless stated, in [0, 1).
+TEST(Study, GapConfidenceIsReadAndChecked) {
+  EXPECT_EQ(LoadStudy(Write("gc_default.yaml", kShear)).diagnosis->gap_confidence, 0.0);
+  EXPECT_EQ(
+      LoadStudy(Write("gc_stated.yaml", kShear + std::string("  gap_confidence: 0.9\n")))
+          .diagnosis->gap_confidence,
+      0.9);
+  ExpectError("gc_one.yaml", kShear + std::string("  gap_confidence: 1\n"),
+              {"diagnosis.gap_confidence", "up to, not including, 1"});
+  ExpectError("gc_negative.yaml", kShear + std::string("  gap_confidence: -0.1\n"),
+              {"diagnosis.gap_confidence"});
+  ExpectError("gc_text.yaml", kShear + std::string("  gap_confidence: sure\n"),
+              {"diagnosis.gap_confidence"});
+}
+
 // The cantilever's effects are placed by a fitted height: regions are refused
 // (x_m states where), and the sampled evidence takes uniform priors only.
 TEST(Study, CantileverPriorsUseHeights) {

@@ -423,6 +423,8 @@ void BindDiagnosis(py::module_& m) {
   py::class_<femup::EffectRanking>(m, "EffectRanking")
       .def_readonly("classes", &femup::EffectRanking::classes)
       .def_readonly("kind_probabilities", &femup::EffectRanking::kind_probabilities)
+      .def_readonly("gap_probability", &femup::EffectRanking::gap_probability)
+      .def_readonly("gap_below_confidence", &femup::EffectRanking::gap_below_confidence)
       .def_readonly("temperature", &femup::EffectRanking::temperature)
       .def_readonly("shape_temperature", &femup::EffectRanking::shape_temperature)
       .def_readonly("best_chi2_p_value", &femup::EffectRanking::best_chi2_p_value)

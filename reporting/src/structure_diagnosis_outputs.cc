@@ -19,6 +19,14 @@ std::string Label(const RankedClass& c) {
   return c.region.empty() ? c.kind : c.kind + " at " + c.region;
 }
 
+// The family's summed probability (the verdict's family need not be the most
+// probable: EffectRankingOptions::gap_confidence).
+double KindProbability(const EffectRanking& k, const std::string& kind) {
+  for (const auto& [name, p] : k.kind_probabilities)
+    if (name == kind) return p;
+  return 0;
+}
+
 }  // namespace
 
 void WriteStructureDiagnosisOutputs(const StructureDiagnosisResult& r, bool plots,
@@ -31,10 +39,14 @@ void WriteStructureDiagnosisOutputs(const StructureDiagnosisResult& r, bool plot
   j["verdict"] = {{"kind", top.kind},
                   {"region", top.region},
                   {"probability", top.probability},
-                  {"kind_probability", k.kind_probabilities.front().second},
+                  {"kind_probability", KindProbability(k, top.kind)},
+                  {"gap_probability", k.gap_probability},
+                  {"gap_below_confidence", k.gap_below_confidence},
                   {"separated", top.probability >= r.confidence},
                   {"equivalent", top.equivalent},
                   {"group_probability", top.group_probability}};
+  j["confidence"] = r.confidence;
+  j["gap_confidence"] = r.gap_confidence;
   j["temperature"] = k.temperature;
   j["shape_temperature"] = k.shape_temperature;
   j["best_chi2_p_value"] = k.best_chi2_p_value;
@@ -102,7 +114,14 @@ std::string StructureDiagnosisReport(const StructureDiagnosisResult& r) {
   const RankedClass& top = k.classes.front();
   o << "diagnosis of " << r.study_name << " (" << r.model_type << " model)\n";
   if (!r.priors.empty()) o << "stated priors: " << StatedPriorsLine(r.priors) << "\n";
-  if (top.kind == "none") {
+  if (top.kind == "none" && k.gap_below_confidence) {
+    const auto& [family, p] = k.kind_probabilities.front();
+    o << "verdict: no significant gap: a gap of any kind has P " << std::fixed
+      << std::setprecision(2) << k.gap_probability << ", below gap_confidence "
+      << r.gap_confidence << " (none P " << top.probability;
+    if (family != "none") o << "; the most probable family " << family << " P " << p;
+    o << ")\n";
+  } else if (top.kind == "none") {
     o << "verdict: no significant gap (P " << std::fixed << std::setprecision(2)
       << top.probability << ")\n";
   } else {

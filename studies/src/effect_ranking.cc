@@ -290,6 +290,8 @@ Invalid EffectRankingOptions::Validate() const {
     return {"members_fitted", "must be >= 0, or -1 to fit every member"};
   if (bagging_copies < 0)
     return {"bagging_copies", "must be >= 0 (0: the Laplace posterior alone)"};
+  if (!(gap_confidence >= 0 && gap_confidence < 1))
+    return {"gap_confidence", "must be in [0, 1) (0: the most probable family)"};
   const auto names = AvailableNonlinearSolvers();
   if (std::find(names.begin(), names.end(), solver) == names.end())
     return {"solver", "unknown nonlinear solver '" + solver + "'"};
@@ -825,8 +827,17 @@ EffectRanking RankModelEffects(const Structure& structure_in,
                         label(*a.second) + ", " + std::to_string(a.second->probability) +
                         "); raise diagnosis.members_fitted to fit them");
   }
+  // No gap is named unless one is probable at the stated confidence: "none"
+  // then comes first whatever the families' shares.
+  const auto none_it = by_kind.find("none");
+  out.gap_probability = none_it == by_kind.end() ? 1.0 : 1.0 - none_it->second;
+  out.gap_below_confidence =
+      none_it != by_kind.end() && out.gap_probability < options.gap_confidence;
+  const bool none_first = out.gap_below_confidence;
   std::stable_sort(classes.begin(), classes.end(),
-                   [&by_kind](const RankedClass& a, const RankedClass& b) {
+                   [&by_kind, none_first](const RankedClass& a, const RankedClass& b) {
+                     if (none_first && (a.kind == "none") != (b.kind == "none"))
+                       return a.kind == "none";
                      const double ka = by_kind.at(a.kind), kb = by_kind.at(b.kind);
                      if (ka != kb) return ka > kb;
                      if (a.kind != b.kind) return a.kind < b.kind;

@@ -103,6 +103,7 @@ StructureDiagnosisResult RunStructureDiagnosis(const Study& study) {
   r.model_type = study.structure.type;
   r.dof_labels = study.model.dof_labels();
   r.confidence = spec.confidence;
+  r.gap_confidence = spec.gap_confidence;
   r.map = MapGeometry(study.structure);
 
   EffectRankingOptions options;
@@ -118,6 +119,7 @@ StructureDiagnosisResult RunStructureDiagnosis(const Study& study) {
   options.max_members = spec.max_members;
   options.rotary_inertia = spec.rotary_inertia;
   options.members_fitted = spec.members_fitted;
+  options.gap_confidence = spec.gap_confidence;
   r.priors = spec.priors;
   // A named family that does not apply is the study's error, before any fit.
   for (const std::string& kind : options.kinds) {

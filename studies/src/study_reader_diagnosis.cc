@@ -193,6 +193,7 @@ DiagnosisSpec ReadDiagnosis(const Field& f, const Study& study) {
                 "localise",
                 "solver",
                 "confidence",
+                "gap_confidence",
                 "evidence",
                 "evidence_samples",
                 "priors",
@@ -291,6 +292,13 @@ DiagnosisSpec ReadDiagnosis(const Field& f, const Study& study) {
     d.confidence = f["confidence"].Num();
     if (!(d.confidence > 0.5 && d.confidence < 1))
       f["confidence"].Fail("expected a probability between 0.5 and 1");
+  }
+  if (f.Has("gap_confidence")) {
+    d.gap_confidence = f["gap_confidence"].Num();
+    if (!(d.gap_confidence >= 0 && d.gap_confidence < 1))
+      f["gap_confidence"].Fail(
+          "the probability a gap must reach to be named: expected 0 (the most probable "
+          "family) up to, not including, 1");
   }
   if (f.Has("evidence")) {
     d.evidence = f["evidence"].Str();

@@ -8,7 +8,7 @@ for p in python3 /usr/bin/python3; do
 done
 [ -n "$PY" ] || fail "no python3 with numpy and scipy (scripts/setup.sh installs python3-numpy, python3-scipy)"
 SUITE="$ROOT/validation/blind_structures"
-(cd "$SUITE" && "$PY" -B -m unittest -q test_frame2d test_frame3d test_jacket3d test_run_suite 2>&1) || fail "frame2d and frame3d against closed forms, the jacket geometry, run_suite's scoring"
+(cd "$SUITE" && "$PY" -B -m unittest -q test_frame2d test_frame3d test_jacket3d test_run_suite test_rescore 2>&1) || fail "frame2d and frame3d against closed forms, the jacket geometry, run_suite's scoring, rescore's reweighting"
 
 "$PY" -B "$SUITE/run_suite.py" --suite shear_building --cases 8 --seed 7 --threads 2 \
   --femup "$FEMUP" -o blind > blind.txt 2> blind.err || { cat blind.err; fail "the suite did not run"; }
@@ -16,6 +16,11 @@ grep -q "top-1 kind, all" blind.txt || fail "no summary table"
 [ "$(ls blind/cases/*.yaml | wc -l)" = 8 ] || fail "8 study files"
 [ "$(ls blind/truth/*.json | wc -l)" = 8 ] || fail "8 truths"
 [ "$(wc -l < blind/results.jsonl)" = 8 ] || fail "8 scored cases"
+# Rescoring the runs as they were decided gives the scores back.
+"$PY" -B "$SUITE/rescore.py" blind --check | grep -q "8 cases as in results.jsonl" \
+  || fail "rescore --check does not reproduce results.jsonl"
+"$PY" -B "$SUITE/rescore.py" blind --gap-threshold 0 | grep -q "top-1 kind, all" \
+  || fail "rescore --gap-threshold 0: no summary table"
 # The study files give nothing of the truth away.
 ! grep -qiE "stiffness_loss|attached_mass|support_flex|material_scal|damage|storey [0-9]" blind/cases/*.yaml \
   || fail "a study file names its effect"

@@ -116,6 +116,19 @@ struct EffectRankingOptions {
   // What the study states about the families (empty: their defaults). Each
   // family it names must be among those tried.
   StatedPriors priors;
+  // A gap is named only where its probability (1 - P(none): of any effect at
+  // all) reaches this; below it the verdict is "none" (no significant gap),
+  // first among the classes, with every probability as it is. The prior gives
+  // none one share among the families' (the suites' base rate), which keeps the
+  // stated probabilities calibrated but names a family on a case without an
+  // effect whenever the model's own form error leaves several of its places a
+  // little more probable than none. Asking for confidence before saying there
+  // is a gap lowers those false alarms and misses weak real effects: on the
+  // shear buildings it pays, on the plane frames it only costs
+  // (docs/diagnosis.md, "Naming a gap only with confidence"), so it is the
+  // user's choice. 0 (the default): the most probable family, whatever its
+  // probability. In [0, 1).
+  double gap_confidence = 0;
   // Ok when valid, else the field and what is wrong.
   Invalid Validate() const;
 };
@@ -151,10 +164,17 @@ struct FormErrorAllowance {
 };
 
 struct EffectRanking {
-  // By family, the most probable family first, then by class within it: the
-  // first is the verdict (the most probable class of the most probable family).
+  // By family, the most probable family first (but "none" first where the
+  // gap's probability is below EffectRankingOptions::gap_confidence), then by
+  // class within it: the first is the verdict (the most probable class of the
+  // most probable family).
   std::vector<RankedClass> classes;
   std::vector<std::pair<std::string, double>> kind_probabilities;  // most probable first
+  // The probability of any gap (1 - P(none)), and whether it was below
+  // EffectRankingOptions::gap_confidence, so that "none" is the verdict
+  // although a family is more probable.
+  double gap_probability = 0;
+  bool gap_below_confidence = false;
   double temperature = 1;        // of the frequencies' noise
   double shape_temperature = 1;  // of the shapes' noise
   double best_chi2_p_value = 1;

@@ -23,8 +23,9 @@ struct StructureDiagnosisResult {
   std::vector<std::string> dof_labels;
   EffectRanking ranking;
   double confidence = 0.9;
-  StatedPriors priors;  // as the study states them (diagnosis.priors, weights)
-  DiagnosisMap map;     // the model's geometry, for diagnosis_map.png
+  double gap_confidence = 0;  // DiagnosisSpec::gap_confidence
+  StatedPriors priors;        // as the study states them (diagnosis.priors, weights)
+  DiagnosisMap map;           // the model's geometry, for diagnosis_map.png
 };
 
 // Throws InputError (naming the study file and field) for a study without

@@ -187,6 +187,10 @@ struct DiagnosisSpec {
   bool localise = true;  // the per-element scan
   std::string solver = "ceres";
   double confidence = 0.9;  // a verdict below this lists what it cannot separate
+  // Other models: a gap is named only where its probability (1 - P(none))
+  // reaches this; 0 (the default): the most probable family, whatever its
+  // probability. EffectRankingOptions::gap_confidence.
+  double gap_confidence = 0;
   // Each class's evidence: "laplace" (Laplace's approximation at the best fit)
   // or "sampled" (importance sampling over its prior, sampled_evidence.h, where
   // its standard error is small; Laplace's elsewhere). docs/diagnosis.md has the
