@@ -132,6 +132,10 @@ def test_structure_diagnosis_matches_diagnosis_json(run_cli):
             assert m.name == em["name"] and m.unit == em["unit"]
             close(m.value, em["value"], rel=1e-9)
     close(result.ranking.temperature, expected["temperature"])
+    close(result.ranking.gap_probability, expected["verdict"]["gap_probability"], rel=1e-9)
+    assert result.ranking.gap_below_confidence is False
+    assert expected["verdict"]["gap_below_confidence"] is False
+    assert expected["gap_confidence"] == 0
 
 
 def test_frame_diagnosis_states_the_form_error_it_allowed_for(run_cli):
