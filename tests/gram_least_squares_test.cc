@@ -169,7 +169,9 @@ TEST(LstsqGramRoute, RankThresholdIsTheGramMatrixsRounding) {
   const Eigen::VectorXd kept = v.leftCols(n - 1) *
                                sigma.head(n - 1).cwiseInverse().asDiagonal() *
                                (q.leftCols(n - 1).transpose() * problem.b);
-  EXPECT_LT((gram.x - kept).norm(), 1e-9 * kept.norm());
+  // 1e-8 as the comparison with the SVD route above: on an AMD EPYC, whose
+  // OpenBLAS runs its Zen kernels, the difference is 2.2e-9 of the answer.
+  EXPECT_LT((gram.x - kept).norm(), 1e-8 * kept.norm());
 }
 
 TEST(LstsqGramRoute, OrdinaryProblemsKeepTheSvd) {
