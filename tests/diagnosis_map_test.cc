@@ -40,9 +40,12 @@ TEST(DiagnosisMap, DrawsAPlaneFrameToScale) {
   const auto& beam = ElementOf(map, "element s1:beam1");  // n1-n5, n2-n5
   EXPECT_EQ(beam.x, (std::vector<double>{0.0, 2.5, 5.0, 2.5}));
   EXPECT_EQ(beam.y, (std::vector<double>{3.0, 3.0, 3.0, 3.0}));
-  // Every free node is a place for an attached mass; no support springs.
+  // Every free node is a place for an attached mass; the clamped feet are
+  // supports too (rigid ones, which support flexibility may release).
   EXPECT_EQ(map.nodes.size(), 5u);
-  EXPECT_TRUE(map.supports.empty());
+  ASSERT_EQ(map.supports.size(), 2u);
+  EXPECT_EQ(map.supports[1].x, 5.0);
+  EXPECT_EQ(map.supports[1].y, 0.0);
   PlaneFrameSpec sprung = Portal();
   sprung.base.rotation = 1e8;
   const DiagnosisMap on_springs = MapGeometry(BuildPlaneFrameStructure(sprung));

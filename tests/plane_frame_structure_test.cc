@@ -5,12 +5,15 @@
 // effect fit from modes of a frame built with the weaker column's section.
 #include <gtest/gtest.h>
 
+#include <Eigen/Dense>
 #include <cmath>
+#include <tuple>
 
 #include "femup/core/errors.h"
 #include "femup/core/fe/plane_frame.h"
 #include "femup/core/linalg/modal.h"
 #include "femup/problems/model_effect_pencil.h"
+#include "femup/problems/model_effects.h"
 #include "femup/solvers/nonlinear_solver.h"
 #include "femup/studies/study.h"
 #include "structure_specs.h"
@@ -117,6 +120,84 @@ TEST(PlaneFrameStructure, BaseSpringsMatchTheSlopeDeflectionClosedForm) {
     const double exact = 2 * ColumnSwayStiffness(ei, h, kr, kh) / beam_mass;
     EXPECT_NEAR(modes.eigenvalues[0] / exact, 1.0, 3e-3) << "kr " << kr << " kh " << kh;
   }
+}
+
+// A clamped frame's bases are rigid supports that support flexibility can
+// release: at compliance ratio c every restrained direction gets a spring of
+// the column end's own stiffness over c, condensed onto the frame's DOFs.
+// K + dK is then the Schur complement of the same frame built on those base
+// springs (its base DOFs condensed out), M + dM its Guyan-reduced mass, and the
+// portal's sway the slope-deflection closed form with those springs.
+TEST(PlaneFrameStructure, ClampedBasesAreRigidSupportsThatSpringsRelease) {
+  PlaneFrameSpec spec = Portal();
+  const Structure clamped = BuildPlaneFrameStructure(spec);
+  EXPECT_TRUE(clamped.supports.empty());
+  ASSERT_EQ(clamped.rigid_supports.size(), 2u);
+  const RigidSupport& b2 = clamped.rigid_supports[1];
+  EXPECT_EQ(b2.name, "b2");
+  EXPECT_EQ(b2.xyz, Eigen::Vector3d(5.0, 0.0, 0.0));
+  EXPECT_EQ(b2.directions, (std::vector<std::string>{"ux", "uy", "rz"}));
+  // Its column's first element (h / 4 long) alone meets the foot: 4 E I / l
+  // in rotation, 12 E I / l^3 sideways, E A / l along it.
+  const double ei = spec.column.E * spec.column.I, h = spec.storey_height, l = h / 4;
+  EXPECT_NEAR(b2.k_bb(2, 2) / (4 * ei / l), 1.0, 1e-12);
+  EXPECT_NEAR(b2.k_bb(0, 0) / (12 * ei / std::pow(l, 3)), 1.0, 1e-12);
+  EXPECT_NEAR(b2.k_bb(1, 1) / (spec.column.E * spec.column.A / l), 1.0, 1e-12);
+  EXPECT_EQ(b2.rows.size(), 3u);  // the element's other node
+
+  const auto effects = CreateModelEffects("support_flexibility", clamped);
+  ASSERT_EQ(effects.size(), 1u);
+  const double beam_mass = spec.beam.rho * spec.beam.A * spec.bay_width;
+  for (const double c : {0.05, 1.0, 8.0}) {
+    const Eigen::VectorXd theta = Eigen::VectorXd::Constant(1, std::log(c));
+    SparseMatrix k, m;
+    ApplyModelEffects(clamped, {effects[0].get()}, {theta}, Immersion::kDry, &k, &m);
+    const double kh = b2.k_bb(0, 0) / c, kv = b2.k_bb(1, 1) / c, kr = b2.k_bb(2, 2) / c;
+    PlaneFrameSpec sprung = spec;
+    sprung.base = {kh, kv, kr};
+    const Structure reference = BuildPlaneFrameStructure(sprung);
+    const int n = static_cast<int>(clamped.dof_labels.size());
+    const int nb = static_cast<int>(reference.dof_labels.size()) - n;
+    ASSERT_EQ(nb, 6);
+    for (int i = 0; i < n; ++i) ASSERT_EQ(reference.dof_labels[i], clamped.dof_labels[i]);
+    const Eigen::MatrixXd k2(reference.stiffness), m2(reference.mass);
+    const Eigen::MatrixXd kbb = k2.bottomRightCorner(nb, nb);
+    const Eigen::MatrixXd t = -kbb.ldlt().solve(k2.bottomLeftCorner(nb, n));
+    const Eigen::MatrixXd schur = k2.topLeftCorner(n, n) + k2.topRightCorner(n, nb) * t;
+    const Eigen::MatrixXd guyan = m2.topLeftCorner(n, n) + m2.topRightCorner(n, nb) * t +
+                                  t.transpose() * m2.bottomLeftCorner(nb, n) +
+                                  t.transpose() * m2.bottomRightCorner(nb, nb) * t;
+    EXPECT_LT((Eigen::MatrixXd(k) - schur).cwiseAbs().maxCoeff(),
+              1e-9 * schur.cwiseAbs().maxCoeff())
+        << "c " << c;
+    EXPECT_LT((Eigen::MatrixXd(m) - guyan).cwiseAbs().maxCoeff(),
+              1e-9 * guyan.cwiseAbs().maxCoeff())
+        << "c " << c;
+    // The sway against the closed form (the columns are axially rigid, so the
+    // vertical springs leave it alone).
+    const Modes modes = SolveModes(k, m);
+    const double exact = 2 * ColumnSwayStiffness(ei, h, kr, kh) / beam_mass;
+    EXPECT_NEAR(modes.eigenvalues[0] / exact, 1.0, 3e-3) << "c " << c;
+  }
+  // Its derivative against central differences of the change.
+  const double t0 = std::log(0.7), step = 1e-5;
+  const ModelChange d =
+      effects[0]->Derivative(Eigen::VectorXd::Constant(1, t0), 0, Immersion::kDry);
+  const ModelChange up =
+      effects[0]->Change(Eigen::VectorXd::Constant(1, t0 + step), Immersion::kDry);
+  const ModelChange down =
+      effects[0]->Change(Eigen::VectorXd::Constant(1, t0 - step), Immersion::kDry);
+  for (const auto& [exact, a, b] :
+       {std::tuple{&d.stiffness, &up.stiffness, &down.stiffness},
+        std::tuple{&d.mass, &up.mass, &down.mass}}) {
+    const Eigen::MatrixXd fd = (Eigen::MatrixXd(*a) - Eigen::MatrixXd(*b)) / (2 * step);
+    EXPECT_LT((Eigen::MatrixXd(*exact) - fd).cwiseAbs().maxCoeff(),
+              1e-6 * fd.cwiseAbs().maxCoeff());
+  }
+  // A frame on base springs keeps its springs as the supports it softens.
+  PlaneFrameSpec on_springs = spec;
+  on_springs.base.rotation = 1e7;
+  EXPECT_TRUE(BuildPlaneFrameStructure(on_springs).rigid_supports.empty());
 }
 
 TEST(PlaneFrameStructure, BaseSpringsAreSupportsWithTheirOwnDofs) {

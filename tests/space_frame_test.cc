@@ -895,6 +895,52 @@ TEST(SpaceFrameBuild, BaseSpringsAddDofsAndSupportTheLegs) {
   }
 }
 
+// A clamped frame's base joints are rigid supports (what support flexibility
+// releases where the frame has no springs): the coupling of each joint's six
+// restrained directions to the frame, and among them, is what the same frame
+// on springs in every direction has on that joint's base DOFs, less the
+// springs.
+TEST(SpaceFrameStructure, ClampedBaseJointsAreRigidSupports) {
+  SpaceFrameSpec spec = fixtures::SpaceFrame(2, 1, 1, 2, 10, 12, 12);
+  const Structure clamped = BuildSpaceFrameStructure(spec);
+  ASSERT_EQ(clamped.rigid_supports.size(), 4u);
+  EXPECT_TRUE(clamped.supports.empty());
+  spec.base = {2e8, 3e9, 5e9, 7e9};  // horizontal, vertical, rocking, torsion
+  const Structure sprung = BuildSpaceFrameStructure(spec);
+  ASSERT_TRUE(sprung.rigid_supports.empty());
+  const Eigen::MatrixXd k(sprung.stiffness), m(sprung.mass);
+  const double springs[6] = {2e8, 2e8, 3e9, 5e9, 5e9, 7e9};
+  const char* const dirs[6] = {"ux", "uy", "uz", "rx", "ry", "rz"};
+  const int n = static_cast<int>(clamped.dof_labels.size());
+  for (const RigidSupport& sp : clamped.rigid_supports) {
+    SCOPED_TRACE(sp.name);
+    ASSERT_EQ(sp.directions.size(), 6u);
+    std::vector<int> base;
+    for (const char* d : dirs) {
+      const auto at = std::find(sprung.dof_labels.begin(), sprung.dof_labels.end(),
+                                sp.name + ":" + d);
+      ASSERT_NE(at, sprung.dof_labels.end());
+      base.push_back(static_cast<int>(at - sprung.dof_labels.begin()));
+    }
+    const double scale = k.cwiseAbs().maxCoeff(), mass_scale = m.cwiseAbs().maxCoeff();
+    for (int a = 0; a < 6; ++a) {
+      for (int b = 0; b < 6; ++b) {
+        EXPECT_NEAR(sp.k_bb(a, b) + (a == b ? springs[a] : 0.0), k(base[a], base[b]),
+                    1e-12 * scale);
+        EXPECT_NEAR(sp.m_bb(a, b), m(base[a], base[b]), 1e-12 * mass_scale);
+      }
+      for (int i = 0; i < n; ++i) {
+        const auto row = std::find(sp.rows.begin(), sp.rows.end(), i);
+        const bool coupled = row != sp.rows.end();
+        const int r = static_cast<int>(row - sp.rows.begin());
+        EXPECT_NEAR(coupled ? sp.k_fb(r, a) : 0.0, k(i, base[a]), 1e-12 * scale) << i;
+        EXPECT_NEAR(coupled ? sp.m_fb(r, a) : 0.0, m(i, base[a]), 1e-12 * mass_scale)
+            << i;
+      }
+    }
+  }
+}
+
 TEST(SpaceFrameInput, BadSpecNamesTheField) {
   auto expect = [](const SpaceFrameSpec& spec, const std::string& field) {
     for (int call = 0; call < 3; ++call) {

@@ -1,5 +1,6 @@
 #include "femup/problems/model_effects.h"
 
+#include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -495,6 +496,94 @@ class SupportFlexibility : public Base {
   }
 };
 
+// Where the supports are rigid (Structure::rigid_supports): a spring on each
+// restrained direction d of every support, k_d = k_bb(d, d) / c with c =
+// exp(theta_0) (k_bb(d, d): the stiffness the elements meeting there give that
+// direction, so c = 1 is a spring as stiff as the members' ends), condensed
+// out statically (Guyan): with A = (k_bb + D / c)^-1, D = diag(k_bb), and T =
+// -A k_fb', dK = k_fb T and dM = m_fb T + T' m_fb' + T' m_bb T on the rows the
+// support couples to. c -> 0 is the rigid support (dK, dM -> 0); c -> inf
+// frees the restrained directions.
+class RigidSupportFlexibility : public Base {
+ public:
+  using Base::Base;
+  std::string kind() const override { return "support_flexibility"; }
+  std::vector<EffectParameter> Parameters() const override {
+    return {
+        LogQuantity({"ln_compliance_ratio",
+                     "ln(a base spring's compliance / the members' own end compliance)",
+                     std::log(1e-3), std::log(100.0), false},
+                    "compliance_ratio", 1.0)};
+  }
+  std::vector<Eigen::VectorXd> Starts() const override {
+    return {VectorOf({std::log(0.01)}), VectorOf({std::log(1.0)})};
+  }
+  ModelChange Change(const Eigen::VectorXd& t, Immersion) const override {
+    return Condensed(std::exp(t[0]), false);
+  }
+  ModelChange Derivative(const Eigen::VectorXd& t, int, Immersion) const override {
+    return Condensed(std::exp(t[0]), true);
+  }
+  EffectLocation Location(const Eigen::VectorXd&) const override {
+    EffectLocation l;
+    l.x = s_.elements.empty() ? 0.0 : s_.elements.front().x0;
+    return l;
+  }
+  std::vector<EffectMagnitude> Magnitudes(const Eigen::VectorXd& t) const override {
+    const double c = std::exp(t[0]);
+    std::vector<EffectMagnitude> m = {{"compliance_ratio", "1", c}};
+    // Each direction's spring, the mean over the supports.
+    const RigidSupport& first = s_.rigid_supports.front();
+    for (std::size_t d = 0; d < first.directions.size(); ++d) {
+      double sum = 0;
+      for (const RigidSupport& sp : s_.rigid_supports) sum += sp.k_bb(d, d) / c;
+      const std::string& dir = first.directions[d];
+      m.push_back({"base spring " + dir + " (mean of " +
+                       std::to_string(s_.rigid_supports.size()) + " supports)",
+                   dir[0] == 'r' ? "N m/rad" : "N/m",
+                   sum / static_cast<double>(s_.rigid_supports.size())});
+    }
+    return m;
+  }
+
+ private:
+  // The change at compliance ratio c, or its derivative with respect to ln c.
+  ModelChange Condensed(double c, bool derivative) const {
+    std::vector<Eigen::Triplet<double>> kt, mt;
+    for (const RigidSupport& sp : s_.rigid_supports) {
+      if (sp.rows.empty()) continue;
+      const Eigen::VectorXd d = sp.k_bb.diagonal();
+      const Eigen::MatrixXd kb = sp.k_bb + Eigen::MatrixXd(d.asDiagonal()) / c;
+      const Eigen::MatrixXd a =
+          kb.ldlt().solve(Eigen::MatrixXd::Identity(kb.rows(), kb.cols()));
+      const Eigen::MatrixXd tr = -a * sp.k_fb.transpose();  // T: directions x rows
+      Eigen::MatrixXd dk, dm;
+      if (!derivative) {
+        dk = sp.k_fb * tr;
+        dm = sp.m_fb * tr + tr.transpose() * sp.m_fb.transpose() +
+             tr.transpose() * sp.m_bb * tr;
+      } else {
+        // dA/dln c = A (D / c) A, so dT = -A (D / c) A k_fb' = A (D / c) T.
+        const Eigen::MatrixXd dt = a * (d / c).asDiagonal() * tr;
+        dk = sp.k_fb * dt;
+        dm = sp.m_fb * dt + dt.transpose() * sp.m_fb.transpose() +
+             dt.transpose() * sp.m_bb * tr + tr.transpose() * sp.m_bb * dt;
+      }
+      const int r = static_cast<int>(sp.rows.size());
+      for (int i = 0; i < r; ++i) {
+        for (int j = 0; j < r; ++j) {
+          kt.emplace_back(sp.rows[i], sp.rows[j], dk(i, j));
+          mt.emplace_back(sp.rows[i], sp.rows[j], dm(i, j));
+        }
+      }
+    }
+    SparseMatrix k = Zero(n()), m = Zero(n());
+    k.setFromTriplets(kt.begin(), kt.end());
+    m.setFromTriplets(mt.begin(), mt.end());
+    return {k, m};
+  }
+};
+
 }  // namespace
 
 std::vector<std::string> ModelEffectKinds() {
@@ -548,10 +637,11 @@ std::vector<FamilyApplicability> ApplicableModelEffects(const Structure& s) {
         why = "no element is wet and the elements have no heights for a water level";
       }
     } else if (kind == "support_flexibility") {
-      if (s.supports.empty()) {
+      if (s.supports.empty() && s.rigid_supports.empty()) {
         why =
-            "the model's supports are rigid (their DOFs are not in the model); give "
-            "them as springs to diagnose their flexibility";
+            "the model's supports are rigid (their DOFs are not in the model) and its "
+            "builder does not know the elements that meet them; give them as springs to "
+            "diagnose their flexibility";
       }
     } else if (kind == "attached_mass") {
       if (!(ReferenceMass(s) > 0)) why = "the model has no translational DOF with mass";
@@ -684,8 +774,12 @@ std::vector<std::unique_ptr<ModelEffect>> CreateModelEffects(
         std::make_unique<AddedMass>(s, std::move(r), level, options.wet_only_added_mass));
   } else if (kind == "support_flexibility") {
     EffectRegion r{"supports", {}, {}};
-    for (const SupportSpring& sp : s.supports) r.dofs.push_back(sp.dof);
-    out.push_back(std::make_unique<SupportFlexibility>(s, std::move(r)));
+    if (!s.supports.empty()) {
+      for (const SupportSpring& sp : s.supports) r.dofs.push_back(sp.dof);
+      out.push_back(std::make_unique<SupportFlexibility>(s, std::move(r)));
+    } else {
+      out.push_back(std::make_unique<RigidSupportFlexibility>(s, std::move(r)));
+    }
   }
   return out;
 }

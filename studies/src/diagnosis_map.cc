@@ -100,6 +100,14 @@ DiagnosisMap MapGeometry(const Structure& s) {
     }  // else: a chain's ground spring, at the foot (0, 0)
     map.supports.push_back(n);
   }
+  // Rigid supports that support flexibility may release, at their joints.
+  for (const RigidSupport& sp : s.rigid_supports) {
+    if (!map.to_scale) break;
+    DiagnosisMap::Node n;
+    n.region = "supports";
+    std::tie(n.x, n.y) = plane(sp.xyz);
+    map.supports.push_back(n);
+  }
   return map;
 }
 

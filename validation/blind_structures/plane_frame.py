@@ -28,7 +28,13 @@ families make exactly:
   none.
 With --foundation springs every case's model and truth stand on those springs
 (so their presence says nothing about the answer), and soft_foundation joins
-the kinds.
+the kinds. With --foundation soft the model is clamped, as an engineer who
+takes the foundation as rigid would model it, and so is every truth but
+soft_foundation's, whose column bases stand on rotational springs (horizontal
+and vertical held) of k_c = (4 E I / h) / (a u_c), a column's own end stiffness
+over a, u_c uniform in 0.5-1.5 per base: the model's support_flexibility
+releases every restrained direction of every base by one factor, so this is
+not its form either.
 Sizes by the largest relative frequency shift in noise units, as for the shear
 buildings. Sensors: horizontal (ux) at some joints, vertical (uy) at some beam
 middles; 3-5 modes, some cases without shapes.
@@ -94,14 +100,17 @@ def random_frame(rng, foundation="clamped"):
     return p
 
 
-def add_bases(f, p, B, L, soften=None):
+def add_bases(f, p, B, L, soften=None, springs=None):
     """Column base nodes: clamped, or on rotational springs k (each divided by
-    soften[c] when given)."""
+    soften[c] when given), or on the given rotational springs[c]."""
     base = [f.add_node(c * L, 0.0) for c in range(B + 1)]
     for c in range(B + 1):
-        if "base_rotation" in p:
+        if "base_rotation" in p or springs is not None:
             f.fixed |= {(base[c], 0), (base[c], 1)}
-            k = p["base_rotation"] / (soften[c] if soften is not None else 1.0)
+            if springs is not None:
+                k = springs[c]
+            else:
+                k = p["base_rotation"] / (soften[c] if soften is not None else 1.0)
             f.springs.append((base[c], 2, k))
         else:
             f.fixed |= {(base[c], 0), (base[c], 1), (base[c], 2)}
@@ -115,10 +124,13 @@ class Truth:
         E = E_STEEL * (effect.e_factor(a) if effect else 1.0)
         f = Frame()
         self.joint = {}
-        soften = None
+        soften, springs = None, None
         if effect is not None and effect.kind == "soft_foundation":
-            soften = [1 + a * u for u in effect.spread]
-        base = add_bases(f, p, B, L, soften)
+            if "base_rotation" in p:
+                soften = [1 + a * u for u in effect.spread]
+            elif a > 0:  # a clamped model: springs only under the truth
+                springs = [4 * E_STEEL * p["column_I"] / h / (a * u) for u in effect.spread]
+        base = add_bases(f, p, B, L, soften, springs)
         for c in range(B + 1):
             for j in range(1, S + 1):
                 self.joint[(c, j)] = f.add_node(c * L, j * h)
@@ -246,15 +258,17 @@ class Effect:
         if self.kind == "material_scaling":
             return "E factor %.4f" % self.e_factor(a)
         if self.kind == "soft_foundation":
-            return "base springs softer: k / (1 + %.3g u), u = %s" % (
-                a, ", ".join("%.2f" % u for u in self.spread))
+            u = ", ".join("%.2f" % v for v in self.spread)
+            if "base_rotation" not in p:
+                return "base rotation springs (4 E I / h) / (%.3g u), u = %s" % (a, u)
+            return "base springs softer: k / (1 + %.3g u), u = %s" % (a, u)
         return "no effect"
 
 
 def make_case(rng, name, design="mixed", noise_free=False, floors=None, foundation="clamped"):
     p = random_frame(rng, foundation)
     S, B = p["storeys"], p["bays"]
-    kinds = KINDS_ON_SPRINGS if foundation == "springs" else KINDS
+    kinds = KINDS_ON_SPRINGS if foundation in ("springs", "soft") else KINDS
     kind = kinds[int(rng.integers(0, len(kinds)))]
     modes = int(rng.integers(3, 6)) if design == "informative" else int(rng.integers(2, 6))
     shapes = True if design == "informative" else rng.random() < 2 / 3

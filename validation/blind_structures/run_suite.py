@@ -293,9 +293,11 @@ def main():
     ap.add_argument("--design", default="mixed", choices=["mixed", "informative"])
     ap.add_argument("--floors", default="flexible", choices=["flexible", "stiff"],
                     help="shear_building: beam-to-column stiffness 10-100 or 1000-10000")
-    ap.add_argument("--foundation", default="clamped", choices=["clamped", "springs"],
+    ap.add_argument("--foundation", default="clamped", choices=["clamped", "springs", "soft"],
                     help="plane_frame, jacket: bases clamped (default), or on springs in "
-                         "model and truth, with soft_foundation among the kinds")
+                         "model and truth, with soft_foundation among the kinds; "
+                         "plane_frame: soft, the model clamped and soft_foundation's "
+                         "truth alone on springs")
     ap.add_argument("--jacket-water", default="as_model", choices=["as_model", "full"],
                     help="jacket: the truth's clean-tube water left out as femup's dry "
                          "nominal model leaves it out (default), or in every truth "
@@ -316,8 +318,10 @@ def main():
     if args.cases < 1:
         ap.error("--cases must be at least 1")
     if args.foundation != "clamped" and args.suite not in ("plane_frame", "jacket"):
-        ap.error("--foundation springs: only the plane_frame and jacket suites have "
-                 "column bases")
+        ap.error("--foundation %s: only the plane_frame and jacket suites have "
+                 "column bases" % args.foundation)
+    if args.foundation == "soft" and args.suite != "plane_frame":
+        ap.error("--foundation soft: only the plane_frame suite")
     if not (0 <= args.stated_model_error < 1):
         ap.error("--stated-model-error must be in [0, 1)")
     if not (os.path.isfile(args.femup) and os.access(args.femup, os.X_OK)):

@@ -362,6 +362,17 @@ Structure BuildFrame(const PlaneFrameSpec& spec, bool variants) {
       s.nodes.push_back({name, Eigen::Vector3d(c * spec.bay_width, 0.0, 0.0)});
     }
   }
+  // Clamped column bases: each a rigid support whose restrained directions
+  // couple to the frame through its column's first element.
+  if (spec.base.rigid()) {
+    for (int c = 0; c <= spec.bays; ++c) {
+      RigidSupport support;
+      support.name = "b" + std::to_string(c + 1);
+      support.xyz = Eigen::Vector3d(c * spec.bay_width, 0.0, 0.0);
+      support.directions = {"ux", "uy", "rz"};
+      s.rigid_supports.push_back(std::move(support));
+    }
+  }
   const int n = static_cast<int>(s.dof_labels.size());
   // An Euler-Bernoulli frame's form variant: the same members with shear
   // deformation (its global K and M, the base springs included).
@@ -395,12 +406,19 @@ Structure BuildFrame(const PlaneFrameSpec& spec, bool variants) {
       s.segments.push_back({p.a < 0 ? base_node[line] : p.a, p.b,
                             Eigen::Vector3d(p.xa, p.ya, 0.0),
                             Eigen::Vector3d(p.xb, p.yb, 0.0), static_cast<int>(m)});
-      if (timoshenko) {
-        Scatter(Frame2dStiffness(sec, model_shear, p.xa, p.ya, p.xb, p.yb), d, &ke);
-        Scatter(Frame2dConsistentMass(sec, model_shear, p.xa, p.ya, p.xb, p.yb), d, &me);
-      } else {
-        Scatter(Frame2dStiffness(sec, p.xa, p.ya, p.xb, p.yb), d, &ke);
-        Scatter(Frame2dConsistentMass(sec, p.xa, p.ya, p.xb, p.yb), d, &me);
+      const Matrix6 k6 = timoshenko
+                             ? Frame2dStiffness(sec, model_shear, p.xa, p.ya, p.xb, p.yb)
+                             : Frame2dStiffness(sec, p.xa, p.ya, p.xb, p.yb);
+      const Matrix6 m6 =
+          timoshenko ? Frame2dConsistentMass(sec, model_shear, p.xa, p.ya, p.xb, p.yb)
+                     : Frame2dConsistentMass(sec, p.xa, p.ya, p.xb, p.yb);
+      Scatter(k6, d, &ke);
+      Scatter(m6, d, &me);
+      if (p.a < 0 && !s.rigid_supports.empty()) {
+        internal::AddToRigidSupport<6>(k6, m6, d, {0, 1, 2, -1, -1, -1},
+                                       &s.rigid_supports[line]);
+      }
+      if (!timoshenko) {
         if (own_mesh_shear) {
           Scatter(Frame2dStiffness(sec, sheared, p.xa, p.ya, p.xb, p.yb), d, &kv);
           Scatter(Frame2dConsistentMass(sec, sheared, p.xa, p.ya, p.xb, p.yb), d, &mv);

@@ -641,6 +641,35 @@ Structure BuildSpaceFrameStructure(const SpaceFrameSpec& spec) {
       }
     }
   }
+  // A clamped base: each joint a rigid support, coupled to the frame through
+  // the members that meet it.
+  if (spec.base.rigid()) {
+    const int joints = static_cast<int>(base.dof.size());
+    for (int j = 0; j < joints; ++j) {
+      RigidSupport support;
+      support.name = "b" + std::to_string(j + 1);
+      support.xyz =
+          Eigen::Vector3d((j % base.nx) * base.wx, (j / base.nx) * base.wy, 0.0);
+      support.directions = {"ux", "uy", "uz", "rx", "ry", "rz"};
+      s.rigid_supports.push_back(std::move(support));
+    }
+    for (const SpaceFrameElement& e : elements) {
+      if (e.node1 >= 0 && e.node2 >= 0) continue;
+      const Matrix12 k = Frame3dStiffness(SectionOf(spec, e.member), e.end1, e.end2,
+                                          e.reference, theory);
+      const Matrix12 m = Frame3dConsistentMass(SectionOf(spec, e.member), e.end1, e.end2,
+                                               e.reference, theory);
+      for (const bool first : {true, false}) {
+        if ((first ? e.node1 : e.node2) >= 0) continue;
+        std::array<int, 12> restrained;
+        restrained.fill(-1);
+        for (int i = 0; i < 6; ++i) restrained[(first ? 0 : 6) + i] = i;
+        internal::AddToRigidSupport<12>(
+            k, m, DofsOf(e, base), restrained,
+            &s.rigid_supports[base.JointAt(first ? e.end1 : e.end2)]);
+      }
+    }
+  }
   s.segments.reserve(g.elements.size());
   // A base end is its base joint's node when the base is on springs.
   auto node_of = [&](int node, const Eigen::Vector3d& end) {

@@ -171,8 +171,9 @@ struct EffectRanking {
   std::vector<RankedClass> classes;
   std::vector<std::pair<std::string, double>> kind_probabilities;  // most probable first
   // The probability of any gap (1 - P(none)), and whether it was below
-  // EffectRankingOptions::gap_confidence, so that "none" is the verdict
-  // although a family is more probable.
+  // EffectRankingOptions::gap_confidence (a positive one), so that "none" is
+  // the verdict: also where none was the most probable family anyway, and the
+  // rule changed nothing.
   double gap_probability = 0;
   bool gap_below_confidence = false;
   double temperature = 1;        // of the frequencies' noise

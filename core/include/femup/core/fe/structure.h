@@ -67,6 +67,21 @@ struct SupportSpring {
   std::string unit;      // of the stiffness: "N/m" or "N m/rad"
 };
 
+// A rigid support of a model with geometry (a clamped column base, a jacket's
+// foot): its restrained directions have no DOF in the model, but the elements
+// that meet there couple them to the model's DOFs. What support flexibility
+// acts on where the model has no spring there (model_effects.h): a spring on
+// each restrained direction, condensed out (Guyan) onto the model's DOFs.
+struct RigidSupport {
+  std::string name;                               // "b1": the support joint
+  Eigen::Vector3d xyz = Eigen::Vector3d::Zero();  // m
+  std::vector<std::string> directions;            // the restrained ones: "ux", "uy", "rz"
+  std::vector<int> rows;  // the model's DOFs the restrained directions couple to
+  // The elements' stiffness and mass between those DOFs and the restrained
+  // directions (rows x directions), and among the restrained directions.
+  Eigen::MatrixXd k_fb, m_fb, k_bb, m_bb;
+};
+
 // The same model in a richer formulation that its builder can make and the
 // model leaves out (a frame of Euler-Bernoulli members with shear deformation,
 // the frame on a finer mesh): the difference is a model-form error the
@@ -115,6 +130,9 @@ struct Structure {
   std::vector<ElementMember> members;
   // Supports that are springs in the model (rigid supports have no DOF here).
   std::vector<SupportSpring> supports;
+  // Supports that are rigid in the model, where its builder knows the
+  // elements that meet there (a plane or space frame's clamped bases).
+  std::vector<RigidSupport> rigid_supports;
   // The nodes (ModelNode::name) where the diagnosis looks for an attached
   // mass; empty: every node with translational DOFs. Large models name a few
   // (a space frame: the joints of its top level), not thousands of fits.
