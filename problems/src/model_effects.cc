@@ -449,20 +449,37 @@ class AddedMass : public Base {
   SparseMatrix flagged_;
 };
 
-// Each support spring k in series with one c = exp(theta_0) times more
-// compliant: k -> k / (1 + c), dK = -k c / (1 + c) on its DOF.
-class SupportFlexibility : public Base {
+// What both forms of support_flexibility share: one compliance ratio c =
+// exp(theta_0) in [1e-3, 100] (what it is relative to, each form says), the
+// same two starts, and a location at the structure's first element.
+class SupportFamily : public Base {
  public:
   using Base::Base;
   std::string kind() const override { return "support_flexibility"; }
-  std::vector<EffectParameter> Parameters() const override {
-    return {
-        LogQuantity({"ln_compliance_ratio", "ln(added compliance / the support's own)",
-                     std::log(1e-3), std::log(100.0), false},
-                    "compliance_ratio", 1.0)};
-  }
   std::vector<Eigen::VectorXd> Starts() const override {
     return {VectorOf({std::log(0.01)}), VectorOf({std::log(1.0)})};
+  }
+  EffectLocation Location(const Eigen::VectorXd&) const override {
+    EffectLocation l;
+    l.x = s_.elements.empty() ? 0.0 : s_.elements.front().x0;
+    return l;
+  }
+
+ protected:
+  static std::vector<EffectParameter> CompliancePrior(const std::string& meaning) {
+    return {LogQuantity(
+        {"ln_compliance_ratio", meaning, std::log(1e-3), std::log(100.0), false},
+        "compliance_ratio", 1.0)};
+  }
+};
+
+// Each support spring k in series with one c = exp(theta_0) times more
+// compliant: k -> k / (1 + c), dK = -k c / (1 + c) on its DOF.
+class SupportFlexibility : public SupportFamily {
+ public:
+  using SupportFamily::SupportFamily;
+  std::vector<EffectParameter> Parameters() const override {
+    return CompliancePrior("ln(added compliance / the support's own)");
   }
   ModelChange Change(const Eigen::VectorXd& t, Immersion) const override {
     const double c = std::exp(t[0]);
@@ -471,11 +488,6 @@ class SupportFlexibility : public Base {
   ModelChange Derivative(const Eigen::VectorXd& t, int, Immersion) const override {
     const double c = std::exp(t[0]);
     return {Springs(-c / ((1 + c) * (1 + c))), {}};  // d/dtheta of -c/(1+c)
-  }
-  EffectLocation Location(const Eigen::VectorXd&) const override {
-    EffectLocation l;
-    l.x = s_.elements.empty() ? 0.0 : s_.elements.front().x0;
-    return l;
   }
   std::vector<EffectMagnitude> Magnitudes(const Eigen::VectorXd& t) const override {
     const double c = std::exp(t[0]);
@@ -504,30 +516,18 @@ class SupportFlexibility : public Base {
 // -A k_fb', dK = k_fb T and dM = m_fb T + T' m_fb' + T' m_bb T on the rows the
 // support couples to. c -> 0 is the rigid support (dK, dM -> 0); c -> inf
 // frees the restrained directions.
-class RigidSupportFlexibility : public Base {
+class RigidSupportFlexibility : public SupportFamily {
  public:
-  using Base::Base;
-  std::string kind() const override { return "support_flexibility"; }
+  using SupportFamily::SupportFamily;
   std::vector<EffectParameter> Parameters() const override {
-    return {
-        LogQuantity({"ln_compliance_ratio",
-                     "ln(a base spring's compliance / the members' own end compliance)",
-                     std::log(1e-3), std::log(100.0), false},
-                    "compliance_ratio", 1.0)};
-  }
-  std::vector<Eigen::VectorXd> Starts() const override {
-    return {VectorOf({std::log(0.01)}), VectorOf({std::log(1.0)})};
+    return CompliancePrior(
+        "ln(a base spring's compliance / the members' own end compliance)");
   }
   ModelChange Change(const Eigen::VectorXd& t, Immersion) const override {
     return Condensed(std::exp(t[0]), false);
   }
   ModelChange Derivative(const Eigen::VectorXd& t, int, Immersion) const override {
     return Condensed(std::exp(t[0]), true);
-  }
-  EffectLocation Location(const Eigen::VectorXd&) const override {
-    EffectLocation l;
-    l.x = s_.elements.empty() ? 0.0 : s_.elements.front().x0;
-    return l;
   }
   std::vector<EffectMagnitude> Magnitudes(const Eigen::VectorXd& t) const override {
     const double c = std::exp(t[0]);
