@@ -30,8 +30,10 @@ bash scripts/build.sh build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFEMUP_SANIT
   -DFEMUP_BUILD_BENCHMARKS=OFF -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1"
 
 stage "sanitizer tests"
+# Less the tests labelled long (tests/test_properties.cmake: minutes each under
+# the sanitizers, their paths run there by shorter tests); Release ran them.
 (cd build-asan && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
-   ctest --output-on-failure -j "$JOBS")
+   ctest --output-on-failure -j "$JOBS" -LE long)
 
 stage "fuzzing (short)"
 # Each parser's libFuzzer harness (fuzz/) for 12 s from its seeds, in
