@@ -146,6 +146,34 @@ TEST(EffectPriors, QuantitiesTheFamilyLacksAndValuesOutsideTheirDomainAreRefused
   EXPECT_TRUE(Has(msg, "the mean 0")) << msg;
 }
 
+// Where the supports restrain translations and rotations (a clamped frame's
+// bases), support flexibility has a ratio for each, stated one by one; the
+// one-ratio key of a chain's ground spring is refused, naming the two.
+TEST(EffectPriors, SupportFlexibilityOfAClampedFrameStatesEachDirectionsRatio) {
+  const Structure frame = BuildPlaneFrameStructure(fixtures::PlaneFrame(2, 1, 2));
+  const auto support = CreateModelEffects("support_flexibility", frame);
+  ASSERT_EQ(support.size(), 1u);
+  const std::vector<EffectParameter> stated = ApplyFamilyPrior(
+      support.front()->Parameters(),
+      Prior("support_flexibility", {Range("rotation_compliance_ratio", 0.5, 4)}));
+  ASSERT_EQ(stated.size(), 2u);
+  EXPECT_NEAR(stated[1].lower, std::log(0.5), 1e-15);
+  EXPECT_NEAR(stated[1].upper, std::log(4.0), 1e-15);
+  EXPECT_NEAR(stated[0].lower, std::log(1e-3), 1e-15);  // the translations' default
+  std::string where;
+  const std::string msg = ErrorOf(
+      [&] {
+        ApplyFamilyPrior(
+            support.front()->Parameters(),
+            Prior("support_flexibility", {Range("compliance_ratio", 0.1, 1)}));
+      },
+      &where);
+  EXPECT_EQ(where, "compliance_ratio");
+  EXPECT_TRUE(
+      Has(msg, "its quantities: translation_compliance_ratio, rotation_compliance_ratio"))
+      << msg;
+}
+
 TEST(EffectPriors, ValidateNamesTheField) {
   StatedPriors p;
   EXPECT_EQ(p.Validate().ToString(), "");

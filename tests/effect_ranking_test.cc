@@ -201,14 +201,18 @@ TEST(EffectRanking, NamesAFoundationTheModelTakesAsRigid) {
   EXPECT_EQ(r.classes[0].region, "supports");
   EXPECT_GT(r.classes[0].probability, 0.9);
   const std::vector<EffectMagnitude>& m = r.classes[0].magnitudes;
-  ASSERT_EQ(m.size(), 4u);  // the compliance ratio, then ux, uy, rz springs
-  EXPECT_EQ(m[3].name, "base spring rz (mean of 2 supports)");
-  EXPECT_EQ(m[3].unit, "N m/rad");
-  // One compliance ratio softens the horizontal springs as well, which this
-  // foundation does not have: the rotation springs come out stiffer than the
-  // truth's (1.31 times on this machine), never softer.
-  EXPECT_GT(m[3].value / column_rotation, 0.95) << m[0].value;
-  EXPECT_LT(m[3].value / column_rotation, 1.5) << m[0].value;
+  // The translations' and the rotations' compliance ratios, then the ux, uy
+  // and rz springs.
+  ASSERT_EQ(m.size(), 5u);
+  EXPECT_EQ(m[0].name, "translation_compliance_ratio");
+  EXPECT_EQ(m[1].name, "rotation_compliance_ratio");
+  EXPECT_EQ(m[4].name, "base spring rz (mean of 2 supports)");
+  EXPECT_EQ(m[4].unit, "N m/rad");
+  // The rotation springs are the truth's; the foundation holds sideways, so
+  // the translations stay nearly rigid (a horizontal spring far stiffer than
+  // the column's end: a small ratio).
+  EXPECT_NEAR(m[4].value / column_rotation, 1.0, 0.1) << m[1].value;
+  EXPECT_LT(m[0].value, 0.05);
 }
 
 TEST(EffectRanking, NamesASofterFoundationOfAPortalFrame) {
@@ -1128,8 +1132,8 @@ TEST(EffectRanking, NamesADeckMassBetweenTheTopJointsOfAJacket) {
 
 // A jacket on springs under its legs (the model's engineering estimate) whose
 // real foundation is three times softer in every direction: support
-// flexibility applies (it does not to a clamped space frame) and is named,
-// with the springs' compliance ratio near 2 (k / (1 + 2) = k / 3). The data are
+// flexibility acts on the springs and is named, with the translations' and
+// the rotations' compliance ratios near 2 (k / (1 + 2) = k / 3). The data are
 // the Timoshenko frame of four elements per member on the softer springs.
 TEST(EffectRanking, NamesASofterFoundationOfAJacketOnSprings) {
   SpaceFrameSpec spec = SmallJacket();
@@ -1151,8 +1155,20 @@ TEST(EffectRanking, NamesASofterFoundationOfAJacketOnSprings) {
   EXPECT_EQ(r.classes[0].kind, "support_flexibility");
   EXPECT_GT(r.classes[0].probability, 0.9);
   ASSERT_FALSE(r.classes[0].magnitudes.empty());
-  EXPECT_EQ(r.classes[0].magnitudes[0].name, "compliance_ratio");
-  EXPECT_NEAR(r.classes[0].magnitudes[0].value, 2.0, 0.5);
+  // Its horizontal, vertical and rocking springs all three times softer: the
+  // translations' ratio near 2. The rotations' is not: the braced legs hardly
+  // turn at their feet (the jacket rocks on its legs' vertical springs), and
+  // the Euler-Bernoulli model, stiffer than its Timoshenko truth, takes part of
+  // its own form error up there: 8.1 (sd 0.40 in ln c) on this machine, so 2
+  // lies 3.5 standard deviations off. What holds is the direction: softer than
+  // modelled.
+  const RankedClass& top = r.classes[0];
+  ASSERT_GE(top.magnitudes.size(), 2u);
+  EXPECT_EQ(top.magnitudes[0].name, "translation_compliance_ratio");
+  EXPECT_EQ(top.magnitudes[1].name, "rotation_compliance_ratio");
+  EXPECT_NEAR(top.magnitudes[0].value, 2.0, 0.5);
+  EXPECT_GT(top.magnitudes[1].value, 1.0);
+  EXPECT_LT(top.magnitudes[1].value, 20.0);
 }
 
 // What the model's own form error alone could do, the data cannot tell from

@@ -391,12 +391,18 @@ TEST(ModelEffects, ElasticBaseMatchesTheBuilderWithTheSoftenedSpring) {
   ASSERT_EQ(s.supports.size(), 2u);
   auto support = One("support_flexibility", s);
   ASSERT_TRUE(support);
-  const double c = 3.0;
+  // A rotation and a translation: a compliance ratio each.
+  const auto params = support->Parameters();
+  ASSERT_EQ(params.size(), 2u);
+  EXPECT_EQ(params[0].quantity, "translation_compliance_ratio");
+  EXPECT_EQ(params[1].quantity, "rotation_compliance_ratio");
+  const double ct = 3.0, cr = 0.5;
   SparseMatrix k, m;
-  ApplyModelEffects(s, {support.get()}, {Theta({std::log(c)})}, Immersion::kDry, &k, &m);
+  ApplyModelEffects(s, {support.get()}, {Theta({std::log(ct), std::log(cr)})},
+                    Immersion::kDry, &k, &m);
   CantileverSpec softer = spec;
-  softer.support_rotation /= 1 + c;
-  softer.support_transverse /= 1 + c;
+  softer.support_rotation /= 1 + cr;
+  softer.support_transverse /= 1 + ct;
   const Structure reference = BuildCantilever(softer);
   EXPECT_LT(
       (Eigen::MatrixXd(k) - Eigen::MatrixXd(reference.stiffness)).cwiseAbs().maxCoeff(),
@@ -407,6 +413,7 @@ TEST(ModelEffects, ElasticBaseMatchesTheBuilderWithTheSoftenedSpring) {
 TEST(ModelEffects, DerivativesMatchCentralDifferences) {
   CantileverSpec spec = fixtures::PaperCantilever(UniformHeights(2.0, 10));
   spec.support_rotation = 4e5;
+  spec.support_transverse = 5e7;  // support flexibility's two ratios
   spec.added_mass_basis = AddedMassBasis::kTransverse;
   const Structure s = BuildCantilever(spec);
   for (const std::string& kind : ModelEffectKinds()) {

@@ -123,8 +123,9 @@ TEST(PlaneFrameStructure, BaseSpringsMatchTheSlopeDeflectionClosedForm) {
 }
 
 // A clamped frame's bases are rigid supports that support flexibility can
-// release: at compliance ratio c every restrained direction gets a spring of
-// the column end's own stiffness over c, condensed onto the frame's DOFs.
+// release: at compliance ratios c_t (translations) and c_r (rotations) every
+// restrained direction gets a spring of the column end's own stiffness over
+// its ratio, condensed onto the frame's DOFs.
 // K + dK is then the Schur complement of the same frame built on those base
 // springs (its base DOFs condensed out), M + dM its Guyan-reduced mass, and the
 // portal's sway the slope-deflection closed form with those springs.
@@ -148,11 +149,19 @@ TEST(PlaneFrameStructure, ClampedBasesAreRigidSupportsThatSpringsRelease) {
   const auto effects = CreateModelEffects("support_flexibility", clamped);
   ASSERT_EQ(effects.size(), 1u);
   const double beam_mass = spec.beam.rho * spec.beam.A * spec.bay_width;
-  for (const double c : {0.05, 1.0, 8.0}) {
-    const Eigen::VectorXd theta = Eigen::VectorXd::Constant(1, std::log(c));
+  const auto params = effects[0]->Parameters();
+  ASSERT_EQ(params.size(), 2u);
+  EXPECT_EQ(params[0].quantity, "translation_compliance_ratio");
+  EXPECT_EQ(params[1].quantity, "rotation_compliance_ratio");
+  for (const auto& [ct, cr] :
+       {std::pair{0.05, 0.05}, std::pair{1.0, 1.0}, std::pair{8.0, 8.0},
+        std::pair{1e-3, 2.0}, std::pair{3.0, 0.2}}) {
+    const Eigen::VectorXd theta = Eigen::Vector2d(std::log(ct), std::log(cr));
     SparseMatrix k, m;
     ApplyModelEffects(clamped, {effects[0].get()}, {theta}, Immersion::kDry, &k, &m);
-    const double kh = b2.k_bb(0, 0) / c, kv = b2.k_bb(1, 1) / c, kr = b2.k_bb(2, 2) / c;
+    const double kh = b2.k_bb(0, 0) / ct, kv = b2.k_bb(1, 1) / ct,
+                 kr = b2.k_bb(2, 2) / cr;
+    const std::string c = std::to_string(ct) + ", " + std::to_string(cr);
     PlaneFrameSpec sprung = spec;
     sprung.base = {kh, kv, kr};
     const Structure reference = BuildPlaneFrameStructure(sprung);
@@ -179,20 +188,24 @@ TEST(PlaneFrameStructure, ClampedBasesAreRigidSupportsThatSpringsRelease) {
     const double exact = 2 * ColumnSwayStiffness(ei, h, kr, kh) / beam_mass;
     EXPECT_NEAR(modes.eigenvalues[0] / exact, 1.0, 3e-3) << "c " << c;
   }
-  // Its derivative against central differences of the change.
-  const double t0 = std::log(0.7), step = 1e-5;
-  const ModelChange d =
-      effects[0]->Derivative(Eigen::VectorXd::Constant(1, t0), 0, Immersion::kDry);
-  const ModelChange up =
-      effects[0]->Change(Eigen::VectorXd::Constant(1, t0 + step), Immersion::kDry);
-  const ModelChange down =
-      effects[0]->Change(Eigen::VectorXd::Constant(1, t0 - step), Immersion::kDry);
-  for (const auto& [exact, a, b] :
-       {std::tuple{&d.stiffness, &up.stiffness, &down.stiffness},
-        std::tuple{&d.mass, &up.mass, &down.mass}}) {
-    const Eigen::MatrixXd fd = (Eigen::MatrixXd(*a) - Eigen::MatrixXd(*b)) / (2 * step);
-    EXPECT_LT((Eigen::MatrixXd(*exact) - fd).cwiseAbs().maxCoeff(),
-              1e-6 * fd.cwiseAbs().maxCoeff());
+  // Its derivatives against central differences of the change.
+  const Eigen::Vector2d t0(std::log(0.7), std::log(2.5));
+  const double step = 1e-5;
+  for (int i = 0; i < 2; ++i) {
+    Eigen::VectorXd tu = t0, td = t0;
+    tu[i] += step;
+    td[i] -= step;
+    const ModelChange d = effects[0]->Derivative(t0, i, Immersion::kDry);
+    const ModelChange up = effects[0]->Change(tu, Immersion::kDry);
+    const ModelChange down = effects[0]->Change(td, Immersion::kDry);
+    for (const auto& [exact, a, b] :
+         {std::tuple{&d.stiffness, &up.stiffness, &down.stiffness},
+          std::tuple{&d.mass, &up.mass, &down.mass}}) {
+      const Eigen::MatrixXd fd = (Eigen::MatrixXd(*a) - Eigen::MatrixXd(*b)) / (2 * step);
+      EXPECT_LT((Eigen::MatrixXd(*exact) - fd).cwiseAbs().maxCoeff(),
+                1e-6 * fd.cwiseAbs().maxCoeff())
+          << "parameter " << i;
+    }
   }
   // A frame on base springs keeps its springs as the supports it softens.
   PlaneFrameSpec on_springs = spec;

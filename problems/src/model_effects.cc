@@ -449,15 +449,45 @@ class AddedMass : public Base {
   SparseMatrix flagged_;
 };
 
-// What both forms of support_flexibility share: one compliance ratio c =
-// exp(theta_0) in [1e-3, 100] (what it is relative to, each form says), the
-// same two starts, and a location at the structure's first element.
+// What both forms of support_flexibility share: a compliance ratio c =
+// exp(theta) in [1e-3, 100] (what it is relative to, each form says) on every
+// restrained direction, one for the translations and one for the rotations
+// where the supports restrain both (a footing gives sideways and in rocking by
+// different amounts: a soil's horizontal and rocking stiffness are not one
+// number), else one for all; starts at 0.01 and 1 of each, and a location at
+// the structure's first element.
 class SupportFamily : public Base {
  public:
-  using Base::Base;
+  // `rotations[i]`: whether the i-th restrained direction (each form says
+  // which it counts) is a rotation.
+  SupportFamily(const Structure& s, EffectRegion region,
+                const std::vector<bool>& rotations)
+      : Base(s, std::move(region)) {
+    const bool any_rotation =
+        std::find(rotations.begin(), rotations.end(), true) != rotations.end();
+    const bool any_translation =
+        std::find(rotations.begin(), rotations.end(), false) != rotations.end();
+    split_ = any_rotation && any_translation;
+  }
   std::string kind() const override { return "support_flexibility"; }
+  std::vector<EffectParameter> Parameters() const override {
+    if (!split_) {
+      return {LogQuantity(
+          {"ln_compliance_ratio", Meaning(""), std::log(1e-3), std::log(100.0), false},
+          "compliance_ratio", 1.0)};
+    }
+    return {LogQuantity({"ln_translation_compliance_ratio", Meaning("translation "),
+                         std::log(1e-3), std::log(100.0), false},
+                        "translation_compliance_ratio", 1.0),
+            LogQuantity({"ln_rotation_compliance_ratio", Meaning("rotation "),
+                         std::log(1e-3), std::log(100.0), false},
+                        "rotation_compliance_ratio", 1.0)};
+  }
   std::vector<Eigen::VectorXd> Starts() const override {
-    return {VectorOf({std::log(0.01)}), VectorOf({std::log(1.0)})};
+    const double stiff = std::log(0.01), soft = std::log(1.0);
+    if (!split_) return {VectorOf({stiff}), VectorOf({soft})};
+    return {VectorOf({stiff, stiff}), VectorOf({soft, soft}), VectorOf({stiff, soft}),
+            VectorOf({soft, stiff})};
   }
   EffectLocation Location(const Eigen::VectorXd&) const override {
     EffectLocation l;
@@ -466,105 +496,154 @@ class SupportFamily : public Base {
   }
 
  protected:
-  static std::vector<EffectParameter> CompliancePrior(const std::string& meaning) {
-    return {LogQuantity(
-        {"ln_compliance_ratio", meaning, std::log(1e-3), std::log(100.0), false},
-        "compliance_ratio", 1.0)};
+  // What a compliance ratio is relative to ("ln(added compliance / ...)").
+  virtual std::string Meaning(const std::string& which) const = 0;
+  // The parameter that acts on a direction.
+  int ParameterOf(bool rotation) const { return split_ && rotation ? 1 : 0; }
+  // The compliance ratio on a direction.
+  double Compliance(const Eigen::VectorXd& t, bool rotation) const {
+    return std::exp(t[ParameterOf(rotation)]);
   }
-};
-
-// Each support spring k in series with one c = exp(theta_0) times more
-// compliant: k -> k / (1 + c), dK = -k c / (1 + c) on its DOF.
-class SupportFlexibility : public SupportFamily {
- public:
-  using SupportFamily::SupportFamily;
-  std::vector<EffectParameter> Parameters() const override {
-    return CompliancePrior("ln(added compliance / the support's own)");
-  }
-  ModelChange Change(const Eigen::VectorXd& t, Immersion) const override {
-    const double c = std::exp(t[0]);
-    return {Springs(-c / (1 + c)), {}};
-  }
-  ModelChange Derivative(const Eigen::VectorXd& t, int, Immersion) const override {
-    const double c = std::exp(t[0]);
-    return {Springs(-c / ((1 + c) * (1 + c))), {}};  // d/dtheta of -c/(1+c)
-  }
-  std::vector<EffectMagnitude> Magnitudes(const Eigen::VectorXd& t) const override {
-    const double c = std::exp(t[0]);
-    std::vector<EffectMagnitude> m = {{"compliance_ratio", "1", c}};
-    for (const SupportSpring& sp : s_.supports)
-      m.push_back({sp.name + " stiffness", sp.unit, sp.stiffness / (1 + c)});
-    return m;
+  std::vector<EffectMagnitude> Ratios(const Eigen::VectorXd& t) const {
+    if (!split_) return {{"compliance_ratio", "1", std::exp(t[0])}};
+    return {{"translation_compliance_ratio", "1", std::exp(t[0])},
+            {"rotation_compliance_ratio", "1", std::exp(t[1])}};
   }
 
  private:
-  SparseMatrix Springs(double factor) const {
-    std::vector<Eigen::Triplet<double>> t;
-    for (const SupportSpring& sp : s_.supports)
-      t.emplace_back(sp.dof, sp.dof, factor * sp.stiffness);
+  bool split_ = false;
+};
+
+bool IsRotationDof(const Structure& s, int dof) {
+  return IsRotation(internal::SplitDofLabel(s.dof_labels[dof]).second);
+}
+
+std::vector<bool> SpringRotations(const Structure& s) {
+  std::vector<bool> out;
+  for (const SupportSpring& sp : s.supports) out.push_back(IsRotationDof(s, sp.dof));
+  return out;
+}
+
+std::vector<bool> RigidRotations(const Structure& s) {
+  std::vector<bool> out;
+  for (const RigidSupport& sp : s.rigid_supports)
+    for (const std::string& d : sp.directions) out.push_back(IsRotation(d));
+  return out;
+}
+
+// Each support spring k in series with one c times more compliant (c its
+// direction's ratio): k -> k / (1 + c), dK = -k c / (1 + c) on its DOF.
+class SupportFlexibility : public SupportFamily {
+ public:
+  SupportFlexibility(const Structure& s, EffectRegion region)
+      : SupportFamily(s, std::move(region), SpringRotations(s)) {}
+  ModelChange Change(const Eigen::VectorXd& t, Immersion) const override {
+    return {Springs(t, -1, [](double c) { return -c / (1 + c); }), {}};
+  }
+  ModelChange Derivative(const Eigen::VectorXd& t, int i, Immersion) const override {
+    // d/dtheta of -c/(1+c), on the springs parameter i acts on.
+    return {Springs(t, i, [](double c) { return -c / ((1 + c) * (1 + c)); }), {}};
+  }
+  std::vector<EffectMagnitude> Magnitudes(const Eigen::VectorXd& t) const override {
+    std::vector<EffectMagnitude> m = Ratios(t);
+    for (const SupportSpring& sp : s_.supports) {
+      m.push_back({sp.name + " stiffness", sp.unit,
+                   sp.stiffness / (1 + Compliance(t, IsRotationDof(s_, sp.dof)))});
+    }
+    return m;
+  }
+
+ protected:
+  std::string Meaning(const std::string& which) const override {
+    return "ln(added " + which + "compliance / the support's own)";
+  }
+
+ private:
+  // diag(factor(c) k) on the springs' DOFs (only those parameter `only` acts
+  // on, where it is >= 0).
+  template <typename Factor>
+  SparseMatrix Springs(const Eigen::VectorXd& t, int only, Factor factor) const {
+    std::vector<Eigen::Triplet<double>> tr;
+    for (const SupportSpring& sp : s_.supports) {
+      const bool rotation = IsRotationDof(s_, sp.dof);
+      if (only >= 0 && ParameterOf(rotation) != only) continue;
+      tr.emplace_back(sp.dof, sp.dof, factor(Compliance(t, rotation)) * sp.stiffness);
+    }
     SparseMatrix k = Zero(n());
-    k.setFromTriplets(t.begin(), t.end());
+    k.setFromTriplets(tr.begin(), tr.end());
     return k;
   }
 };
 
 // Where the supports are rigid (Structure::rigid_supports): a spring on each
-// restrained direction d of every support, k_d = k_bb(d, d) / c with c =
-// exp(theta_0) (k_bb(d, d): the stiffness the elements meeting there give that
-// direction, so c = 1 is a spring as stiff as the members' ends), condensed
-// out statically (Guyan): with A = (k_bb + D / c)^-1, D = diag(k_bb), and T =
-// -A k_fb', dK = k_fb T and dM = m_fb T + T' m_fb' + T' m_bb T on the rows the
-// support couples to. c -> 0 is the rigid support (dK, dM -> 0); c -> inf
-// frees the restrained directions.
+// restrained direction d of every support, k_d = k_bb(d, d) / c_d with c_d =
+// its direction's compliance ratio (k_bb(d, d): the stiffness the elements
+// meeting there give that direction, so c = 1 is a spring as stiff as the
+// members' ends), condensed out statically (Guyan): with A = (k_bb + D)^-1, D
+// = diag(k_bb(d, d) / c_d), and T = -A k_fb', dK = k_fb T and dM = m_fb T +
+// T' m_fb' + T' m_bb T on the rows the support couples to. c -> 0 is the rigid
+// support (dK, dM -> 0); c -> inf frees the restrained directions.
 class RigidSupportFlexibility : public SupportFamily {
  public:
-  using SupportFamily::SupportFamily;
-  std::vector<EffectParameter> Parameters() const override {
-    return CompliancePrior(
-        "ln(a base spring's compliance / the members' own end compliance)");
-  }
+  RigidSupportFlexibility(const Structure& s, EffectRegion region)
+      : SupportFamily(s, std::move(region), RigidRotations(s)) {}
   ModelChange Change(const Eigen::VectorXd& t, Immersion) const override {
-    return Condensed(std::exp(t[0]), false);
+    return Condensed(t, -1);
   }
-  ModelChange Derivative(const Eigen::VectorXd& t, int, Immersion) const override {
-    return Condensed(std::exp(t[0]), true);
+  ModelChange Derivative(const Eigen::VectorXd& t, int i, Immersion) const override {
+    return Condensed(t, i);
   }
   std::vector<EffectMagnitude> Magnitudes(const Eigen::VectorXd& t) const override {
-    const double c = std::exp(t[0]);
-    std::vector<EffectMagnitude> m = {{"compliance_ratio", "1", c}};
+    std::vector<EffectMagnitude> m = Ratios(t);
     // Each direction's spring, the mean over the supports.
     const RigidSupport& first = s_.rigid_supports.front();
     for (std::size_t d = 0; d < first.directions.size(); ++d) {
-      double sum = 0;
-      for (const RigidSupport& sp : s_.rigid_supports) sum += sp.k_bb(d, d) / c;
       const std::string& dir = first.directions[d];
+      const bool rotation = IsRotation(dir);
+      double sum = 0;
+      for (const RigidSupport& sp : s_.rigid_supports)
+        sum += sp.k_bb(d, d) / Compliance(t, rotation);
       m.push_back({"base spring " + dir + " (mean of " +
                        std::to_string(s_.rigid_supports.size()) + " supports)",
-                   dir[0] == 'r' ? "N m/rad" : "N/m",
+                   rotation ? "N m/rad" : "N/m",
                    sum / static_cast<double>(s_.rigid_supports.size())});
     }
     return m;
   }
 
+ protected:
+  std::string Meaning(const std::string& which) const override {
+    return "ln(a base spring's " + which +
+           "compliance / the members' own end compliance)";
+  }
+
  private:
-  // The change at compliance ratio c, or its derivative with respect to ln c.
-  ModelChange Condensed(double c, bool derivative) const {
+  // The change at theta (`derivative` < 0), or its derivative with respect to
+  // parameter `derivative` (a ln c).
+  ModelChange Condensed(const Eigen::VectorXd& t, int derivative) const {
     std::vector<Eigen::Triplet<double>> kt, mt;
     for (const RigidSupport& sp : s_.rigid_supports) {
       if (sp.rows.empty()) continue;
-      const Eigen::VectorXd d = sp.k_bb.diagonal();
-      const Eigen::MatrixXd kb = sp.k_bb + Eigen::MatrixXd(d.asDiagonal()) / c;
-      const Eigen::MatrixXd a =
-          kb.ldlt().solve(Eigen::MatrixXd::Identity(kb.rows(), kb.cols()));
+      const Eigen::Index nd = sp.k_bb.rows();
+      Eigen::VectorXd springs(nd),
+          acted(nd);  // D's diagonal; its part under `derivative`
+      for (Eigen::Index j = 0; j < nd; ++j) {
+        const bool rotation = IsRotation(sp.directions[static_cast<std::size_t>(j)]);
+        springs[j] = sp.k_bb(j, j) / Compliance(t, rotation);
+        acted[j] = ParameterOf(rotation) == derivative ? springs[j] : 0.0;
+      }
+      const Eigen::MatrixXd kb = sp.k_bb + Eigen::MatrixXd(springs.asDiagonal());
+      const Eigen::MatrixXd a = kb.ldlt().solve(Eigen::MatrixXd::Identity(nd, nd));
       const Eigen::MatrixXd tr = -a * sp.k_fb.transpose();  // T: directions x rows
       Eigen::MatrixXd dk, dm;
-      if (!derivative) {
+      if (derivative < 0) {
         dk = sp.k_fb * tr;
         dm = sp.m_fb * tr + tr.transpose() * sp.m_fb.transpose() +
              tr.transpose() * sp.m_bb * tr;
       } else {
-        // dA/dln c = A (D / c) A, so dT = -A (D / c) A k_fb' = A (D / c) T.
-        const Eigen::MatrixXd dt = a * (d / c).asDiagonal() * tr;
+        // dD/dln c = -D_c (D's part under c), dA = A D_c A, so dT = -dA k_fb'
+        // = A D_c T.
+        const Eigen::MatrixXd dt = a * acted.asDiagonal() * tr;
         dk = sp.k_fb * dt;
         dm = sp.m_fb * dt + dt.transpose() * sp.m_fb.transpose() +
              dt.transpose() * sp.m_bb * tr + tr.transpose() * sp.m_bb * dt;

@@ -47,10 +47,17 @@
 //                       element counted by the fraction of it below the level;
 //                       otherwise (a chain), the elements flagged wet. Acts in
 //                       wet states only when the study has wet states.
-//   support_flexibility ln(c): each support spring in series with a spring c
-//                       times more compliant: k -> k / (1 + c). Applies where
-//                       the model's supports are springs (Structure::supports;
-//                       a chain's ground spring, a cantilever's elastic base).
+//   support_flexibility ln(c), or ln(c_t), ln(c_r) where the supports restrain
+//                       translations and rotations both (a footing's sway and
+//                       rocking stiffness are two numbers): each restrained
+//                       direction given a compliance c times its reference.
+//                       Where the supports are springs (Structure::supports;
+//                       a chain's ground spring, a cantilever's elastic base,
+//                       a frame on base springs), each spring in series with
+//                       one c times more compliant: k -> k / (1 + c). Where
+//                       they are rigid (Structure::rigid_supports: a clamped
+//                       frame's feet), a spring k_bb(d, d) / c on each
+//                       restrained direction d, condensed out (Guyan).
 //
 // Every change and its derivatives with respect to theta are exact (analytic):
 // the families are linear in exp(theta_0), and the level's weights are
