@@ -468,6 +468,7 @@ class SupportFamily : public Base {
     const bool any_translation =
         std::find(rotations.begin(), rotations.end(), false) != rotations.end();
     split_ = any_rotation && any_translation;
+    for (const bool rotation : rotations) acts_.push_back(ParameterOf(rotation));
   }
   std::string kind() const override { return "support_flexibility"; }
   std::vector<EffectParameter> Parameters() const override {
@@ -504,6 +505,13 @@ class SupportFamily : public Base {
   double Compliance(const Eigen::VectorXd& t, bool rotation) const {
     return std::exp(t[ParameterOf(rotation)]);
   }
+  // The parameter that acts on the i-th restrained direction, and its ratio
+  // there (worked out once, in the constructor: Change and Derivative are
+  // evaluated at every step of every fit).
+  int ActingOn(std::size_t i) const { return acts_[i]; }
+  double ComplianceAt(const Eigen::VectorXd& t, std::size_t i) const {
+    return std::exp(t[acts_[i]]);
+  }
   std::vector<EffectMagnitude> Ratios(const Eigen::VectorXd& t) const {
     if (!split_) return {{"compliance_ratio", "1", std::exp(t[0])}};
     return {{"translation_compliance_ratio", "1", std::exp(t[0])},
@@ -512,6 +520,7 @@ class SupportFamily : public Base {
 
  private:
   bool split_ = false;
+  std::vector<int> acts_;  // per restrained direction: its parameter
 };
 
 bool IsRotationDof(const Structure& s, int dof) {
@@ -546,9 +555,10 @@ class SupportFlexibility : public SupportFamily {
   }
   std::vector<EffectMagnitude> Magnitudes(const Eigen::VectorXd& t) const override {
     std::vector<EffectMagnitude> m = Ratios(t);
-    for (const SupportSpring& sp : s_.supports) {
-      m.push_back({sp.name + " stiffness", sp.unit,
-                   sp.stiffness / (1 + Compliance(t, IsRotationDof(s_, sp.dof)))});
+    for (std::size_t i = 0; i < s_.supports.size(); ++i) {
+      const SupportSpring& sp = s_.supports[i];
+      m.push_back(
+          {sp.name + " stiffness", sp.unit, sp.stiffness / (1 + ComplianceAt(t, i))});
     }
     return m;
   }
@@ -564,10 +574,10 @@ class SupportFlexibility : public SupportFamily {
   template <typename Factor>
   SparseMatrix Springs(const Eigen::VectorXd& t, int only, Factor factor) const {
     std::vector<Eigen::Triplet<double>> tr;
-    for (const SupportSpring& sp : s_.supports) {
-      const bool rotation = IsRotationDof(s_, sp.dof);
-      if (only >= 0 && ParameterOf(rotation) != only) continue;
-      tr.emplace_back(sp.dof, sp.dof, factor(Compliance(t, rotation)) * sp.stiffness);
+    for (std::size_t i = 0; i < s_.supports.size(); ++i) {
+      const SupportSpring& sp = s_.supports[i];
+      if (only >= 0 && ActingOn(i) != only) continue;
+      tr.emplace_back(sp.dof, sp.dof, factor(ComplianceAt(t, i)) * sp.stiffness);
     }
     SparseMatrix k = Zero(n());
     k.setFromTriplets(tr.begin(), tr.end());
@@ -622,15 +632,18 @@ class RigidSupportFlexibility : public SupportFamily {
   // parameter `derivative` (a ln c).
   ModelChange Condensed(const Eigen::VectorXd& t, int derivative) const {
     std::vector<Eigen::Triplet<double>> kt, mt;
+    std::size_t first = 0;  // the support's first direction, of all supports'
     for (const RigidSupport& sp : s_.rigid_supports) {
-      if (sp.rows.empty()) continue;
       const Eigen::Index nd = sp.k_bb.rows();
+      first += sp.directions.size();
+      if (sp.rows.empty()) continue;
+      const std::size_t at = first - sp.directions.size();
       Eigen::VectorXd springs(nd),
           acted(nd);  // D's diagonal; its part under `derivative`
       for (Eigen::Index j = 0; j < nd; ++j) {
-        const bool rotation = IsRotation(sp.directions[static_cast<std::size_t>(j)]);
-        springs[j] = sp.k_bb(j, j) / Compliance(t, rotation);
-        acted[j] = ParameterOf(rotation) == derivative ? springs[j] : 0.0;
+        const std::size_t i = at + static_cast<std::size_t>(j);
+        springs[j] = sp.k_bb(j, j) / ComplianceAt(t, i);
+        acted[j] = ActingOn(i) == derivative ? springs[j] : 0.0;
       }
       const Eigen::MatrixXd kb = sp.k_bb + Eigen::MatrixXd(springs.asDiagonal());
       const Eigen::MatrixXd a = kb.ldlt().solve(Eigen::MatrixXd::Identity(nd, nd));
