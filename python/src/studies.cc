@@ -49,6 +49,7 @@ void BindSpecs(py::module_& m) {
       .def_readwrite("mesh_error", &femup::DiagnosisSpec::mesh_error)
       .def_readwrite("formulation_error", &femup::DiagnosisSpec::formulation_error)
       .def_readwrite("form_step", &femup::DiagnosisSpec::form_step)
+      .def_readwrite("form_fit", &femup::DiagnosisSpec::form_fit)
       .def_readwrite("rotary_inertia", &femup::DiagnosisSpec::rotary_inertia)
       .def_readwrite("refine_mesh", &femup::DiagnosisSpec::refine_mesh)
       .def_readwrite("bagging_copies", &femup::DiagnosisSpec::bagging_copies)

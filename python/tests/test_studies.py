@@ -114,6 +114,9 @@ def test_noise_and_diagnosis_settings_are_changed_in_place():
     assert study.diagnosis.form_step and not study.diagnosis.refine_mesh
     study.diagnosis.form_step = False
     assert not study.diagnosis.form_step
+    assert not study.diagnosis.form_fit
+    study.diagnosis.form_fit = True
+    assert study.diagnosis.form_fit
     assert study.diagnosis.rotary_inertia
     study.diagnosis.rotary_inertia = False
     assert not study.diagnosis.rotary_inertia

@@ -11,6 +11,7 @@
 #include <map>
 #include <memory>
 #include <numeric>
+#include <optional>
 #include <string_view>
 
 #include "femup/core/errors.h"
@@ -512,21 +513,71 @@ EffectRanking RankModelEffects(const Structure& structure_in,
     // class lies along them.
     form_basis = qr.householderQ() * Eigen::MatrixXd::Identity(u.rows(), qr.rank());
   }
-  auto whiten = [&](Eigen::VectorXd* r, Eigen::MatrixXd* j) {
+  // The frequency rows of a residual (and of its Jacobian, where not null)
+  // whitened by the form error's factor L (L^-1 r), or, with `back`, turned
+  // back into raw ones (L r).
+  auto transform = [&](Eigen::VectorXd* r, Eigen::MatrixXd* j, bool back) {
+    const Eigen::Index cols = j != nullptr ? j->cols() : 0;
     Eigen::VectorXd rf(frequency_rows.size());
-    Eigen::MatrixXd jf(frequency_rows.size(), j->cols());
+    Eigen::MatrixXd jf(frequency_rows.size(), cols);
     for (std::size_t k = 0; k < frequency_rows.size(); ++k) {
       rf[k] = (*r)[frequency_rows[k]];
-      jf.row(k) = j->row(frequency_rows[k]);
+      if (cols > 0) jf.row(k) = j->row(frequency_rows[k]);
     }
-    rf = factor.triangularView<Eigen::Lower>().solve(rf);
+    const auto l = factor.triangularView<Eigen::Lower>();
+    rf = back ? Eigen::VectorXd(l * rf) : Eigen::VectorXd(l.solve(rf));
     // "none" has no unknowns: Eigen's triangular solve of an empty
     // right-hand side reads its first coefficient (UBSan: a null reference).
-    if (jf.cols() > 0) jf = factor.triangularView<Eigen::Lower>().solve(jf);
+    if (cols > 0) jf = back ? Eigen::MatrixXd(l * jf) : Eigen::MatrixXd(l.solve(jf));
     for (std::size_t k = 0; k < frequency_rows.size(); ++k) {
       (*r)[frequency_rows[k]] = rf[k];
-      j->row(frequency_rows[k]) = jf.row(k);
+      if (cols > 0) j->row(frequency_rows[k]) = jf.row(k);
     }
+  };
+  auto whiten = [&](Eigen::VectorXd* r, Eigen::MatrixXd* j) { transform(r, j, false); };
+
+  // A fitted class's fit of the whitened misfit (its evidence's), the stated
+  // normal priors' residuals with it, from where the raw fit ended: the two
+  // optima lie apart where the raw fit took up the model's form error, and a
+  // Gauss-Newton step from the raw one did not reach the other (a clamped
+  // frame's two base ratios, docs/diagnosis.md). Kept per instance, and done
+  // again only where the instance's raw fit changed (a refit round).
+  struct InForm {
+    Eigen::VectorXd from;  // the raw fit's end it started from
+    bool ok = false;       // false: no lower whitened misfit was found
+    Eigen::VectorXd theta, residual, raw_residual;
+    Eigen::MatrixXd jacobian, raw_jacobian;
+  };
+  std::vector<std::optional<InForm>> in_form(effects.size());
+  auto fit_in_form = [&](std::size_t e, const Eigen::VectorXd& from, double from_misfit) {
+    InForm out_fit;
+    out_fit.from = from;
+    const std::vector<EffectParameter> params = effects[e]->Parameters();
+    NonlinearProblem data =
+        BuildModelEffectFitProblem(structure, {effects[e]}, states, fit, from);
+    const NonlinearProblem::Evaluate raw = data.evaluate;
+    data.evaluate = [raw, &whiten](const Eigen::VectorXd& x, Eigen::VectorXd* r,
+                                   Eigen::MatrixXd* j, std::string* why) {
+      if (!raw(x, r, j, why)) return false;
+      whiten(r, j);
+      return true;
+    };
+    const int rows = data.num_residuals;
+    const NonlinearProblem problem = WithPriorResiduals(std::move(data), params);
+    const NonlinearSolution sol = solver->Solve(problem);
+    if (sol.residual.size() != problem.num_residuals || !sol.residual.allFinite() ||
+        sol.jacobian.rows() != problem.num_residuals || !sol.jacobian.allFinite() ||
+        !(sol.residual.squaredNorm() < from_misfit)) {
+      return out_fit;
+    }
+    out_fit.ok = true;
+    out_fit.theta = sol.x;
+    out_fit.residual = sol.residual.head(rows);
+    out_fit.jacobian = sol.jacobian.topRows(rows);
+    out_fit.raw_residual = out_fit.residual;
+    out_fit.raw_jacobian = out_fit.jacobian;
+    transform(&out_fit.raw_residual, &out_fit.raw_jacobian, true);
+    return out_fit;
   };
 
   // The classes and their probabilities, from the fits. Screened places whose
@@ -537,6 +588,7 @@ EffectRanking RankModelEffects(const Structure& structure_in,
   // on a jacket it was optimistic for a hundred places or more at once.
   constexpr int kRefitRounds = 2;
   const bool step_in_form = options.form_step;
+  const bool fit_in_form_to_mode = step_in_form && options.form_fit;
   int refitted = 0;
   std::vector<RankedClass> classes;
   std::vector<Eigen::MatrixXd> jacobians, raw_jacobians;
@@ -586,16 +638,60 @@ EffectRanking RankModelEffects(const Structure& structure_in,
     }
     raw_jacobians = jacobians;
     if (whitened) {
+      auto prior_misfit = [&](std::size_t i, const Eigen::VectorXd& t) {
+        const Eigen::VectorXd& mean = normals[i].first;
+        const Eigen::VectorXd& sigma = normals[i].second;
+        double sum = 0;
+        for (Eigen::Index q = 0; q < sigma.size(); ++q)
+          if (sigma[q] > 0) sum += std::pow((t[q] - mean[q]) / sigma[q], 2);
+        return sum;
+      };
+      // The fitted classes' whitened fits, in parallel, where not yet done
+      // from the same raw fit.
+      std::vector<std::size_t> to_move;
+      for (std::size_t i = 1; i < classes.size(); ++i) {
+        if (!fit_in_form_to_mode || !classes[i].fitted || classes[i].theta.size() == 0)
+          continue;
+        const std::optional<InForm>& done = in_form[class_effect[i]];
+        if (!done || done->from != classes[i].theta) to_move.push_back(i);
+      }
+      std::vector<double> from_misfit(to_move.size());
+      for (std::size_t k = 0; k < to_move.size(); ++k) {
+        const std::size_t i = to_move[k];
+        Eigen::VectorXd r = residuals[i];
+        Eigen::MatrixXd j = jacobians[i];
+        whiten(&r, &j);
+        from_misfit[k] = r.squaredNorm() + prior_misfit(i, classes[i].theta);
+      }
+      ParallelFor(static_cast<int>(to_move.size()), options.threads, [&](int k) {
+        const std::size_t i = to_move[static_cast<std::size_t>(k)];
+        in_form[class_effect[i]] = fit_in_form(class_effect[i], classes[i].theta,
+                                               from_misfit[static_cast<std::size_t>(k)]);
+      });
       for (std::size_t i = 0; i < classes.size(); ++i) {
         const Eigen::VectorXd raw = residuals[i];
         whiten(&residuals[i], &jacobians[i]);
-        // The fits minimised the raw misfit; the evidence is the whitened
-        // one's, whose mode lies elsewhere where the fit took up the model's
-        // form error. One Gauss-Newton step on the whitened misfit (the stated
-        // normal priors' rows with it), kept in range, moves the class there.
         const Eigen::MatrixXd& j = jacobians[i];
         if (j.cols() == 0 || !step_in_form) continue;
         RankedClass& c = classes[i];
+        const ModelEffect& effect = *effects[class_effect[i]];
+        if (fit_in_form_to_mode && c.fitted) {
+          const std::optional<InForm>& moved = in_form[class_effect[i]];
+          if (!moved || !moved->ok) continue;
+          residuals[i] = moved->residual;
+          jacobians[i] = moved->jacobian;
+          raw_jacobians[i] = moved->raw_jacobian;
+          c.chi2 = moved->raw_residual.squaredNorm();
+          c.theta = moved->theta;
+          c.location = effect.Location(c.theta);
+          c.magnitudes = effect.Magnitudes(c.theta);
+          LocalNormalPriors(effect.Parameters(), c.theta, &normals[i].first,
+                            &normals[i].second);
+          continue;
+        }
+        // One Gauss-Newton step on the whitened misfit (the stated normal
+        // priors' rows with it), kept in range (every class without
+        // form_fit; a screened one, one linearised step's end, with it).
         const Eigen::Index n = j.cols(), m = j.rows();
         const Eigen::VectorXd& mean = normals[i].first;
         const Eigen::VectorXd& sigma = normals[i].second;
@@ -613,16 +709,9 @@ EffectRanking RankModelEffects(const Structure& structure_in,
             (c.theta + step).cwiseMax(boxes[i].first).cwiseMin(boxes[i].second);
         const Eigen::VectorXd d = to - c.theta;
         const Eigen::VectorXd moved = residuals[i] + j * d;
-        auto prior_misfit = [&](const Eigen::VectorXd& t) {
-          double sum = 0;
-          for (Eigen::Index q = 0; q < sigma.size(); ++q)
-            if (sigma[q] > 0) sum += std::pow((t[q] - mean[q]) / sigma[q], 2);
-          return sum;
-        };
-        if (!(moved.squaredNorm() + prior_misfit(to) <
-              residuals[i].squaredNorm() + prior_misfit(c.theta)))
+        if (!(moved.squaredNorm() + prior_misfit(i, to) <
+              residuals[i].squaredNorm() + prior_misfit(i, c.theta)))
           continue;
-        const ModelEffect& effect = *effects[class_effect[i]];
         residuals[i] = moved;
         c.chi2 = (raw + raw_jacobians[i] * d).squaredNorm();
         c.theta = to;

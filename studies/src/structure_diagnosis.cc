@@ -115,6 +115,7 @@ StructureDiagnosisResult RunStructureDiagnosis(const Study& study) {
   options.priors = spec.priors;
   options.formulation_error = spec.formulation_error;
   options.form_step = spec.form_step;
+  options.form_fit = spec.form_fit;
   options.bagging_copies = spec.bagging_copies;
   options.max_members = spec.max_members;
   options.rotary_inertia = spec.rotary_inertia;

@@ -199,6 +199,7 @@ DiagnosisSpec ReadDiagnosis(const Field& f, const Study& study) {
                 "priors",
                 "weights",
                 "form_step",
+                "form_fit",
                 "rotary_inertia"});
   DiagnosisSpec d;
   if (f.Has("noise")) {
@@ -253,6 +254,7 @@ DiagnosisSpec ReadDiagnosis(const Field& f, const Study& study) {
   if (f.Has("mesh_error")) d.mesh_error = f["mesh_error"].Bool();
   if (f.Has("formulation_error")) d.formulation_error = f["formulation_error"].Bool();
   if (f.Has("form_step")) d.form_step = f["form_step"].Bool();
+  if (f.Has("form_fit")) d.form_fit = f["form_fit"].Bool();
   if (f.Has("rotary_inertia")) d.rotary_inertia = f["rotary_inertia"].Bool();
   if (f.Has("refine_mesh")) d.refine_mesh = f["refine_mesh"].Bool();
   if (f.Has("bagging_copies")) {

@@ -154,6 +154,9 @@ struct DiagnosisSpec {
   // misfit its evidence is taken on; false: at its raw fit (for comparison).
   // EffectRankingOptions::form_step. Not used by the cantilever's own pipeline.
   bool form_step = true;
+  // With form_step, each fitted class moved by a fit of that misfit to its
+  // mode rather than by one Gauss-Newton step. EffectRankingOptions::form_fit.
+  bool form_fit = false;
   // Where the model's builder made it on a finer mesh too (a plane frame:
   // FormVariant::model) and that mesh moves one of the measured modes by more
   // than 3 frequency noise standard deviations, diagnose on the finer mesh
