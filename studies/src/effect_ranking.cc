@@ -15,13 +15,13 @@
 #include <string_view>
 
 #include "femup/core/errors.h"
-#include "femup/core/fe/form_variant.h"
 #include "femup/core/linalg/node_ordering.h"
 #include "femup/core/parallel.h"
 #include "femup/problems/effect_priors.h"
 #include "femup/problems/model_effect_pencil.h"
 #include "femup/solvers/bagged_posterior.h"
 #include "femup/solvers/nonlinear_solver.h"
+#include "model_form_error.h"
 
 namespace femup {
 
@@ -194,29 +194,10 @@ struct Nominal {
   std::vector<char> is_frequency;
 };
 
-// The nominal model with the given extra unknowns (empty: one whose basis is
-// zero, since the engine needs an unknown), as the engine's output-error
-// problem on the measured states.
-NonlinearProblem NominalProblem(const Structure& s, std::vector<Parameter> unknowns,
-                                const std::vector<ModalData>& states,
-                                const EigenSensitivityOptions& options) {
-  ParametrisedModel model(s.stiffness, s.mass, s.dof_labels);
-  if (unknowns.empty()) {
-    Parameter unused;
-    unused.name = "nominal";
-    unused.kind = ParameterKind::kStiffness;
-    unused.basis = BasisMatrix(SparseMatrix(model.num_dofs(), model.num_dofs()));
-    unknowns.push_back(std::move(unused));
-  }
-  const int n = static_cast<int>(unknowns.size());
-  for (Parameter& p : unknowns) model.AddParameter(std::move(p));
-  return BuildOutputErrorProblem(std::make_shared<const ModelPencil>(std::move(model)),
-                                 states, options, Eigen::VectorXd::Zero(n));
-}
-
 Nominal NominalResidual(const Structure& structure, const std::vector<ModalData>& states,
                         const EigenSensitivityOptions& options) {
-  const NonlinearProblem problem = NominalProblem(structure, {}, states, options);
+  const NonlinearProblem problem =
+      NominalOutputErrorProblem(structure, {}, states, options);
   Eigen::VectorXd r;
   std::string why;
   if (!problem.evaluate(Eigen::VectorXd::Zero(1), &r, nullptr, &why)) {
@@ -231,51 +212,6 @@ Nominal NominalResidual(const Structure& structure, const std::vector<ModalData>
         label.compare(label.size() - suffix.size(), suffix.size(), suffix) == 0);
   }
   return out;
-}
-
-// A form variant's change of the residuals, to first order: the nominal model
-// moved along (K_v - K, M_v - M) by the engine's own eigen-derivatives at the
-// nominal modes. The variant's own modes are not paired with the data: with
-// few sensors or frequencies only, a variant whose modes swap order would be
-// paired with other modes than the nominal's, and its "change" would be the
-// distance between two modes.
-Eigen::VectorXd FormVariantChange(const Structure& structure, const FormVariant& own,
-                                  const std::vector<ModalData>& states,
-                                  const EigenSensitivityOptions& options) {
-  // A variant on DOFs of its own (a finer mesh): as the model's modes that can
-  // be paired with the data move on it.
-  int modes = 1;
-  for (const ModalData& d : states)
-    modes = std::max(modes, d.num_modes() + options.extra_modes);
-  const FormVariant v = OnModelDofs(
-      structure, own, std::min(modes, static_cast<int>(structure.stiffness.rows())));
-  std::vector<Parameter> unknowns(2);
-  unknowns[0].name = "form variant stiffness";
-  unknowns[0].kind = ParameterKind::kStiffness;
-  unknowns[0].basis =
-      BasisMatrix(SparseMatrix((v.stiffness - structure.stiffness).pruned()));
-  unknowns[1].name = "form variant mass";
-  unknowns[1].kind = ParameterKind::kMass;
-  unknowns[1].basis = BasisMatrix(SparseMatrix((v.mass - structure.mass).pruned()));
-  const NonlinearProblem problem = NominalProblem(structure, unknowns, states, options);
-  Eigen::VectorXd r;
-  Eigen::MatrixXd j;
-  std::string why;
-  if (!problem.evaluate(Eigen::VectorXd::Zero(2), &r, &j, &why)) {
-    throw InputError("measurements", "the model's form variant (" + v.name +
-                                         ") cannot be compared with the data: " + why);
-  }
-  return j.col(0) + j.col(1);
-}
-
-// The frequency rows' covariance I + sum_j u_j u_j' (u_j: form variant j's
-// change of the nominal frequency residuals, in noise units), as its lower
-// Cholesky factor; the identity when there is no variant.
-Eigen::MatrixXd FormErrorFactor(const std::vector<Eigen::VectorXd>& directions,
-                                int rows) {
-  Eigen::MatrixXd cov = Eigen::MatrixXd::Identity(rows, rows);
-  for (const Eigen::VectorXd& u : directions) cov += u * u.transpose();
-  return cov.llt().matrixL();
 }
 
 }  // namespace
@@ -478,107 +414,22 @@ EffectRanking RankModelEffects(const Structure& structure_in,
     fits[e] = FitInstance(structure, effects[e], states, fit, *solver, ritz);
   });
 
-  // The model's own form error (Structure::form_variants): each variant moves
-  // the nominal frequencies by u_j (in noise units); the frequencies' noise
-  // becomes I + sum_j u_j u_j', one standard deviation of model-form error
-  // along each variant's change, and every class's frequency residuals and
-  // Jacobian rows are whitened by it. A change the model's own formulation can
-  // make (all modes softer alike, for shear deformation) then costs little,
-  // and no family is named for it alone.
-  std::vector<int> frequency_rows;
-  for (int r = 0; r < out.num_residuals; ++r)
-    if (is_frequency[r]) frequency_rows.push_back(r);
-  const bool whitened = options.formulation_error && !structure->form_variants.empty() &&
-                        !frequency_rows.empty();
-  Eigen::MatrixXd factor;
-  Eigen::MatrixXd form_basis;  // orthonormal basis of the variants' changes
-  if (whitened) {
-    std::vector<Eigen::VectorXd> directions;
-    for (const FormVariant& v : structure->form_variants) {
-      const Eigen::VectorXd change = FormVariantChange(*structure, v, states, fit);
-      Eigen::VectorXd u(frequency_rows.size());
-      for (std::size_t k = 0; k < frequency_rows.size(); ++k)
-        u[k] = change[frequency_rows[k]];
-      // Relative frequency change: a lambda row is in units of 2 sigma_f.
-      out.form_errors.push_back(
-          {v.name, u.cwiseAbs().maxCoeff() * options.frequency_sigma, u.norm()});
-      directions.push_back(std::move(u));
-    }
-    factor = FormErrorFactor(directions, static_cast<int>(frequency_rows.size()));
-    Eigen::MatrixXd u(frequency_rows.size(), directions.size());
-    for (std::size_t j = 0; j < directions.size(); ++j)
-      u.col(static_cast<Eigen::Index>(j)) = directions[j];
-    const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(u);
-    // No column where the variants change no frequency (rank 0): then no
-    // class lies along them.
-    form_basis = qr.householderQ() * Eigen::MatrixXd::Identity(u.rows(), qr.rank());
-  }
-  // The frequency rows of a residual (and of its Jacobian, where not null)
-  // whitened by the form error's factor L (L^-1 r), or, with `back`, turned
-  // back into raw ones (L r).
-  auto transform = [&](Eigen::VectorXd* r, Eigen::MatrixXd* j, bool back) {
-    const Eigen::Index cols = j != nullptr ? j->cols() : 0;
-    Eigen::VectorXd rf(frequency_rows.size());
-    Eigen::MatrixXd jf(frequency_rows.size(), cols);
-    for (std::size_t k = 0; k < frequency_rows.size(); ++k) {
-      rf[k] = (*r)[frequency_rows[k]];
-      if (cols > 0) jf.row(k) = j->row(frequency_rows[k]);
-    }
-    const auto l = factor.triangularView<Eigen::Lower>();
-    rf = back ? Eigen::VectorXd(l * rf) : Eigen::VectorXd(l.solve(rf));
-    // "none" has no unknowns: Eigen's triangular solve of an empty
-    // right-hand side reads its first coefficient (UBSan: a null reference).
-    if (cols > 0) jf = back ? Eigen::MatrixXd(l * jf) : Eigen::MatrixXd(l.solve(jf));
-    for (std::size_t k = 0; k < frequency_rows.size(); ++k) {
-      (*r)[frequency_rows[k]] = rf[k];
-      if (cols > 0) j->row(frequency_rows[k]) = jf.row(k);
-    }
-  };
-  auto whiten = [&](Eigen::VectorXd* r, Eigen::MatrixXd* j) { transform(r, j, false); };
-
-  // A fitted class's fit of the whitened misfit (its evidence's), the stated
-  // normal priors' residuals with it, from where the raw fit ended: the two
-  // optima lie apart where the raw fit took up the model's form error, and a
-  // Gauss-Newton step from the raw one did not reach the other (a clamped
-  // frame's two base ratios, docs/diagnosis.md). Kept per instance, and done
-  // again only where the instance's raw fit changed (a refit round).
-  struct InForm {
-    Eigen::VectorXd from;  // the raw fit's end it started from
-    bool ok = false;       // false: no lower whitened misfit was found
-    Eigen::VectorXd theta, residual, raw_residual;
-    Eigen::MatrixXd jacobian, raw_jacobian;
-  };
-  std::vector<std::optional<InForm>> in_form(effects.size());
-  auto fit_in_form = [&](std::size_t e, const Eigen::VectorXd& from, double from_misfit) {
-    InForm out_fit;
-    out_fit.from = from;
-    const std::vector<EffectParameter> params = effects[e]->Parameters();
-    NonlinearProblem data =
-        BuildModelEffectFitProblem(structure, {effects[e]}, states, fit, from);
-    const NonlinearProblem::Evaluate raw = data.evaluate;
-    data.evaluate = [raw, &whiten](const Eigen::VectorXd& x, Eigen::VectorXd* r,
-                                   Eigen::MatrixXd* j, std::string* why) {
-      if (!raw(x, r, j, why)) return false;
-      whiten(r, j);
-      return true;
-    };
-    const int rows = data.num_residuals;
-    const NonlinearProblem problem = WithPriorResiduals(std::move(data), params);
-    const NonlinearSolution sol = solver->Solve(problem);
-    if (sol.residual.size() != problem.num_residuals || !sol.residual.allFinite() ||
-        sol.jacobian.rows() != problem.num_residuals || !sol.jacobian.allFinite() ||
-        !(sol.residual.squaredNorm() < from_misfit)) {
-      return out_fit;
-    }
-    out_fit.ok = true;
-    out_fit.theta = sol.x;
-    out_fit.residual = sol.residual.head(rows);
-    out_fit.jacobian = sol.jacobian.topRows(rows);
-    out_fit.raw_residual = out_fit.residual;
-    out_fit.raw_jacobian = out_fit.jacobian;
-    transform(&out_fit.raw_residual, &out_fit.raw_jacobian, true);
-    return out_fit;
-  };
+  // The model's own form error (Structure::form_variants, model_form_error.h):
+  // the frequencies' noise becomes I + sum_j u_j u_j', one standard deviation
+  // of model-form error along each variant's change u_j, and every class's
+  // frequency residuals and Jacobian rows are whitened by it. A change the
+  // model's own formulation can make (all modes softer alike, for shear
+  // deformation) then costs little, and no family is named for it alone.
+  const ModelFormError form =
+      options.formulation_error
+          ? ModelFormError::Measure(*structure, states, fit, is_frequency,
+                                    options.frequency_sigma, &out.form_errors)
+          : ModelFormError();
+  const bool whitened = form.Active();
+  // Each fitted class's fit to the whitened misfit's mode (form_fit), kept per
+  // instance, and done again only where the instance's raw fit changed (a
+  // refit round).
+  std::vector<std::optional<WhitenedModeFit>> in_form(effects.size());
 
   // The classes and their probabilities, from the fits. Screened places whose
   // linearised step comes out more probable than every fitted place of their
@@ -600,8 +451,7 @@ EffectRanking RankModelEffects(const Structure& structure_in,
     jacobians = {Eigen::MatrixXd(out.num_residuals, 0)};
     residuals = {nominal};
     std::vector<std::size_t> class_effect = {effects.size()};  // none: no effect
-    std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>> boxes = {{}};
-    std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>> normals = {{}};
+    std::vector<ClassPriors> priors = {{}};  // box and local normal priors
     for (std::size_t e = 0; e < effects.size(); ++e) {
       const std::size_t k = effect_kind[e];
       const std::string& kind = kinds[k];
@@ -621,62 +471,55 @@ EffectRanking RankModelEffects(const Structure& structure_in,
       c.fitted = f.fitted;
       c.location = effect->Location(f.theta);
       c.magnitudes = effect->Magnitudes(f.theta);
-      Eigen::VectorXd lower(c.names.size()), upper(c.names.size());
+      ClassPriors cp;
+      cp.lower.resize(static_cast<Eigen::Index>(c.names.size()));
+      cp.upper.resize(static_cast<Eigen::Index>(c.names.size()));
       const auto params = effect->Parameters();
       for (std::size_t i = 0; i < params.size(); ++i) {
-        lower[i] = params[i].lower;
-        upper[i] = params[i].upper;
+        cp.lower[static_cast<Eigen::Index>(i)] = params[i].lower;
+        cp.upper[static_cast<Eigen::Index>(i)] = params[i].upper;
       }
-      Eigen::VectorXd normal_mean, normal_sigma;
-      LocalNormalPriors(params, f.theta, &normal_mean, &normal_sigma);
+      LocalNormalPriors(params, f.theta, &cp.mean, &cp.sigma);
       classes.push_back(std::move(c));
       jacobians.push_back(f.jacobian);
       residuals.push_back(f.residual);
-      boxes.push_back({lower, upper});
-      normals.push_back({normal_mean, normal_sigma});
+      priors.push_back(std::move(cp));
       class_effect.push_back(e);
     }
     raw_jacobians = jacobians;
     if (whitened) {
-      auto prior_misfit = [&](std::size_t i, const Eigen::VectorXd& t) {
-        const Eigen::VectorXd& mean = normals[i].first;
-        const Eigen::VectorXd& sigma = normals[i].second;
-        double sum = 0;
-        for (Eigen::Index q = 0; q < sigma.size(); ++q)
-          if (sigma[q] > 0) sum += std::pow((t[q] - mean[q]) / sigma[q], 2);
-        return sum;
-      };
       // The fitted classes' whitened fits, in parallel, where not yet done
       // from the same raw fit.
       std::vector<std::size_t> to_move;
       for (std::size_t i = 1; i < classes.size(); ++i) {
         if (!fit_in_form_to_mode || !classes[i].fitted || classes[i].theta.size() == 0)
           continue;
-        const std::optional<InForm>& done = in_form[class_effect[i]];
+        const std::optional<WhitenedModeFit>& done = in_form[class_effect[i]];
         if (!done || done->from != classes[i].theta) to_move.push_back(i);
       }
       std::vector<double> from_misfit(to_move.size());
       for (std::size_t k = 0; k < to_move.size(); ++k) {
         const std::size_t i = to_move[k];
         Eigen::VectorXd r = residuals[i];
-        Eigen::MatrixXd j = jacobians[i];
-        whiten(&r, &j);
-        from_misfit[k] = r.squaredNorm() + prior_misfit(i, classes[i].theta);
+        form.Whiten(&r, nullptr);
+        from_misfit[k] = r.squaredNorm() + priors[i].Misfit(classes[i].theta);
       }
       ParallelFor(static_cast<int>(to_move.size()), options.threads, [&](int k) {
         const std::size_t i = to_move[static_cast<std::size_t>(k)];
-        in_form[class_effect[i]] = fit_in_form(class_effect[i], classes[i].theta,
-                                               from_misfit[static_cast<std::size_t>(k)]);
+        const std::size_t e = class_effect[i];
+        in_form[e] =
+            FitToWhitenedMode(form, structure, effects[e], states, fit, *solver,
+                              classes[i].theta, from_misfit[static_cast<std::size_t>(k)]);
       });
       for (std::size_t i = 0; i < classes.size(); ++i) {
         const Eigen::VectorXd raw = residuals[i];
-        whiten(&residuals[i], &jacobians[i]);
+        form.Whiten(&residuals[i], &jacobians[i]);
         const Eigen::MatrixXd& j = jacobians[i];
         if (j.cols() == 0 || !step_in_form) continue;
         RankedClass& c = classes[i];
         const ModelEffect& effect = *effects[class_effect[i]];
         if (fit_in_form_to_mode && c.fitted) {
-          const std::optional<InForm>& moved = in_form[class_effect[i]];
+          const std::optional<WhitenedModeFit>& moved = in_form[class_effect[i]];
           if (!moved || !moved->ok) continue;
           residuals[i] = moved->residual;
           jacobians[i] = moved->jacobian;
@@ -685,39 +528,24 @@ EffectRanking RankModelEffects(const Structure& structure_in,
           c.theta = moved->theta;
           c.location = effect.Location(c.theta);
           c.magnitudes = effect.Magnitudes(c.theta);
-          LocalNormalPriors(effect.Parameters(), c.theta, &normals[i].first,
-                            &normals[i].second);
+          LocalNormalPriors(effect.Parameters(), c.theta, &priors[i].mean,
+                            &priors[i].sigma);
           continue;
         }
         // One Gauss-Newton step on the whitened misfit (the stated normal
         // priors' rows with it), kept in range (every class without
         // form_fit; a screened one, one linearised step's end, with it).
-        const Eigen::Index n = j.cols(), m = j.rows();
-        const Eigen::VectorXd& mean = normals[i].first;
-        const Eigen::VectorXd& sigma = normals[i].second;
-        Eigen::MatrixXd a = Eigen::MatrixXd::Zero(m + n, n);
-        Eigen::VectorXd b = Eigen::VectorXd::Zero(m + n);
-        a.topRows(m) = j;
-        b.head(m) = -residuals[i];
-        for (Eigen::Index q = 0; q < sigma.size(); ++q) {
-          if (!(sigma[q] > 0)) continue;
-          a(m + q, q) = 1.0 / sigma[q];
-          b[m + q] = -(c.theta[q] - mean[q]) / sigma[q];
-        }
-        const Eigen::VectorXd step = a.completeOrthogonalDecomposition().solve(b);
-        const Eigen::VectorXd to =
-            (c.theta + step).cwiseMax(boxes[i].first).cwiseMin(boxes[i].second);
-        const Eigen::VectorXd d = to - c.theta;
-        const Eigen::VectorXd moved = residuals[i] + j * d;
-        if (!(moved.squaredNorm() + prior_misfit(i, to) <
-              residuals[i].squaredNorm() + prior_misfit(i, c.theta)))
-          continue;
-        residuals[i] = moved;
+        const std::optional<Eigen::VectorXd> to =
+            GaussNewtonStepInForm(c.theta, residuals[i], j, priors[i]);
+        if (!to) continue;
+        const Eigen::VectorXd d = *to - c.theta;
+        residuals[i] = residuals[i] + j * d;
         c.chi2 = (raw + raw_jacobians[i] * d).squaredNorm();
-        c.theta = to;
-        c.location = effect.Location(to);
-        c.magnitudes = effect.Magnitudes(to);
-        LocalNormalPriors(effect.Parameters(), to, &normals[i].first, &normals[i].second);
+        c.theta = *to;
+        c.location = effect.Location(c.theta);
+        c.magnitudes = effect.Magnitudes(c.theta);
+        LocalNormalPriors(effect.Parameters(), c.theta, &priors[i].mean,
+                          &priors[i].sigma);
       }
     }
 
@@ -763,8 +591,8 @@ EffectRanking RankModelEffects(const Structure& structure_in,
       const double chi2 = residuals[i].cwiseProduct(row_scale).squaredNorm();
       const Eigen::MatrixXd jac = row_scale.asDiagonal() * jacobians[i];
       classes[i].evidence =
-          LaplaceEvidence(chi2, jac, classes[i].theta, boxes[i].first, boxes[i].second,
-                          1.0, normals[i].first, normals[i].second);
+          LaplaceEvidence(chi2, jac, classes[i].theta, priors[i].lower, priors[i].upper,
+                          1.0, priors[i].mean, priors[i].sigma);
       log_evidence[i] = classes[i].evidence.log_evidence;
       prior[i] = std::exp(classes[i].log_prior);
     }
@@ -862,15 +690,8 @@ EffectRanking RankModelEffects(const Structure& structure_in,
     const RankedClass* most = nullptr;
     const double none_tempered = residuals[0].cwiseProduct(row_scale).squaredNorm();
     for (std::size_t i = 1; i < classes.size(); ++i) {
-      const Eigen::MatrixXd& j = raw_jacobians[i];
-      if (!classes[i].fitted || j.cols() == 0 || form_basis.cols() == 0 ||
-          !(j.squaredNorm() > 0)) {
-        continue;
-      }
-      Eigen::MatrixXd jf(frequency_rows.size(), j.cols());
-      for (std::size_t k = 0; k < frequency_rows.size(); ++k)
-        jf.row(k) = j.row(frequency_rows[k]);
-      const double along = (form_basis.transpose() * jf).squaredNorm() / j.squaredNorm();
+      if (!classes[i].fitted) continue;
+      const double along = form.ShareAlongVariants(raw_jacobians[i]);
       const double tempered_gain =
           none_tempered - residuals[i].cwiseProduct(row_scale).squaredNorm();
       if (!(along >= 0.98) || !(tempered_gain < 9)) continue;

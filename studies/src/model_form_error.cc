@@ -1,0 +1,254 @@
+#include "model_form_error.h"
+
+#include <Eigen/Cholesky>
+#include <Eigen/QR>
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "femup/core/errors.h"
+#include "femup/problems/effect_priors.h"
+#include "femup/problems/model_effect_pencil.h"
+#include "femup/problems/parametrised_pencil.h"
+
+namespace femup {
+
+NonlinearProblem NominalOutputErrorProblem(const Structure& structure,
+                                           std::vector<Parameter> unknowns,
+                                           const std::vector<ModalData>& states,
+                                           const EigenSensitivityOptions& options) {
+  ParametrisedModel model(structure.stiffness, structure.mass, structure.dof_labels);
+  if (unknowns.empty()) {
+    Parameter unused;
+    unused.name = "nominal";
+    unused.kind = ParameterKind::kStiffness;
+    unused.basis = BasisMatrix(SparseMatrix(model.num_dofs(), model.num_dofs()));
+    unknowns.push_back(std::move(unused));
+  }
+  const int n = static_cast<int>(unknowns.size());
+  for (Parameter& p : unknowns) model.AddParameter(std::move(p));
+  return BuildOutputErrorProblem(std::make_shared<const ModelPencil>(std::move(model)),
+                                 states, options, Eigen::VectorXd::Zero(n));
+}
+
+Eigen::VectorXd FormVariantChange(const Structure& structure, const FormVariant& variant,
+                                  const std::vector<ModalData>& states,
+                                  const EigenSensitivityOptions& options) {
+  // A variant on DOFs of its own (a finer mesh): as the model's modes that can
+  // be paired with the data move on it.
+  int modes = 1;
+  for (const ModalData& d : states)
+    modes = std::max(modes, d.num_modes() + options.extra_modes);
+  const FormVariant v = OnModelDofs(
+      structure, variant, std::min(modes, static_cast<int>(structure.stiffness.rows())));
+  std::vector<Parameter> unknowns(2);
+  unknowns[0].name = "form variant stiffness";
+  unknowns[0].kind = ParameterKind::kStiffness;
+  unknowns[0].basis =
+      BasisMatrix(SparseMatrix((v.stiffness - structure.stiffness).pruned()));
+  unknowns[1].name = "form variant mass";
+  unknowns[1].kind = ParameterKind::kMass;
+  unknowns[1].basis = BasisMatrix(SparseMatrix((v.mass - structure.mass).pruned()));
+  const NonlinearProblem problem =
+      NominalOutputErrorProblem(structure, unknowns, states, options);
+  Eigen::VectorXd r;
+  Eigen::MatrixXd j;
+  std::string why;
+  if (!problem.evaluate(Eigen::VectorXd::Zero(2), &r, &j, &why)) {
+    throw InputError("measurements", "the model's form variant (" + v.name +
+                                         ") cannot be compared with the data: " + why);
+  }
+  return j.col(0) + j.col(1);
+}
+
+ModelFormError::ModelFormError(std::vector<char> is_frequency,
+                               const std::vector<Eigen::VectorXd>& directions)
+    : num_rows_(is_frequency.size()) {
+  for (std::size_t r = 0; r < is_frequency.size(); ++r)
+    if (is_frequency[r]) frequency_rows_.push_back(static_cast<int>(r));
+  const auto rows = static_cast<Eigen::Index>(frequency_rows_.size());
+  for (std::size_t k = 0; k < directions.size(); ++k) {
+    if (directions[k].size() != rows || !directions[k].allFinite()) {
+      throw InputError("form_error", "direction " + std::to_string(k) + " has " +
+                                         std::to_string(directions[k].size()) +
+                                         " values, expected one finite value for "
+                                         "each of the " +
+                                         std::to_string(rows) + " frequency rows");
+    }
+  }
+  if (rows == 0) return;
+  // The frequency rows' covariance I + sum_j u_j u_j', as its lower Cholesky
+  // factor; the identity when there is no direction.
+  Eigen::MatrixXd cov = Eigen::MatrixXd::Identity(rows, rows);
+  for (const Eigen::VectorXd& u : directions) cov += u * u.transpose();
+  factor_ = cov.llt().matrixL();
+  if (directions.empty()) return;
+  Eigen::MatrixXd u(rows, static_cast<Eigen::Index>(directions.size()));
+  for (std::size_t j = 0; j < directions.size(); ++j)
+    u.col(static_cast<Eigen::Index>(j)) = directions[j];
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(u);
+  // No column where the variants change no frequency (rank 0): then no class
+  // lies along them.
+  basis_ = qr.householderQ() * Eigen::MatrixXd::Identity(rows, qr.rank());
+}
+
+ModelFormError ModelFormError::Measure(const Structure& structure,
+                                       const std::vector<ModalData>& states,
+                                       const EigenSensitivityOptions& options,
+                                       const std::vector<char>& is_frequency,
+                                       double frequency_sigma,
+                                       std::vector<FormErrorAllowance>* allowances) {
+  const bool any_frequency =
+      std::any_of(is_frequency.begin(), is_frequency.end(), [](char f) { return f; });
+  if (structure.form_variants.empty() || !any_frequency) return {};
+  std::vector<Eigen::VectorXd> directions;
+  for (const FormVariant& v : structure.form_variants) {
+    const Eigen::VectorXd change = FormVariantChange(structure, v, states, options);
+    if (change.size() != static_cast<Eigen::Index>(is_frequency.size())) {
+      throw InputError("measurements", "the model's form variant (" + v.name +
+                                           ") gives " + std::to_string(change.size()) +
+                                           " residuals, the nominal model " +
+                                           std::to_string(is_frequency.size()));
+    }
+    Eigen::VectorXd u(std::count_if(is_frequency.begin(), is_frequency.end(),
+                                    [](char f) { return f != 0; }));
+    Eigen::Index k = 0;
+    for (std::size_t r = 0; r < is_frequency.size(); ++r)
+      if (is_frequency[r]) u[k++] = change[static_cast<Eigen::Index>(r)];
+    if (allowances != nullptr) {
+      // Relative frequency change: a lambda row is in units of 2 sigma_f.
+      allowances->push_back(
+          {v.name, u.cwiseAbs().maxCoeff() * frequency_sigma, u.norm()});
+    }
+    directions.push_back(std::move(u));
+  }
+  return ModelFormError(is_frequency, directions);
+}
+
+void ModelFormError::Transform(Eigen::VectorXd* r, Eigen::MatrixXd* j, bool back) const {
+  if (!Active()) return;
+  if (static_cast<std::size_t>(r->size()) != num_rows_ ||
+      (j != nullptr && static_cast<std::size_t>(j->rows()) != num_rows_)) {
+    throw InputError("residual", std::to_string(r->size()) + " residuals" +
+                                     (j != nullptr ? " and " + std::to_string(j->rows()) +
+                                                         " Jacobian rows"
+                                                   : std::string()) +
+                                     ", expected " + std::to_string(num_rows_));
+  }
+  const Eigen::Index cols = j != nullptr ? j->cols() : 0;
+  const auto rows = static_cast<Eigen::Index>(frequency_rows_.size());
+  Eigen::VectorXd rf(rows);
+  Eigen::MatrixXd jf(rows, cols);
+  for (Eigen::Index k = 0; k < rows; ++k) {
+    rf[k] = (*r)[frequency_rows_[static_cast<std::size_t>(k)]];
+    if (cols > 0) jf.row(k) = j->row(frequency_rows_[static_cast<std::size_t>(k)]);
+  }
+  const auto l = factor_.triangularView<Eigen::Lower>();
+  rf = back ? Eigen::VectorXd(l * rf) : Eigen::VectorXd(l.solve(rf));
+  // "none" has no unknowns: Eigen's triangular solve of an empty right-hand
+  // side reads its first coefficient (UBSan: a null reference).
+  if (cols > 0) jf = back ? Eigen::MatrixXd(l * jf) : Eigen::MatrixXd(l.solve(jf));
+  for (Eigen::Index k = 0; k < rows; ++k) {
+    (*r)[frequency_rows_[static_cast<std::size_t>(k)]] = rf[k];
+    if (cols > 0) j->row(frequency_rows_[static_cast<std::size_t>(k)]) = jf.row(k);
+  }
+}
+
+void ModelFormError::Whiten(Eigen::VectorXd* r, Eigen::MatrixXd* j) const {
+  Transform(r, j, false);
+}
+
+void ModelFormError::Unwhiten(Eigen::VectorXd* r, Eigen::MatrixXd* j) const {
+  Transform(r, j, true);
+}
+
+double ModelFormError::ShareAlongVariants(const Eigen::MatrixXd& raw_jacobian) const {
+  const Eigen::MatrixXd& j = raw_jacobian;
+  if (basis_.cols() == 0 || j.cols() == 0 || !(j.squaredNorm() > 0)) return 0;
+  if (static_cast<std::size_t>(j.rows()) != num_rows_) {
+    throw InputError("jacobian", std::to_string(j.rows()) + " rows, expected " +
+                                     std::to_string(num_rows_));
+  }
+  Eigen::MatrixXd jf(static_cast<Eigen::Index>(frequency_rows_.size()), j.cols());
+  for (std::size_t k = 0; k < frequency_rows_.size(); ++k)
+    jf.row(static_cast<Eigen::Index>(k)) = j.row(frequency_rows_[k]);
+  return (basis_.transpose() * jf).squaredNorm() / j.squaredNorm();
+}
+
+double ClassPriors::Misfit(const Eigen::VectorXd& theta) const {
+  double sum = 0;
+  for (Eigen::Index q = 0; q < sigma.size(); ++q)
+    if (sigma[q] > 0) sum += std::pow((theta[q] - mean[q]) / sigma[q], 2);
+  return sum;
+}
+
+std::optional<Eigen::VectorXd> GaussNewtonStepInForm(const Eigen::VectorXd& theta,
+                                                     const Eigen::VectorXd& residual,
+                                                     const Eigen::MatrixXd& jacobian,
+                                                     const ClassPriors& priors) {
+  const Eigen::MatrixXd& j = jacobian;
+  if (j.cols() == 0) return std::nullopt;
+  const Eigen::Index n = j.cols(), m = j.rows();
+  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(m + n, n);
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(m + n);
+  a.topRows(m) = j;
+  b.head(m) = -residual;
+  for (Eigen::Index q = 0; q < priors.sigma.size(); ++q) {
+    if (!(priors.sigma[q] > 0)) continue;
+    a(m + q, q) = 1.0 / priors.sigma[q];
+    b[m + q] = -(theta[q] - priors.mean[q]) / priors.sigma[q];
+  }
+  const Eigen::VectorXd step = a.completeOrthogonalDecomposition().solve(b);
+  const Eigen::VectorXd to = (theta + step).cwiseMax(priors.lower).cwiseMin(priors.upper);
+  const Eigen::VectorXd moved = residual + j * (to - theta);
+  if (!(moved.squaredNorm() + priors.Misfit(to) <
+        residual.squaredNorm() + priors.Misfit(theta))) {
+    return std::nullopt;
+  }
+  return to;
+}
+
+WhitenedModeFit FitToWhitenedMode(const ModelFormError& form,
+                                  const std::shared_ptr<const Structure>& structure,
+                                  const std::shared_ptr<const ModelEffect>& effect,
+                                  const std::vector<ModalData>& states,
+                                  const EigenSensitivityOptions& options,
+                                  const NonlinearSolver& solver,
+                                  const Eigen::VectorXd& from, double from_misfit) {
+  WhitenedModeFit out;
+  out.from = from;
+  const std::vector<EffectParameter> params = effect->Parameters();
+  NonlinearProblem data =
+      BuildModelEffectFitProblem(structure, {effect}, states, options, from);
+  const NonlinearProblem::Evaluate raw = data.evaluate;
+  data.evaluate = [raw, &form](const Eigen::VectorXd& x, Eigen::VectorXd* r,
+                               Eigen::MatrixXd* j, std::string* why) {
+    if (!raw(x, r, j, why)) return false;
+    try {
+      form.Whiten(r, j);
+    } catch (const InputError& e) {
+      if (why != nullptr) *why = e.what();
+      return false;
+    }
+    return true;
+  };
+  const int rows = data.num_residuals;
+  const NonlinearProblem problem = WithPriorResiduals(std::move(data), params);
+  const NonlinearSolution sol = solver.Solve(problem);
+  if (sol.residual.size() != problem.num_residuals || !sol.residual.allFinite() ||
+      sol.jacobian.rows() != problem.num_residuals || !sol.jacobian.allFinite() ||
+      !(sol.residual.squaredNorm() < from_misfit)) {
+    return out;
+  }
+  out.ok = true;
+  out.theta = sol.x;
+  out.residual = sol.residual.head(rows);
+  out.jacobian = sol.jacobian.topRows(rows);
+  out.raw_residual = out.residual;
+  out.raw_jacobian = out.jacobian;
+  form.Unwhiten(&out.raw_residual, &out.raw_jacobian);
+  return out;
+}
+
+}  // namespace femup

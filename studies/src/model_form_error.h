@@ -1,0 +1,150 @@
+// The model's own form error on the measured data, as RankModelEffects allows
+// for it (effect_ranking.h, EffectRankingOptions::formulation_error): where the
+// structure's builder knows a richer formulation of it
+// (Structure::form_variants: a frame of shear-deformable members, a finer
+// mesh), each variant moves the nominal model's frequency residuals by u_j, in
+// noise units, to first order through the engine's own eigenvalue derivatives
+// at the nominal model's paired modes. The frequency rows' covariance is then
+// I + sum_j u_j u_j' (one standard deviation of form error along each
+// variant's change), and a class is judged on its residuals and Jacobian
+// whitened by it.
+//
+// Also here, the two ways a fitted class is moved to the mode of its whitened
+// misfit before its evidence is taken: one Gauss-Newton step
+// (GaussNewtonStepInForm; EffectRankingOptions::form_step) or a fit to
+// convergence from its raw fit (FitToWhitenedMode; form_fit).
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "femup/core/fe/form_variant.h"
+#include "femup/core/fe/model.h"
+#include "femup/core/fe/structure.h"
+#include "femup/core/sysid/measurement.h"
+#include "femup/problems/eigen_sensitivity.h"
+#include "femup/problems/model_effects.h"
+#include "femup/problems/nonlinear_problem.h"
+#include "femup/solvers/nonlinear_solver.h"
+#include "femup/studies/effect_ranking.h"
+
+namespace femup {
+
+// The nominal model (no effect) with the given extra unknowns (none: one whose
+// basis is zero, since the engine needs an unknown), as the engine's
+// output-error problem on the measured states, starting at zero.
+NonlinearProblem NominalOutputErrorProblem(const Structure& structure,
+                                           std::vector<Parameter> unknowns,
+                                           const std::vector<ModalData>& states,
+                                           const EigenSensitivityOptions& options);
+
+// A form variant's change of the nominal model's residuals, to first order:
+// the nominal model moved along (K_v - K, M_v - M) by the engine's own
+// eigen-derivatives at the nominal modes. The variant's own modes are not
+// paired with the data: with few sensors or frequencies only, a variant whose
+// modes swap order would be paired with other modes than the nominal's, and
+// its "change" would be the distance between two modes. A variant on DOFs of
+// its own (a finer mesh) is taken on the model's DOFs first (OnModelDofs).
+// Throws InputError("measurements", ...) where the engine cannot compare it
+// with the data.
+Eigen::VectorXd FormVariantChange(const Structure& structure, const FormVariant& variant,
+                                  const std::vector<ModalData>& states,
+                                  const EigenSensitivityOptions& options);
+
+class ModelFormError {
+ public:
+  // No form error allowed for: not Active(), and Whiten and Unwhiten leave
+  // every residual as it is.
+  ModelFormError() = default;
+
+  // From the residuals' rows (is_frequency: which are eigenvalue rows) and the
+  // variants' changes of the frequency rows (each of the frequency rows'
+  // count, in noise units). Active where there is at least one frequency row,
+  // even with no direction (the covariance is then the identity). Throws
+  // InputError("form_error", ...) for a direction of another length or with a
+  // value that is not finite.
+  ModelFormError(std::vector<char> is_frequency,
+                 const std::vector<Eigen::VectorXd>& directions);
+
+  // Measured on the data: every one of structure.form_variants
+  // (FormVariantChange) on the frequency rows of the nominal model's residuals
+  // (is_frequency), and for the report each variant's size (`allowances`,
+  // appended: the largest relative frequency change, a lambda row being in
+  // units of 2 frequency_sigma, and the change's norm in noise units). Not
+  // Active, and nothing appended, where the structure has no variant or the
+  // data no frequency.
+  static ModelFormError Measure(const Structure& structure,
+                                const std::vector<ModalData>& states,
+                                const EigenSensitivityOptions& options,
+                                const std::vector<char>& is_frequency,
+                                double frequency_sigma,
+                                std::vector<FormErrorAllowance>* allowances);
+
+  bool Active() const { return factor_.size() > 0; }
+  const std::vector<int>& frequency_rows() const { return frequency_rows_; }
+  // The rank of the variants' changes (columns of an orthonormal basis).
+  int NumDirections() const { return static_cast<int>(basis_.cols()); }
+
+  // The frequency rows of a residual, and of its Jacobian where `j` is not
+  // null, whitened (L^-1 r, L the covariance's lower Cholesky factor), or
+  // turned back into raw ones (L r). Rows of the shapes are left as they are.
+  // Throws InputError("residual", ...) for a residual of another length than
+  // the is_frequency flags, or a Jacobian whose rows do not match it.
+  void Whiten(Eigen::VectorXd* r, Eigen::MatrixXd* j) const;
+  void Unwhiten(Eigen::VectorXd* r, Eigen::MatrixXd* j) const;
+
+  // The share of a raw Jacobian's squared norm (every row) whose frequency
+  // rows lie along the variants' changes: 1 for a class that can change the
+  // data only as the model's own form error does; 0 where there is no
+  // direction or the Jacobian is zero.
+  double ShareAlongVariants(const Eigen::MatrixXd& raw_jacobian) const;
+
+ private:
+  void Transform(Eigen::VectorXd* r, Eigen::MatrixXd* j, bool back) const;
+
+  std::size_t num_rows_ = 0;
+  std::vector<int> frequency_rows_;
+  Eigen::MatrixXd factor_;  // lower Cholesky factor of I + sum_j u_j u_j'
+  Eigen::MatrixXd basis_;   // orthonormal basis of the u_j
+};
+
+// A class's parameter box and its stated normal priors linearised at its theta
+// (LocalNormalPriors: sigma 0, or both empty, where the prior is uniform).
+struct ClassPriors {
+  Eigen::VectorXd lower, upper;
+  Eigen::VectorXd mean, sigma;
+  // sum over the normal priors of ((theta - mean) / sigma)^2.
+  double Misfit(const Eigen::VectorXd& theta) const;
+};
+
+// One Gauss-Newton step from theta on |r + J d|^2 + priors.Misfit(theta + d)
+// (r and J whitened), its end kept in the box: the end where it lowers that
+// misfit, nothing where it does not (or J has no column).
+std::optional<Eigen::VectorXd> GaussNewtonStepInForm(const Eigen::VectorXd& theta,
+                                                     const Eigen::VectorXd& residual,
+                                                     const Eigen::MatrixXd& jacobian,
+                                                     const ClassPriors& priors);
+
+// An instance fitted again on the whitened misfit, its stated normal priors'
+// residuals with it, from `from` (where its raw fit ended) to convergence.
+// ok only where the fit's misfit comes out below `from_misfit` (the whitened
+// misfit and the priors' at `from`); then its end, the data's residual and
+// Jacobian there, whitened and raw.
+struct WhitenedModeFit {
+  Eigen::VectorXd from;
+  bool ok = false;
+  Eigen::VectorXd theta, residual, raw_residual;
+  Eigen::MatrixXd jacobian, raw_jacobian;
+};
+
+WhitenedModeFit FitToWhitenedMode(const ModelFormError& form,
+                                  const std::shared_ptr<const Structure>& structure,
+                                  const std::shared_ptr<const ModelEffect>& effect,
+                                  const std::vector<ModalData>& states,
+                                  const EigenSensitivityOptions& options,
+                                  const NonlinearSolver& solver,
+                                  const Eigen::VectorXd& from, double from_misfit);
+
+}  // namespace femup

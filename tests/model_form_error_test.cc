@@ -1,0 +1,304 @@
+// The model's own form error as the effect ranking allows for it
+// (studies/src/model_form_error.h): the whitening against the covariance
+// written out (Sherman-Morrison for one direction, a dense inverse for two),
+// the share of a Jacobian along the variants, the Gauss-Newton step against the
+// normal equations, and a portal frame's shear variant to first order against
+// the eigenvalues of the same frame built with Timoshenko members.
+#include "model_form_error.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/LU>
+#include <random>
+#include <string_view>
+
+#include "expect_error.h"
+#include "femup/core/fe/plane_frame.h"
+#include "femup/core/linalg/modal.h"
+#include "structure_specs.h"
+
+namespace femup {
+namespace {
+
+Eigen::VectorXd Random(Eigen::Index n, std::mt19937* rng) {
+  std::normal_distribution<double> normal(0.0, 1.0);
+  Eigen::VectorXd v(n);
+  for (Eigen::Index i = 0; i < n; ++i) v[i] = normal(*rng);
+  return v;
+}
+
+// Rows 0, 2 and 3 are frequencies, 1 and 4 shape entries.
+const std::vector<char> kRows = {1, 0, 1, 1, 0};
+
+TEST(ModelFormError, WhitensByTheCovarianceOfOneDirection) {
+  std::mt19937 rng(11);
+  const Eigen::VectorXd u = Random(3, &rng);
+  const ModelFormError form(kRows, {u});
+  ASSERT_TRUE(form.Active());
+  EXPECT_EQ(form.NumDirections(), 1);
+  EXPECT_EQ(form.frequency_rows(), (std::vector<int>{0, 2, 3}));
+  const Eigen::VectorXd r = Random(5, &rng);
+  Eigen::VectorXd w = r;
+  form.Whiten(&w, nullptr);
+  // The shapes' rows as they were.
+  EXPECT_EQ(w[1], r[1]);
+  EXPECT_EQ(w[4], r[4]);
+  // Sherman-Morrison: rf' (I + u u')^-1 rf = |rf|^2 - (u'rf)^2 / (1 + |u|^2).
+  const Eigen::Vector3d rf(r[0], r[2], r[3]);
+  const Eigen::Vector3d wf(w[0], w[2], w[3]);
+  const double expected =
+      rf.squaredNorm() - std::pow(u.dot(rf), 2) / (1 + u.squaredNorm());
+  EXPECT_NEAR(wf.squaredNorm(), expected, 1e-12 * rf.squaredNorm());
+  // Along u a residual counts 1 / (1 + |u|^2) of its square; across it, fully.
+  Eigen::VectorXd along = Eigen::VectorXd::Zero(5);
+  along[0] = u[0];
+  along[2] = u[1];
+  along[3] = u[2];
+  form.Whiten(&along, nullptr);
+  EXPECT_NEAR(along.squaredNorm(), u.squaredNorm() / (1 + u.squaredNorm()), 1e-12);
+}
+
+TEST(ModelFormError, WhitensResidualAndJacobianAlikeAndUnwhitensBack) {
+  std::mt19937 rng(12);
+  const Eigen::VectorXd u1 = Random(3, &rng), u2 = Random(3, &rng);
+  const ModelFormError form(kRows, {u1, u2});
+  EXPECT_EQ(form.NumDirections(), 2);
+  Eigen::MatrixXd j(5, 2);
+  j.col(0) = Random(5, &rng);
+  j.col(1) = Random(5, &rng);
+  const Eigen::VectorXd r = Random(5, &rng);
+  Eigen::VectorXd wr = r;
+  Eigen::MatrixXd wj = j;
+  form.Whiten(&wr, &wj);
+  // The whitened Gram matrix is J_f' C^-1 J_f + J_s' J_s, C = I + u1 u1' + u2 u2'
+  // inverted densely here.
+  const Eigen::Matrix3d c =
+      Eigen::Matrix3d::Identity() + u1 * u1.transpose() + u2 * u2.transpose();
+  const Eigen::Matrix3d c_inv = c.fullPivLu().inverse();
+  const std::vector<int> f = {0, 2, 3}, s = {1, 4};
+  Eigen::MatrixXd jf(3, 2), js(2, 2);
+  Eigen::Vector3d rf;
+  for (int k = 0; k < 3; ++k) {
+    jf.row(k) = j.row(f[k]);
+    rf[k] = r[f[k]];
+  }
+  for (int k = 0; k < 2; ++k) js.row(k) = j.row(s[k]);
+  const Eigen::MatrixXd gram = jf.transpose() * c_inv * jf + js.transpose() * js;
+  EXPECT_LT((wj.transpose() * wj - gram).norm(), 1e-12 * gram.norm());
+  EXPECT_NEAR(wr.squaredNorm(), rf.dot(c_inv * rf) + r[1] * r[1] + r[4] * r[4],
+              1e-12 * r.squaredNorm());
+  EXPECT_LT((wj.transpose() * wr -
+             (jf.transpose() * c_inv * rf + js.transpose() * Eigen::Vector2d(r[1], r[4])))
+                .norm(),
+            1e-12 * (1 + gram.norm() * r.norm()));
+  form.Unwhiten(&wr, &wj);
+  EXPECT_LT((wr - r).norm(), 1e-13 * r.norm());
+  EXPECT_LT((wj - j).norm(), 1e-13 * j.norm());
+  // A Jacobian of no column ("none") is whitened without reading it.
+  Eigen::MatrixXd empty(5, 0);
+  Eigen::VectorXd r2 = r;
+  form.Whiten(&r2, &empty);
+  EXPECT_EQ(empty.cols(), 0);
+}
+
+TEST(ModelFormError, AllowsForNothingWithoutFrequencies) {
+  const ModelFormError none;
+  EXPECT_FALSE(none.Active());
+  Eigen::VectorXd r(3);
+  r << 1, 2, 3;
+  none.Whiten(&r, nullptr);
+  EXPECT_EQ(r, Eigen::Vector3d(1, 2, 3));
+  EXPECT_EQ(none.ShareAlongVariants(Eigen::MatrixXd::Ones(3, 1)), 0);
+  // Shapes only: nothing to whiten, whatever the directions.
+  const ModelFormError shapes({0, 0}, {Eigen::VectorXd(0)});
+  EXPECT_FALSE(shapes.Active());
+  // Frequencies and no variant: the identity.
+  const ModelFormError identity({1, 1}, {});
+  EXPECT_TRUE(identity.Active());
+  Eigen::VectorXd q(2);
+  q << 3, -4;
+  identity.Whiten(&q, nullptr);
+  EXPECT_EQ(q, Eigen::Vector2d(3, -4));
+  EXPECT_EQ(identity.NumDirections(), 0);
+}
+
+TEST(ModelFormError, NamesWhatDoesNotFit) {
+  testing::ExpectInputError(
+      [] { (void)ModelFormError(kRows, {Eigen::VectorXd::Ones(2)}); },
+      {"form_error", "2 values", "3 frequency rows"});
+  Eigen::VectorXd nan = Eigen::VectorXd::Ones(3);
+  nan[1] = std::nan("");
+  testing::ExpectInputError([&] { (void)ModelFormError(kRows, {nan}); },
+                            {"form_error", "finite"});
+  const ModelFormError form(kRows, {Eigen::VectorXd::Ones(3)});
+  Eigen::VectorXd r = Eigen::VectorXd::Ones(4);
+  testing::ExpectInputError([&] { form.Whiten(&r, nullptr); },
+                            {"residual", "4 residuals", "expected 5"});
+  Eigen::VectorXd r5 = Eigen::VectorXd::Ones(5);
+  Eigen::MatrixXd j = Eigen::MatrixXd::Ones(4, 1);
+  testing::ExpectInputError([&] { form.Unwhiten(&r5, &j); },
+                            {"residual", "4 Jacobian rows", "expected 5"});
+  testing::ExpectInputError([&] { form.ShareAlongVariants(j); }, {"jacobian", "4 rows"});
+}
+
+TEST(ModelFormError, SharesAJacobiansNormAlongTheVariants) {
+  const Eigen::Vector3d u(1, 2, 2);
+  const ModelFormError form(kRows, {u});
+  Eigen::MatrixXd along = Eigen::MatrixXd::Zero(5, 1);
+  along(0, 0) = 2;
+  along(2, 0) = 4;
+  along(3, 0) = 4;
+  EXPECT_NEAR(form.ShareAlongVariants(along), 1.0, 1e-14);
+  // Across u in the frequencies: none of it.
+  Eigen::MatrixXd across = Eigen::MatrixXd::Zero(5, 1);
+  across(0, 0) = 2;
+  across(2, 0) = -1;
+  EXPECT_NEAR(form.ShareAlongVariants(across), 0.0, 1e-14);
+  // Along u in the frequencies, as much again in a shape row: half.
+  Eigen::MatrixXd half = along;
+  half(4, 0) = 6;  // |(2, 4, 4)|^2 = 36
+  EXPECT_NEAR(form.ShareAlongVariants(half), 0.5, 1e-14);
+  // Two columns: the share of the whole squared norm.
+  Eigen::MatrixXd both(5, 2);
+  both << along, across;
+  EXPECT_NEAR(form.ShareAlongVariants(both), 36.0 / 41.0, 1e-14);
+  EXPECT_EQ(form.ShareAlongVariants(Eigen::MatrixXd::Zero(5, 2)), 0);
+  EXPECT_EQ(form.ShareAlongVariants(Eigen::MatrixXd(5, 0)), 0);
+}
+
+TEST(ClassPriors, SumsTheNormalPriorsSquares) {
+  ClassPriors p;
+  EXPECT_EQ(p.Misfit(Eigen::Vector2d(1, 2)), 0);  // uniform: no term
+  p.mean = Eigen::Vector2d(1, 0);
+  p.sigma = Eigen::Vector2d(0.5, 0);  // the second uniform
+  EXPECT_NEAR(p.Misfit(Eigen::Vector2d(2, 7)), 4.0, 1e-15);
+}
+
+// On residuals linear in theta the step is the least-squares solution, the
+// priors' rows with it: the normal equations (J'J + P) d = -J'r - P (theta -
+// mean), P = diag(1 / sigma^2), solved here by an LU of their matrix.
+TEST(GaussNewtonStepInForm, SolvesTheLinearProblemAndKeepsItsBox) {
+  std::mt19937 rng(13);
+  Eigen::MatrixXd j(6, 2);
+  j.col(0) = Random(6, &rng);
+  j.col(1) = Random(6, &rng);
+  const Eigen::VectorXd r = Random(6, &rng);
+  const Eigen::Vector2d theta(0.1, -0.2);
+  ClassPriors priors;
+  priors.lower = Eigen::Vector2d::Constant(-100);
+  priors.upper = Eigen::Vector2d::Constant(100);
+  const std::optional<Eigen::VectorXd> to = GaussNewtonStepInForm(theta, r, j, priors);
+  ASSERT_TRUE(to.has_value());
+  const Eigen::Vector2d d = (j.transpose() * j).fullPivLu().solve(-j.transpose() * r);
+  EXPECT_LT((*to - theta - d).norm(), 1e-12 * (1 + d.norm()));
+
+  priors.mean = Eigen::Vector2d(0.0, 0.5);
+  priors.sigma = Eigen::Vector2d(0.0, 0.1);  // a normal prior on the second only
+  const std::optional<Eigen::VectorXd> with_prior =
+      GaussNewtonStepInForm(theta, r, j, priors);
+  ASSERT_TRUE(with_prior.has_value());
+  Eigen::Matrix2d p = Eigen::Matrix2d::Zero();
+  p(1, 1) = 1 / (0.1 * 0.1);
+  const Eigen::Vector2d dp = (j.transpose() * j + p)
+                                 .fullPivLu()
+                                 .solve(-j.transpose() * r - p * (theta - priors.mean));
+  EXPECT_LT((*with_prior - theta - dp).norm(), 1e-12 * (1 + dp.norm()));
+
+  // The end kept in the box.
+  priors.mean.resize(0);
+  priors.sigma.resize(0);
+  priors.lower = theta + Eigen::Vector2d::Constant(-1e-3);
+  priors.upper = theta + Eigen::Vector2d::Constant(1e-3);
+  const std::optional<Eigen::VectorXd> boxed = GaussNewtonStepInForm(theta, r, j, priors);
+  ASSERT_TRUE(boxed.has_value());
+  EXPECT_TRUE(((boxed->array() >= priors.lower.array()) &&
+               (boxed->array() <= priors.upper.array()))
+                  .all());
+  EXPECT_LT((r + j * (*boxed - theta)).squaredNorm(), r.squaredNorm());
+
+  // At the optimum already (or with no unknown) there is no step to take.
+  priors.lower = Eigen::Vector2d::Constant(-100);
+  priors.upper = Eigen::Vector2d::Constant(100);
+  const Eigen::VectorXd at_optimum = r + j * d;
+  EXPECT_FALSE(GaussNewtonStepInForm(theta + d, at_optimum, j, priors).has_value());
+  EXPECT_FALSE(
+      GaussNewtonStepInForm(Eigen::VectorXd(0), r, Eigen::MatrixXd(6, 0), ClassPriors{})
+          .has_value());
+}
+
+// A two-storey portal of Euler-Bernoulli members, two elements each, measured
+// as its own lowest four frequencies (no shapes): its shear variant's change,
+// to first order, against the frequencies of the same portal built with
+// Timoshenko members of the same shear areas on the variant's finer mesh.
+TEST(ModelFormError, MeasuresAPortalsShearDeformationToFirstOrder) {
+  PlaneFrameSpec spec = fixtures::PlaneFrame(2, 1, 2, 3.5, 6.0);
+  spec.column = {210e9, 7.8e-3, 8.4e-5, 7850};
+  spec.beam = {210e9, 5.4e-3, 1.9e-4, 7850};
+  const Structure model = BuildPlaneFrameStructure(spec);
+  ASSERT_GE(model.form_variants.size(), 1u);
+  ASSERT_NE(model.form_variants[0].name.find("shear deformation"), std::string::npos);
+  const Modes nominal = SolveModes(model.stiffness, model.mass);
+  ModalData d;
+  d.state = "air";
+  d.frequencies_hz = nominal.FrequenciesHz().head(4);
+
+  EigenSensitivityOptions options;
+  const double frequency_sigma = 0.002;
+  options.frequency_sigma = 2 * frequency_sigma;  // of lambda
+  const NonlinearProblem problem = NominalOutputErrorProblem(model, {}, {d}, options);
+  std::vector<char> is_frequency;
+  for (const std::string& label : problem.residual_labels) {
+    const std::string_view suffix = " lambda";
+    is_frequency.push_back(
+        label.size() >= suffix.size() &&
+        label.compare(label.size() - suffix.size(), suffix.size(), suffix) == 0);
+  }
+  ASSERT_EQ(is_frequency, std::vector<char>(4, 1));
+  Eigen::VectorXd r;
+  std::string why;
+  ASSERT_TRUE(problem.evaluate(Eigen::VectorXd::Zero(1), &r, nullptr, &why)) << why;
+  EXPECT_LT(r.norm(), 1e-6);  // the model against its own frequencies
+
+  std::vector<FormErrorAllowance> allowances;
+  const ModelFormError form = ModelFormError::Measure(model, {d}, options, is_frequency,
+                                                      frequency_sigma, &allowances);
+  ASSERT_TRUE(form.Active());
+  ASSERT_EQ(allowances.size(), model.form_variants.size());
+  EXPECT_EQ(allowances[0].name, model.form_variants[0].name);
+
+  // The same frame with shear deformation, built directly on the finer mesh
+  // the variant carries (elements_per_member times 4), shear areas A / 2.
+  PlaneFrameSpec sheared = spec;
+  sheared.theory = BeamTheory::kTimoshenko;
+  sheared.elements_per_member = 8;
+  sheared.column_shear_area = spec.column.A / 2;
+  sheared.beam_shear_area = spec.beam.A / 2;
+  const Structure timoshenko = BuildPlaneFrameStructure(sheared);
+  const Eigen::VectorXd f_t =
+      SolveModes(timoshenko.stiffness, timoshenko.mass).FrequenciesHz().head(4);
+  const Eigen::VectorXd change =
+      FormVariantChange(model, model.form_variants[0], {d}, options);
+  ASSERT_EQ(change.size(), 4);
+  double largest = 0;
+  for (int k = 0; k < 4; ++k) {
+    // lambda rows: (lambda / lambda_meas - 1) / (2 sigma_f); d lambda / lambda
+    // is twice d f / f to first order.
+    const double first_order = change[k] * frequency_sigma;
+    const double exact = f_t[k] / d.frequencies_hz[k] - 1;
+    EXPECT_LT(exact, 0) << k;  // shear makes every mode softer
+    EXPECT_NEAR(first_order, exact, 0.1 * std::abs(exact) + 2e-4) << k;
+    largest = std::max(largest, std::abs(first_order));
+  }
+  EXPECT_NEAR(allowances[0].max_frequency_change, largest, 1e-15);
+  EXPECT_NEAR(allowances[0].noise_units, change.norm(), 1e-12 * change.norm());
+
+  // Whitened, the shear variant's own change costs less than one unit of
+  // squared noise: it is one standard deviation of the form error.
+  Eigen::VectorXd u = change;
+  form.Whiten(&u, nullptr);
+  EXPECT_LT(u.squaredNorm(), 1.0);
+  EXPECT_GT(change.squaredNorm(), 1.0);
+}
+
+}  // namespace
+}  // namespace femup
