@@ -8,7 +8,7 @@ for p in python3 /usr/bin/python3; do
 done
 [ -n "$PY" ] || fail "no python3 with numpy and scipy (scripts/setup.sh installs python3-numpy, python3-scipy)"
 SUITE="$ROOT/validation/blind_structures"
-(cd "$SUITE" && "$PY" -B -m unittest -q test_frame2d test_frame3d test_jacket3d test_run_suite test_rescore test_plane_frame_suite 2>&1) || fail "frame2d and frame3d against closed forms, the jacket geometry, run_suite's scoring, rescore's reweighting, the plane-frame generator's soft foundation"
+(cd "$SUITE" && "$PY" -B -m unittest -q test_frame2d test_frame3d test_jacket3d test_run_suite test_rescore test_paired test_plane_frame_suite 2>&1) || fail "frame2d and frame3d against closed forms, the jacket geometry, run_suite's scoring, rescore's reweighting, paired's sign test, the plane-frame generator's soft foundation"
 
 "$PY" -B "$SUITE/run_suite.py" --suite shear_building --cases 8 --seed 7 --threads 2 \
   --femup "$FEMUP" -o blind > blind.txt 2> blind.err || { cat blind.err; fail "the suite did not run"; }
@@ -21,6 +21,10 @@ grep -q "top-1 kind, all" blind.txt || fail "no summary table"
   || fail "rescore --check does not reproduce results.jsonl"
 "$PY" -B "$SUITE/rescore.py" blind --gap-threshold 0 | grep -q "top-1 kind, all" \
   || fail "rescore --gap-threshold 0: no summary table"
+# A run compared with itself case by case: every case in both, none changed.
+"$PY" -B "$SUITE/paired.py" blind blind > paired.txt || fail "paired.py did not run"
+grep -q "^8 cases in both runs" paired.txt && grep -q "Verdict kind changed in 0 cases" paired.txt \
+  || fail "paired.py on one run twice: $(cat paired.txt)"
 # The study files give nothing of the truth away.
 ! grep -qiE "stiffness_loss|attached_mass|support_flex|material_scal|damage|storey [0-9]" blind/cases/*.yaml \
   || fail "a study file names its effect"
