@@ -15,6 +15,7 @@
 #include "expect_error.h"
 #include "femup/core/fe/plane_frame.h"
 #include "femup/core/linalg/modal.h"
+#include "femup/problems/effect_priors.h"
 #include "structure_specs.h"
 
 namespace femup {
@@ -172,6 +173,53 @@ TEST(ClassPriors, SumsTheNormalPriorsSquares) {
   p.mean = Eigen::Vector2d(1, 0);
   p.sigma = Eigen::Vector2d(0.5, 0);  // the second uniform
   EXPECT_NEAR(p.Misfit(Eigen::Vector2d(2, 7)), 4.0, 1e-15);
+}
+
+// The form fit is kept where its misfit (the stated priors as residuals of the
+// quantity, WithPriorResiduals) is below the starting one (ClassPriors, the
+// priors linearised at the start, LocalNormalPriors): the two forms agree at
+// the point they are linearised at, so the comparison is exact there; away
+// from it they differ (a log coordinate's prior is not Gaussian in theta).
+TEST(ClassPriors, AgreeWithThePriorResidualsWhereLinearised) {
+  EffectParameter mass("ln_mass", "ln(m / 10 kg)", -5, 2, false);
+  mass.quantity = "mass_kg";
+  mass.log_coordinate = true;
+  mass.quantity_scale = 10;
+  mass.normal_mean = 0.005;  // about 5 g
+  mass.normal_sigma = 0.002;
+  EffectParameter level("level", "m", 0, 3, true);
+  level.quantity = "level_m";
+  level.quantity_scale = 1;
+  level.normal_mean = 1.5;
+  level.normal_sigma = 0.3;
+  EffectParameter uniform("ln_ratio", "ln c", -3, 3, false);
+  const std::vector<EffectParameter> params = {mass, uniform, level};
+  NonlinearProblem data;
+  data.initial = Eigen::Vector3d::Zero();
+  data.lower = Eigen::Vector3d::Constant(-10);
+  data.upper = Eigen::Vector3d::Constant(10);
+  data.num_residuals = 1;
+  data.evaluate = [](const Eigen::VectorXd&, Eigen::VectorXd* r, Eigen::MatrixXd* j,
+                     std::string*) {
+    *r = Eigen::VectorXd::Zero(1);
+    if (j != nullptr) *j = Eigen::MatrixXd::Zero(1, 3);
+    return true;
+  };
+  const NonlinearProblem with_priors = WithPriorResiduals(data, params);
+  for (const Eigen::Vector3d& theta :
+       {Eigen::Vector3d(std::log(0.0005), 0.3, 1.2), Eigen::Vector3d(-7, -1, 2.9)}) {
+    ClassPriors p;
+    LocalNormalPriors(params, theta, &p.mean, &p.sigma);
+    Eigen::VectorXd r;
+    std::string why;
+    ASSERT_TRUE(with_priors.evaluate(theta, &r, nullptr, &why)) << why;
+    ASSERT_EQ(r.size(), 3);  // the data's one row, then the two normal priors
+    EXPECT_NEAR(p.Misfit(theta), r.squaredNorm(), 1e-12 * r.squaredNorm());
+    // Elsewhere the log coordinate's two forms part.
+    const Eigen::Vector3d moved = theta + Eigen::Vector3d(0.5, 0, 0);
+    ASSERT_TRUE(with_priors.evaluate(moved, &r, nullptr, &why)) << why;
+    EXPECT_GT(std::abs(p.Misfit(moved) - r.squaredNorm()), 1e-3 * r.squaredNorm());
+  }
 }
 
 // On residuals linear in theta the step is the least-squares solution, the

@@ -1,8 +1,6 @@
 #include "femup/studies/effect_ranking.h"
 
-#include <Eigen/Cholesky>
 #include <Eigen/QR>
-#include <Eigen/SVD>
 #include <algorithm>
 #include <boost/math/special_functions/gamma.hpp>
 #include <cmath>
@@ -22,6 +20,7 @@
 #include "femup/solvers/bagged_posterior.h"
 #include "femup/solvers/nonlinear_solver.h"
 #include "model_form_error.h"
+#include "observational_equivalence.h"
 
 namespace femup {
 
@@ -37,18 +36,6 @@ struct Fit {
   double chi2 = 0;
   bool fitted = true;  // false: one linearised step's end (ScreenInstance)
 };
-
-// True when the column spaces of a and b coincide: same rank and every cosine
-// of their principal angles at least `cosine`.
-bool SameSpan(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, double cosine) {
-  if (a.cols() == 0 || b.cols() == 0 || a.cols() != b.cols()) return false;
-  const Eigen::MatrixXd qa =
-      a.householderQr().householderQ() * Eigen::MatrixXd::Identity(a.rows(), a.cols());
-  const Eigen::MatrixXd qb =
-      b.householderQr().householderQ() * Eigen::MatrixXd::Identity(b.rows(), b.cols());
-  const Eigen::VectorXd s = (qa.transpose() * qb).jacobiSvd().singularValues();
-  return s.minCoeff() >= cosine;
-}
 
 // The best start is the one with the least misfit, the stated normal priors'
 // residuals included (the posterior's mode); chi2, the residual and the
@@ -663,56 +650,15 @@ EffectRanking RankModelEffects(const Structure& structure_in,
         " (the others' evidence is one linearised step's from their starts); set "
         "diagnosis.members_fitted to -1 to fit them all");
   }
-  auto label = [](const RankedClass& c) {
-    return c.region.empty() ? c.kind : c.kind + " at " + c.region;
-  };
-  for (std::size_t i = 0; i < classes.size(); ++i) {
-    classes[i].group_probability = classes[i].probability;
-    for (std::size_t k = 0; k < classes.size(); ++k) {
-      if (k == i || (residuals[i] - residuals[k]).squaredNorm() > 1.0 ||
-          !SameSpan(jacobians[i], jacobians[k], 0.999)) {
-        continue;
-      }
-      classes[i].equivalent.push_back(label(classes[k]));
-      classes[i].group_probability += classes[k].probability;
-    }
-  }
-  // A class that can only change the data as the model's own form error
-  // does: at least 98 % of its Jacobian (every row, raw) lies along the form
-  // variants' change of the frequencies, and what it gains over "none" once
-  // that form error is allowed for is within 3 noise standard deviations at
-  // the noise temperature. A uniform change of E moves every frequency alike
-  // and no shape, as shear deformation nearly does: the data cannot tell such
-  // a class from "none", and the two are named equivalent, their
-  // probabilities summed.
+  // What the data cannot tell apart (observational_equivalence.h): classes
+  // that predict the data alike along the same directions, and classes that
+  // change the data only as the model's own form error does (equivalent to
+  // none).
+  NameEquivalentClasses(residuals, jacobians, &classes);
   if (whitened) {
-    int alike = 0;
-    const RankedClass* most = nullptr;
-    const double none_tempered = residuals[0].cwiseProduct(row_scale).squaredNorm();
-    for (std::size_t i = 1; i < classes.size(); ++i) {
-      if (!classes[i].fitted) continue;
-      const double along = form.ShareAlongVariants(raw_jacobians[i]);
-      const double tempered_gain =
-          none_tempered - residuals[i].cwiseProduct(row_scale).squaredNorm();
-      if (!(along >= 0.98) || !(tempered_gain < 9)) continue;
-      classes[i].equivalent.push_back(label(classes[0]));
-      classes[i].group_probability += classes[0].probability;
-      classes[0].equivalent.push_back(label(classes[i]));
-      classes[0].group_probability += classes[i].probability;
-      ++alike;
-      if (most == nullptr || classes[i].probability > most->probability)
-        most = &classes[i];
-    }
-    if (alike > 0) {
-      out.notes.push_back(
-          std::to_string(alike) +
-          " fitted classes change the data only as the model's own form error does "
-          "(the most probable: " +
-          label(*most) +
-          "), and gain less than 9 (3 noise standard deviations) over none once it "
-          "is allowed for: the data cannot tell them from none, and they are named "
-          "equivalent");
-    }
+    const std::string note =
+        NameFormErrorAlikeAsNone(form, residuals, raw_jacobians, row_scale, &classes);
+    if (!note.empty()) out.notes.push_back(note);
   }
   // The most probable family first ("none" is a family of one class), and
   // within it the most probable class: the verdict answers which effect before
@@ -732,10 +678,11 @@ EffectRanking RankModelEffects(const Structure& structure_in,
     if (most == nullptr || c.probability > most->probability) most = &c;
   }
   for (const auto& [kind, a] : above) {
-    out.notes.push_back(std::to_string(a.first) + " screened, unfitted places of " +
-                        kind + " are more probable than every fitted one (the most: " +
-                        label(*a.second) + ", " + std::to_string(a.second->probability) +
-                        "); raise diagnosis.members_fitted to fit them");
+    out.notes.push_back(
+        std::to_string(a.first) + " screened, unfitted places of " + kind +
+        " are more probable than every fitted one (the most: " + ClassLabel(*a.second) +
+        ", " + std::to_string(a.second->probability) +
+        "); raise diagnosis.members_fitted to fit them");
   }
   // No gap is named unless one is probable at the stated confidence: "none"
   // then comes first whatever the families' shares.

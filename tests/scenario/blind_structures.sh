@@ -25,6 +25,14 @@ grep -q "top-1 kind, all" blind.txt || fail "no summary table"
 "$PY" -B "$SUITE/paired.py" blind blind > paired.txt || fail "paired.py did not run"
 grep -q "^8 cases in both runs" paired.txt && grep -q "Verdict kind changed in 0 cases" paired.txt \
   || fail "paired.py on one run twice: $(cat paired.txt)"
+# A stopped run (no results.jsonl; one case's diagnosis missing) is scored from
+# its diagnoses, on the cases both runs have.
+rm -rf stopped && mkdir stopped && cp -r blind/truth blind/runs stopped/
+rm -r stopped/runs/shear_building_007
+"$PY" -B "$SUITE/paired.py" blind stopped > paired_stopped.txt || fail "paired.py on a stopped run"
+grep -q "^7 cases in both runs (1 in A only" paired_stopped.txt \
+  && grep -q "Verdict kind changed in 0 cases" paired_stopped.txt \
+  || fail "paired.py on a stopped run: $(cat paired_stopped.txt)"
 # The study files give nothing of the truth away.
 ! grep -qiE "stiffness_loss|attached_mass|support_flex|material_scal|damage|storey [0-9]" blind/cases/*.yaml \
   || fail "a study file names its effect"

@@ -15,8 +15,9 @@ Usage:
   python3 validation/blind_structures/paired.py out/pf_soft out/pf_soft_fit \\
       [--names step fit] [--json]
 
-Each folder needs results.jsonl; a run stopped part-way is compared on the cases
-both have, and the count says so. Cases with the same name must have the same
+Each folder needs results.jsonl, or, for a run stopped part-way, its truth/ and
+runs/ (each case with a diagnosis scored as run_suite.py scores it); the runs are
+compared on the cases both have, and the count says so. Cases with the same name must have the same
 truth (else: an error naming the case, as the runs are not of the same cases).
 """
 import argparse
@@ -30,8 +31,17 @@ SCORES = (("kind_right", "top-1 kind"), ("class_right", "top-1 class"),
 
 
 def read(folder):
+    """name -> result row: results.jsonl, or for a stopped run (truth/ and runs/
+    without results.jsonl) every case with a diagnosis, scored as run_suite.py
+    scores it."""
     path = os.path.join(folder, "results.jsonl")
     if not os.path.isfile(path):
+        if os.path.isdir(os.path.join(folder, "truth")) and \
+                os.path.isdir(os.path.join(folder, "runs")):
+            sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+            import rescore  # noqa: E402 (numpy: only for a stopped run)
+            rows, _ = rescore.rescore(folder, None, None, partial=True)
+            return {r["name"]: r for r in rows}
         raise SystemExit("paired: %s: no results.jsonl (a run_suite.py output folder?)" % folder)
     rows = {}
     with open(path) as f:
