@@ -95,10 +95,13 @@ struct EffectRankingOptions {
   bool form_step = true;
   // With form_step, each fitted class is moved by a fit of the whitened misfit
   // to its mode (from its raw fit, on the full model), not by one Gauss-Newton
-  // step (screened classes keep the step). Off by default until measured on
-  // the blind suites: on the portal whose only gap is its own form error
-  // (EffectRanking.AllowsForTheModelsOwnShearDeformation) it lowers "none"
-  // from P 0.94 to 0.47, every stiffness loss gaining as much as it pays.
+  // step (screened classes keep the step). Off by default: on the portal whose
+  // only gap is its own form error (the test
+  // EffectRanking.AllowsForTheModelsOwnShearDeformation) it lowers "none" from
+  // P 0.94 to 0.47, every stiffness loss gaining as much as it pays; on 47 cases of the
+  // soft-foundation suite it gained three kinds and lost none (p 0.25), with
+  // no better calibration and one new confident miss where the form variants
+  // are hundreds of noise units (docs/diagnosis.md).
   bool form_fit = false;
   // Bootstrap copies of the residuals the probabilities are averaged over
   // (above); 0: the Laplace posterior alone.
