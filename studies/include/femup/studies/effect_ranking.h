@@ -98,7 +98,7 @@ struct EffectRankingOptions {
   // step (screened classes keep the step). Off by default: on the portal whose
   // only gap is its own form error (the test
   // EffectRanking.AllowsForTheModelsOwnShearDeformation) it lowers "none" from
-  // P 0.94 to 0.47, every stiffness loss gaining as much as it pays; on 47 cases of the
+  // P 0.94 to 0.47, every stiffness loss gaining as much as it pays; on 49 cases of the
   // soft-foundation suite it gained three kinds and lost none (p 0.25), with
   // no better calibration and one new confident miss where the form variants
   // are hundreds of noise units (docs/diagnosis.md).
