@@ -227,8 +227,10 @@ TEST(EffectPriors, RegionsKeepTheNamedElementsAndNodes) {
   const Structure f = BuildPlaneFrameStructure(frame);
   kept = KeepStatedRegions(CreateModelEffects("stiffness_loss", f), f,
                            Prior("stiffness_loss", {}, {"s1:beam1"}));
-  ASSERT_EQ(kept.size(), 1u);
+  // The beam's own stiffness loss, and its end connections'.
+  ASSERT_EQ(kept.size(), 2u);
   EXPECT_EQ(kept[0]->region().name, "element s1:beam1");
+  EXPECT_EQ(kept[1]->region().name, "connections of s1:beam1");
   kept = KeepStatedRegions(CreateModelEffects("attached_mass", f), f,
                            Prior("attached_mass", {}, {"n7"}));
   ASSERT_EQ(kept.size(), 1u);

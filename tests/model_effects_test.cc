@@ -9,13 +9,16 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 
 #include "femup/core/errors.h"
 #include "femup/core/fe/beam_modifications.h"
 #include "femup/core/fe/builders.h"
+#include "femup/core/fe/plane_frame.h"
 #include "femup/core/linalg/modal.h"
 #include "paper_beam.h"
+#include "structure_specs.h"
 #include "vector_of.h"
 
 namespace femup {
@@ -410,6 +413,111 @@ TEST(ModelEffects, ElasticBaseMatchesTheBuilderWithTheSoftenedSpring) {
 }
 
 // Every family's derivative against central differences of its change.
+// The index of a DOF by its label.
+int DofOf(const Structure& s, const std::string& label) {
+  const auto it = std::find(s.dof_labels.begin(), s.dof_labels.end(), label);
+  EXPECT_NE(it, s.dof_labels.end()) << label;
+  return static_cast<int>(it - s.dof_labels.begin());
+}
+
+TEST(ModelEffects, ConnectionsAreTheBeamsEnds) {
+  const Structure s = BuildPlaneFrameStructure(fixtures::PlaneFrame(2, 2, 2));
+  ASSERT_EQ(s.connections.size(), 4u);  // two beams a storey, no columns
+  std::vector<std::string> regions;
+  for (const auto& e : CreateModelEffects("stiffness_loss", s)) {
+    if (e->region().name.rfind("connections of ", 0) == 0)
+      regions.push_back(e->region().name);
+  }
+  EXPECT_EQ(regions, (std::vector<std::string>{
+                         "connections of s1:beam1", "connections of s1:beam2",
+                         "connections of s2:beam1", "connections of s2:beam2"}));
+  for (const MemberConnections& c : s.connections) {
+    EXPECT_EQ(s.elements[static_cast<std::size_t>(c.element)].label, c.label);
+    ASSERT_EQ(c.ends.size(), 2u);  // the first and the last of its two elements
+    EXPECT_EQ(c.ends[0].rotations, std::vector<int>{2});
+    EXPECT_EQ(c.ends[1].rotations, std::vector<int>{5});
+  }
+}
+
+// A beam of one element with both end connections semi-rigid: its end
+// rotational stiffnesses against the semi-rigid beam's closed form (Monforton
+// and Wu 1963), fixity factor r = 1 / (1 + 3 EI / (k L)) at each end:
+// k_11 = (4 EI / L) 3 r / (4 - r^2), k_12 = (2 EI / L) 3 r^2 / (4 - r^2).
+TEST(ModelEffects, ConnectionLossMatchesTheSemiRigidBeamsClosedForm) {
+  PlaneFrameSpec spec = fixtures::PlaneFrame(1, 1, 1, 3.0, 5.0);
+  const Structure s = BuildPlaneFrameStructure(spec);
+  const auto e = One("stiffness_loss", s, "connections of s1:beam1");
+  ASSERT_TRUE(e);
+  ASSERT_EQ(s.connections.size(), 1u);
+  ASSERT_EQ(s.connections[0].ends.size(), 1u);
+  EXPECT_EQ(s.connections[0].ends[0].rotations, (std::vector<int>{2, 5}));
+  const int a = DofOf(s, "n1:rz"), b = DofOf(s, "n2:rz");
+  const double ei = spec.beam.E * spec.beam.I, l = spec.bay_width;
+  const Eigen::MatrixXd beam(s.elements[2].stiffness);
+  for (double loss : {0.01, 0.2, 0.5, 0.9}) {
+    const Eigen::MatrixXd k =
+        beam +
+        Eigen::MatrixXd(e->Change(Theta({std::log(loss)}), Immersion::kDry).stiffness);
+    const double spring = 4 * ei / l * (1 - loss) / loss;
+    const double r = 1 / (1 + 3 * ei / (spring * l));
+    EXPECT_NEAR(k(a, a) / (4 * ei / l * 3 * r / (4 - r * r)), 1.0, 1e-10) << loss;
+    EXPECT_NEAR(k(a, b) / (2 * ei / l * 3 * r * r / (4 - r * r)), 1.0, 1e-10) << loss;
+    EXPECT_NEAR(k(b, b), k(a, a), 1e-9 * k(a, a)) << loss;
+  }
+}
+
+// A portal whose beam is rigid and whose columns are nearly massless sways
+// against each column's stiffness with a rotational spring k at its top to the
+// beam, which does not rotate (slope-deflection): 12 EI / h^3 - 36 (EI)^2 /
+// (h^4 (4 EI / h + k)); 12 EI / h^3 rigid, 3 EI / h^3 pinned.
+TEST(ModelEffects, ConnectionLossOfAPortalsRigidBeamMatchesSlopeDeflection) {
+  PlaneFrameSpec spec = fixtures::PlaneFrame(1, 1, 4, 3.0, 5.0);
+  spec.column = {210e9, 1.0, 8e-5, 1e-5};
+  spec.beam = {210e9, 0.05, 8e-1, 2e4};
+  const Structure s = BuildPlaneFrameStructure(spec);
+  const auto e = One("stiffness_loss", s, "connections of s1:beam1");
+  ASSERT_TRUE(e);
+  const double ei = spec.column.E * spec.column.I, h = spec.storey_height;
+  const double beam_mass = spec.beam.rho * spec.beam.A * spec.bay_width;
+  // The beam's end element's own rotational stiffness, 4 EI_b / (L / 4).
+  const double k_rr = 4 * spec.beam.E * spec.beam.I / (spec.bay_width / 4);
+  for (double ratio : {0.1, 1.0, 10.0}) {  // k over the column's 4 EI / h
+    const double spring = ratio * 4 * ei / h;
+    const double loss = k_rr / (k_rr + spring);  // k = k_rr (1 - loss) / loss
+    const ModelChange c = e->Change(Theta({std::log(loss)}), Immersion::kDry);
+    const Eigen::VectorXd lambda =
+        Eigenvalues(s.stiffness + c.stiffness, s.mass + c.mass);
+    const double column = 12 * ei / std::pow(h, 3) -
+                          36 * ei * ei / (std::pow(h, 4) * (4 * ei / h + spring));
+    EXPECT_NEAR(lambda[0] / (2 * column / beam_mass), 1.0, 3e-3) << ratio;
+  }
+}
+
+TEST(ModelEffects, ConnectionLossDerivativesMatchCentralDifferences) {
+  for (int per_member : {1, 2}) {
+    const Structure s = BuildPlaneFrameStructure(fixtures::PlaneFrame(2, 1, per_member));
+    const auto e = One("stiffness_loss", s, "connections of s2:beam1");
+    ASSERT_TRUE(e);
+    for (double loss : {0.01, 0.3, 0.9}) {
+      const double t = std::log(loss), h = 1e-6;
+      const ModelChange d = e->Derivative(Theta({t}), 0, Immersion::kDry);
+      const ModelChange up = e->Change(Theta({t + h}), Immersion::kDry);
+      const ModelChange down = e->Change(Theta({t - h}), Immersion::kDry);
+      const Eigen::MatrixXd fk =
+          (Eigen::MatrixXd(up.stiffness) - Eigen::MatrixXd(down.stiffness)) / (2 * h);
+      const Eigen::MatrixXd fm =
+          (Eigen::MatrixXd(up.mass) - Eigen::MatrixXd(down.mass)) / (2 * h);
+      EXPECT_LT((Eigen::MatrixXd(d.stiffness) - fk).cwiseAbs().maxCoeff(),
+                1e-6 * fk.cwiseAbs().maxCoeff())
+          << per_member << " " << loss;
+      EXPECT_LT((Eigen::MatrixXd(d.mass) - fm).cwiseAbs().maxCoeff(),
+                1e-6 * fm.cwiseAbs().maxCoeff())
+          << per_member << " " << loss;
+      EXPECT_GT(fm.cwiseAbs().maxCoeff(), 0.0);  // the end's mass moves with it
+    }
+  }
+}
+
 TEST(ModelEffects, DerivativesMatchCentralDifferences) {
   CantileverSpec spec = fixtures::PaperCantilever(UniformHeights(2.0, 10));
   spec.support_rotation = 4e5;

@@ -1,6 +1,7 @@
 #include "femup/problems/model_effects.h"
 
 #include <Eigen/Cholesky>
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -157,6 +158,115 @@ class StiffnessLoss : public Base {
   SparseMatrix own_;
   const SparseMatrix* stiffness_;
   double x0_, x1_;
+};
+
+// A member's end connections made semi-rigid: a rotational spring between each
+// connected end of the member's end element and its joint, k = k_rr (1 - loss)
+// / loss, k_rr the element's own rotational stiffness at that end (loss =
+// exp(theta_0): the fraction of that end's rotational stiffness lost, the
+// spring in series with it), condensed out statically. For an end element of
+// stiffness K and mass M with the connected rotations R: A = K_RR + D (D the
+// springs), G = K_R A^-1; dK = -G K_R', dM = -G M_R' - M_R G' + G M_RR G'.
+class ConnectionLoss : public Base {
+ public:
+  ConnectionLoss(const Structure& s, EffectRegion region, const MemberConnections& c)
+      : Base(s, std::move(region)), c_(c) {
+    const ElementMatrices& e = s.elements[static_cast<std::size_t>(c.element)];
+    x0_ = e.x0;
+    x1_ = e.x1;
+  }
+  std::string kind() const override { return "stiffness_loss"; }
+  std::vector<EffectParameter> Parameters() const override {
+    return {LogQuantity(
+        {"ln_loss", "ln(fraction of the end connections' rotational stiffness lost)",
+         std::log(3e-3), std::log(0.9), false},
+        "loss", 1.0, kMaxLoss)};
+  }
+  std::vector<Eigen::VectorXd> Starts() const override {
+    return {VectorOf({std::log(0.03)}), VectorOf({std::log(0.3)})};
+  }
+  ModelChange Change(const Eigen::VectorXd& t, Immersion) const override {
+    return Condensed(t[0], false);
+  }
+  ModelChange Derivative(const Eigen::VectorXd& t, int, Immersion) const override {
+    return Condensed(t[0], true);
+  }
+  EffectLocation Location(const Eigen::VectorXd&) const override {
+    EffectLocation l;
+    l.x0 = x0_;
+    l.x1 = x1_;
+    l.x = 0.5 * (l.x0 + l.x1);
+    return l;
+  }
+  std::vector<EffectMagnitude> Magnitudes(const Eigen::VectorXd& t) const override {
+    const double loss = std::exp(t[0]);
+    std::vector<EffectMagnitude> m = {{"stiffness_loss_fraction", "1", loss}};
+    // Each connection's spring, the mean over the connected ends.
+    double sum = 0;
+    int count = 0;
+    for (const ConnectionEnd& end : c_.ends) {
+      for (int r : end.rotations) {
+        sum += end.k(r, r) * (1.0 - loss) / loss;
+        ++count;
+      }
+    }
+    if (count > 0) m.push_back({"connection spring (mean)", "N m/rad", sum / count});
+    return m;
+  }
+
+ private:
+  // The change at theta_0 = ln(loss), or its derivative with respect to it.
+  ModelChange Condensed(double theta, bool derivative) const {
+    const double loss = std::exp(theta);
+    std::vector<Eigen::Triplet<double>> kt, mt;
+    for (const ConnectionEnd& end : c_.ends) {
+      const auto nr = static_cast<Eigen::Index>(end.rotations.size());
+      const auto nd = static_cast<Eigen::Index>(end.dofs.size());
+      Eigen::MatrixXd k_r(nd, nr), m_r(nd, nr), m_rr(nr, nr), a(nr, nr);
+      Eigen::VectorXd d_springs(nr);  // dD / dtheta
+      for (Eigen::Index j = 0; j < nr; ++j) {
+        const int r = end.rotations[static_cast<std::size_t>(j)];
+        k_r.col(j) = end.k.col(r);
+        m_r.col(j) = end.m.col(r);
+        for (Eigen::Index i = 0; i < nr; ++i) {
+          const int q = end.rotations[static_cast<std::size_t>(i)];
+          a(i, j) = end.k(q, r);
+          m_rr(i, j) = end.m(q, r);
+        }
+        // D_j = k_rr (1 / loss - 1): dD_j / dtheta = -k_rr / loss.
+        a(j, j) += end.k(r, r) * (1.0 / loss - 1.0);
+        d_springs[j] = -end.k(r, r) / loss;
+      }
+      const Eigen::MatrixXd a_inv = a.inverse();  // 1 x 1 or 2 x 2, positive definite
+      const Eigen::MatrixXd g = k_r * a_inv;      // nd x nr
+      Eigen::MatrixXd dk, dm;
+      if (!derivative) {
+        dk = -g * k_r.transpose();
+        dm = -g * m_r.transpose() - m_r * g.transpose() + g * m_rr * g.transpose();
+      } else {
+        // dA = dD, dG = -G dD A^-1; d(dK) = G dD G'.
+        const Eigen::MatrixXd dg = -g * d_springs.asDiagonal() * a_inv;
+        dk = g * d_springs.asDiagonal() * g.transpose();
+        dm = -dg * m_r.transpose() - m_r * dg.transpose() + dg * m_rr * g.transpose() +
+             g * m_rr * dg.transpose();
+      }
+      for (Eigen::Index i = 0; i < nd; ++i) {
+        for (Eigen::Index j = 0; j < nd; ++j) {
+          kt.emplace_back(end.dofs[static_cast<std::size_t>(i)],
+                          end.dofs[static_cast<std::size_t>(j)], dk(i, j));
+          mt.emplace_back(end.dofs[static_cast<std::size_t>(i)],
+                          end.dofs[static_cast<std::size_t>(j)], dm(i, j));
+        }
+      }
+    }
+    SparseMatrix k = Zero(n()), m = Zero(n());
+    k.setFromTriplets(kt.begin(), kt.end());
+    m.setFromTriplets(mt.begin(), mt.end());
+    return {k, m};
+  }
+
+  const MemberConnections& c_;
+  double x0_ = 0, x1_ = 0;
 };
 
 // A point mass m = m_ref exp(theta_0) on one node's translational DOFs and,
@@ -774,6 +884,12 @@ std::vector<std::unique_ptr<ModelEffect>> CreateModelEffects(
     for (int e = 0; e < num_elements; ++e) {
       out.push_back(std::make_unique<StiffnessLoss>(
           s, EffectRegion{"element " + s.elements[e].label, {e}, {}}, s.elements[e]));
+    }
+    // A member's end connections, where the builder knows them (a plane
+    // frame's beams): semi-rigid rather than rigid.
+    for (const MemberConnections& c : s.connections) {
+      out.push_back(std::make_unique<ConnectionLoss>(
+          s, EffectRegion{"connections of " + c.label, {c.element}, {}}, c));
     }
     // And each member of a group on its own, up to the stated number.
     const int num_members = static_cast<int>(s.members.size());

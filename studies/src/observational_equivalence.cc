@@ -6,6 +6,19 @@
 #include "femup/core/errors.h"
 
 namespace femup {
+namespace {
+
+// Throws unless there is one residual and one Jacobian per class.
+void CheckOnePerClass(const std::vector<Eigen::VectorXd>& residuals,
+                      const std::vector<Eigen::MatrixXd>& jacobians,
+                      const std::vector<RankedClass>& classes) {
+  if (residuals.size() == classes.size() && jacobians.size() == classes.size()) return;
+  throw InputError("classes", std::to_string(classes.size()) + " classes, " +
+                                  std::to_string(residuals.size()) + " residuals and " +
+                                  std::to_string(jacobians.size()) + " Jacobians");
+}
+
+}  // namespace
 
 bool SameSpan(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, double cosine) {
   if (a.cols() == 0 || b.cols() == 0 || a.cols() != b.cols()) return false;
@@ -28,12 +41,8 @@ std::string ClassLabel(const RankedClass& c) {
 void NameEquivalentClasses(const std::vector<Eigen::VectorXd>& residuals,
                            const std::vector<Eigen::MatrixXd>& jacobians,
                            std::vector<RankedClass>* classes) {
+  CheckOnePerClass(residuals, jacobians, *classes);
   std::vector<RankedClass>& c = *classes;
-  if (residuals.size() != c.size() || jacobians.size() != c.size()) {
-    throw InputError("classes", std::to_string(c.size()) + " classes, " +
-                                    std::to_string(residuals.size()) + " residuals and " +
-                                    std::to_string(jacobians.size()) + " Jacobians");
-  }
   for (std::size_t i = 0; i < c.size(); ++i) {
     c[i].group_probability = c[i].probability;
     for (std::size_t k = 0; k < c.size(); ++k) {
@@ -52,12 +61,8 @@ std::string NameFormErrorAlikeAsNone(const ModelFormError& form,
                                      const std::vector<Eigen::MatrixXd>& raw_jacobians,
                                      const Eigen::VectorXd& row_scale,
                                      std::vector<RankedClass>* classes) {
+  CheckOnePerClass(residuals, raw_jacobians, *classes);
   std::vector<RankedClass>& c = *classes;
-  if (residuals.size() != c.size() || raw_jacobians.size() != c.size()) {
-    throw InputError("classes", std::to_string(c.size()) + " classes, " +
-                                    std::to_string(residuals.size()) + " residuals and " +
-                                    std::to_string(raw_jacobians.size()) + " Jacobians");
-  }
   if (c.empty() || c[0].kind != "none")
     throw InputError("classes", "the first class must be none");
   int alike = 0;

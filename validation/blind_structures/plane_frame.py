@@ -229,7 +229,10 @@ class Effect:
         joints, middles = model_labels(S, B)
         if self.kind in ("joint_flexibility", "member_damage"):
             s, m = self.member
-            return ["element s%d:%s" % (s, m)]
+            # A beam's semi-rigid ends: its stiffness loss, or its connections'
+            # (femup's instance "connections of <beam>").
+            extra = ["connections of s%d:%s" % (s, m)] if self.kind == "joint_flexibility" else []
+            return ["element s%d:%s" % (s, m)] + extra
         if self.kind == "added_floor_mass":
             s, m = self.member
             b = int(m[4:]) - 1

@@ -50,5 +50,18 @@ class SoftFoundationTest(unittest.TestCase):
             previous = f
 
 
+class RegionsTest(unittest.TestCase):
+    def test_a_beams_semi_rigid_ends_are_its_stiffness_loss_or_its_connections(self):
+        for seed in range(200):
+            _, truth = plane_frame.make_case(np.random.default_rng(seed), "c")
+            if truth["truth_kind"] != "joint_flexibility":
+                continue
+            beam = truth["region"][len("element "):]
+            self.assertEqual(truth["regions"],
+                             ["element " + beam, "connections of " + beam])
+            return
+        raise AssertionError("no joint_flexibility case in 200 seeds")
+
+
 if __name__ == "__main__":
     unittest.main()

@@ -393,6 +393,9 @@ Structure BuildFrame(const PlaneFrameSpec& spec, bool variants) {
     const BeamShear sheared = shear(mb.column);
     const BeamShear model_shear = timoshenko ? sheared : BeamShear{};
     Triplets ke, me, we;
+    // A beam's connections to the joints at its ends: its end elements.
+    MemberConnections joints;
+    joints.element = static_cast<int>(m);
     for (std::size_t k = m * per_member; k < (m + 1) * per_member; ++k) {
       const FramePiece& p = layout.pieces[k];
       // A base end: the sprung DOFs of its column line's base node, if any.
@@ -414,6 +417,13 @@ Structure BuildFrame(const PlaneFrameSpec& spec, bool variants) {
                      : Frame2dConsistentMass(sec, p.xa, p.ya, p.xb, p.yb);
       Scatter(k6, d, &ke);
       Scatter(m6, d, &me);
+      const bool first = k == m * per_member, last = k + 1 == (m + 1) * per_member;
+      if (!mb.column && (first || last)) {
+        ConnectionEnd end{std::vector<int>(d.begin(), d.end()), k6, m6, {}};
+        if (first) end.rotations.push_back(2);
+        if (last) end.rotations.push_back(5);
+        joints.ends.push_back(std::move(end));
+      }
       if (p.a < 0 && !s.rigid_supports.empty()) {
         internal::AddToRigidSupport<6>(k6, m6, d, {0, 1, 2, -1, -1, -1},
                                        &s.rigid_supports[line]);
@@ -439,6 +449,10 @@ Structure BuildFrame(const PlaneFrameSpec& spec, bool variants) {
     // Heights of its ends (a beam: x0 == x1): where it applies along the height.
     el.x0 = std::min(mb.ya, mb.yb);
     el.x1 = std::max(mb.ya, mb.yb);
+    if (!joints.ends.empty()) {
+      joints.label = el.label;
+      s.connections.push_back(std::move(joints));
+    }
     kt.insert(kt.end(), ke.begin(), ke.end());
     mt.insert(mt.end(), me.begin(), me.end());
     s.elements.push_back(std::move(el));

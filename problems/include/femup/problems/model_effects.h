@@ -20,7 +20,16 @@
 //                       dK = -loss K_e. One instance per element, and where
 //                       the elements are groups of members (a space frame's
 //                       levels; Structure::members), one per member as well,
-//                       up to ModelEffectOptions::max_members of them.
+//                       up to ModelEffectOptions::max_members of them. Where
+//                       the builder knows a member's end connections
+//                       (Structure::connections: a plane frame's beams), one
+//                       more per member, "connections of <member>": its
+//                       connections semi-rigid, a rotational spring between
+//                       each connected end and its joint, k = k_rr (1 - loss)
+//                       / loss (k_rr the end element's own rotational
+//                       stiffness there), condensed out statically:
+//                       dK = -K_R (K_RR + D)^-1 K_R' on the end element, and
+//                       its mass carried by the same condensation.
 //   attached_mass       ln(m / m_ref): a point mass on one node's translational
 //                       DOFs (sensors, cables, equipment); m_ref is the
 //                       structure's total mass (m_ref below). One instance per

@@ -82,6 +82,25 @@ struct RigidSupport {
   Eigen::MatrixXd k_fb, m_fb, k_bb, m_bb;
 };
 
+// One end of a member where it is connected to a joint, where the model's
+// builder knows the connection (a plane frame's beam-to-column connections):
+// the member's finite element at that end, on its own DOFs, and which of them
+// is the rotation the connection transmits (both ends' where the member is one
+// element). What a semi-rigid connection softens (model_effects.h,
+// stiffness_loss at a member's connections).
+struct ConnectionEnd {
+  std::vector<int> dofs;       // the end element's DOFs (indices into dof_labels)
+  Eigen::MatrixXd k, m;        // its stiffness and mass on `dofs`
+  std::vector<int> rotations;  // indices in `dofs` of the connected ends' rotations
+};
+
+// A member's end connections (both ends of a beam between two joints).
+struct MemberConnections {
+  std::string label;  // the member's element label: "s1:beam1"
+  int element = -1;   // its Structure::elements entry
+  std::vector<ConnectionEnd> ends;
+};
+
 // The same model in a richer formulation that its builder can make and the
 // model leaves out (a frame of Euler-Bernoulli members with shear deformation,
 // the frame on a finer mesh): the difference is a model-form error the
@@ -146,6 +165,9 @@ struct Structure {
   // per line: a refined mesh's segments grouped as the coarser model's
   // elements (RefinedModel), so the candidates stay the model's.
   std::vector<std::vector<int>> attached_mass_lines;
+  // The members whose end connections the diagnosis may find semi-rigid (a
+  // plane frame's beams); empty: none known.
+  std::vector<MemberConnections> connections;
   // Richer formulations of this model (see FormVariant); empty: none known.
   std::vector<FormVariant> form_variants;
   // Index of the element with the given id, or -1.
