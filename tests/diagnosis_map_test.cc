@@ -31,7 +31,7 @@ const DiagnosisMap::Element& ElementOf(const DiagnosisMap& map,
 TEST(DiagnosisMap, DrawsAPlaneFrameToScale) {
   const DiagnosisMap map = MapGeometry(BuildPlaneFrameStructure(Portal()));
   EXPECT_TRUE(map.to_scale);
-  ASSERT_EQ(map.elements.size(), 3u);  // two columns, one beam
+  ASSERT_EQ(map.elements.size(), 4u);  // two columns, one beam, its connections
   const auto& column = ElementOf(map, "element s1:col2");
   // Segments: joint n2 to its middle node n4, then from the clamped foot (no
   // DOF, so reached by the member's start height) up to n4.
@@ -40,6 +40,11 @@ TEST(DiagnosisMap, DrawsAPlaneFrameToScale) {
   const auto& beam = ElementOf(map, "element s1:beam1");  // n1-n5, n2-n5
   EXPECT_EQ(beam.x, (std::vector<double>{0.0, 2.5, 5.0, 2.5}));
   EXPECT_EQ(beam.y, (std::vector<double>{3.0, 3.0, 3.0, 3.0}));
+  // Its end connections: stubs from n1 and n2 a quarter of its end elements
+  // (2.5 m) towards its middle.
+  const auto& connections = ElementOf(map, "connections of s1:beam1");
+  EXPECT_EQ(connections.x, (std::vector<double>{0.0, 0.625, 5.0, 4.375}));
+  EXPECT_EQ(connections.y, (std::vector<double>{3.0, 3.0, 3.0, 3.0}));
   // Every free node is a place for an attached mass; the clamped feet are
   // supports too (rigid ones, which support flexibility may release).
   EXPECT_EQ(map.nodes.size(), 5u);
@@ -97,6 +102,22 @@ TEST(DiagnosisMap, PlacesEachExplanationWhereItLiesByItsProbability) {
   EXPECT_TRUE(std::isnan(p.series[1].x.back()));  // polylines broken apart
   EXPECT_EQ(p.series[2].title, "attached mass, P 0.1-0.5");
   EXPECT_EQ(p.series[2].style, PlotSeries::Style::kPoints);
+}
+
+// A beam's connections named (stiffness loss "connections of s1:beam1") are
+// drawn at the beam's two ends, in the stiffness loss's colours.
+TEST(DiagnosisMap, DrawsABeamsConnectionsAtItsEnds) {
+  const DiagnosisMap map = MapGeometry(BuildPlaneFrameStructure(Portal()));
+  EffectRanking r;
+  r.classes = {Class("stiffness_loss", "connections of s1:beam1", 0.93),
+               Class("none", "", 0.07)};
+  r.kind_probabilities = {{"stiffness_loss", 0.93}, {"none", 0.07}};
+  const Plot p = DiagnosisMapFigure(map, r, "portal").panels.at(0);
+  ASSERT_EQ(p.series.size(), 2u);  // the model, the connections
+  EXPECT_EQ(p.series[1].title, "stiffness loss, P >= 0.5");
+  EXPECT_EQ(p.series[1].x.size(), 6u);  // two stubs, each broken by a NaN
+  EXPECT_EQ(p.series[1].x[0], 0.0);
+  EXPECT_EQ(p.series[1].x[3], 5.0);
 }
 
 // A mass between nodes ("n1-n5", its position xi fitted) is drawn at its

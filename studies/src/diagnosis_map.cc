@@ -73,6 +73,28 @@ DiagnosisMap MapGeometry(const Structure& s) {
     }
     if (!m.x.empty()) map.elements.push_back(std::move(m));
   }
+  // A member's end connections (stiffness_loss "connections of s1:beam1"): a
+  // stub from each connected joint a quarter of the way along its end element.
+  for (const MemberConnections& c : s.connections) {
+    if (!map.to_scale) break;
+    DiagnosisMap::Element m;
+    m.region = "connections of " + c.label;
+    for (const ConnectionEnd& end : c.ends) {
+      std::set<std::string> nodes;
+      for (int d : end.dofs) nodes.insert(NodeOf(s.dof_labels[d]));
+      for (int r : end.rotations) {
+        const std::string joint = NodeOf(s.dof_labels[end.dofs[r]]);
+        for (const std::string& other : nodes) {
+          if (other == joint || !where.count(joint) || !where.count(other)) continue;
+          const auto [xa, ya] = plane(where[joint]);
+          const auto [xb, yb] = plane(where[other]);
+          m.x.insert(m.x.end(), {xa, xa + 0.25 * (xb - xa)});
+          m.y.insert(m.y.end(), {ya, ya + 0.25 * (yb - ya)});
+        }
+      }
+    }
+    if (!m.x.empty()) map.elements.push_back(std::move(m));
+  }
   // Every node of the model, where the ranking may place an attached mass
   // (the figure marks only those it names).
   std::vector<std::string> seen;

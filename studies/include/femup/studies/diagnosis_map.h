@@ -37,8 +37,9 @@ struct DiagnosisMap {
 // The geometry of `structure` as the map draws it: each element as the
 // segments between the nodes its stiffness couples (coordinates in the x-y
 // plane, or x-z when the model is 3D; a vertical member whose foot is a rigid
-// support, which has no DOF, reaches down to its start height), the nodes
-// with DOFs, support nodes.
+// support, which has no DOF, reaches down to its start height), each member's
+// end connections (Structure::connections) as stubs from its joints a quarter
+// of the way along its end elements, the nodes with DOFs, support nodes.
 DiagnosisMap MapGeometry(const Structure& structure);
 
 }  // namespace femup
