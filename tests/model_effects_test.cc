@@ -412,6 +412,59 @@ TEST(ModelEffects, ElasticBaseMatchesTheBuilderWithTheSoftenedSpring) {
       1e-12 * Eigen::MatrixXd(reference.stiffness).cwiseAbs().maxCoeff());
 }
 
+// The continuous Euler-Bernoulli beam on a translational spring k_t and a
+// rotational spring k_r at x = 0, free at x = L: the roots in b = beta L of
+// the determinant of its four end conditions on w = A cos + B sin + C cosh +
+// D sinh (bx), from the energy's boundary terms (EI w''(0) = k_r w'(0),
+// EI w'''(0) = -k_t w(0); free end w''(L) = w'''(L) = 0), with T = k_t L^3 / EI
+// and R = k_r L / EI. T = R = inf is the clamped cantilever (1.8751, 4.6941).
+std::vector<double> SprungBaseRoots(double t, double r, int count) {
+  auto f = [t, r](double b) {
+    const double c = std::cos(b), s = std::sin(b), ch = std::cosh(b), sh = std::sinh(b);
+    Eigen::Matrix4d a;
+    a << t, -b * b * b, t, b * b * b,  // shear against the translational spring
+        -b, -r, b, -r,                 // moment against the rotational spring
+        -c, -s, ch, sh,                // no moment at the tip
+        s, -c, sh, ch;                 // no shear at the tip
+    return a.determinant();
+  };
+  std::vector<double> roots;
+  for (double b = 0.05; roots.size() < static_cast<std::size_t>(count); b += 0.01) {
+    if (f(b) * f(b + 0.01) <= 0) roots.push_back(Bisect(f, b, b + 0.01));
+  }
+  return roots;
+}
+
+// A clamped cantilever's base released by support flexibility (the base a
+// rigid support of the builder's, condensed out): the continuous beam on
+// springs k_t = 3 EI / (L^3 c_t) and k_r = EI / (L c_r), so T = 3 / c_t and
+// R = 1 / c_r.
+TEST(ModelEffects, ClampedCantileverBaseReleasedMatchesTheBeamOnSprings) {
+  const double length = 2.0;
+  const int elements = 40;
+  const CantileverSpec spec = fixtures::PaperCantilever(UniformHeights(length, elements));
+  const Structure s = BuildCantilever(spec);
+  ASSERT_EQ(s.rigid_supports.size(), 1u);
+  EXPECT_EQ(s.rigid_supports[0].directions, (std::vector<std::string>{"ux", "rz"}));
+  auto base = One("support_flexibility", s);
+  ASSERT_TRUE(base);
+  ASSERT_EQ(base->Parameters().size(), 2u);
+  EXPECT_EQ(base->Parameters()[0].quantity, "translation_compliance_ratio");
+  const double to_t = 3, to_r = 1;
+  const double rigid = 1e-12;  // a compliance ratio that leaves a direction clamped
+  for (const auto& [t, r] :
+       std::vector<std::pair<double, double>>{{1e30, 2.0}, {50.0, 10.0}, {20.0, 1e30}}) {
+    SCOPED_TRACE("T " + std::to_string(t) + ", R " + std::to_string(r));
+    const double ct = t > 1e20 ? rigid : to_t / t, cr = r > 1e20 ? rigid : to_r / r;
+    SparseMatrix k, m;
+    ApplyModelEffects(s, {base.get()}, {Theta({std::log(ct), std::log(cr)})},
+                      Immersion::kDry, &k, &m);
+    ExpectContinuousBeamEigenvalues(
+        k, m, spec.section, length,
+        SprungBaseRoots(std::min(t, 1e12), std::min(r, 1e12), 3));
+  }
+}
+
 // Every family's derivative against central differences of its change.
 // The index of a DOF by its label.
 int DofOf(const Structure& s, const std::string& label) {
@@ -558,7 +611,11 @@ TEST(ModelEffects, DerivativesMatchCentralDifferences) {
 
 TEST(ModelEffects, SaysWhichFamiliesApplyAndWhyNot) {
   CantileverSpec spec = fixtures::PaperCantilever(UniformHeights(2.0, 4));
-  const Structure clamped = BuildCantilever(spec);
+  for (const FamilyApplicability& a : ApplicableModelEffects(BuildCantilever(spec)))
+    EXPECT_TRUE(a.why_not.empty()) << a.kind << ": " << a.why_not;
+  // A model whose builder does not know what meets its rigid supports.
+  Structure clamped = BuildCantilever(spec);
+  clamped.rigid_supports.clear();
   for (const FamilyApplicability& a : ApplicableModelEffects(clamped)) {
     if (a.kind == "support_flexibility") {
       EXPECT_NE(a.why_not.find("rigid"), std::string::npos) << a.why_not;

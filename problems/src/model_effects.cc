@@ -722,7 +722,7 @@ class RigidSupportFlexibility : public SupportFamily {
       const bool rotation = IsRotation(dir);
       double sum = 0;
       for (const RigidSupport& sp : s_.rigid_supports)
-        sum += sp.k_bb(d, d) / Compliance(t, rotation);
+        sum += Reference(sp, static_cast<Eigen::Index>(d)) / Compliance(t, rotation);
       m.push_back({"base spring " + dir + " (mean of " +
                        std::to_string(s_.rigid_supports.size()) + " supports)",
                    rotation ? "N m/rad" : "N/m",
@@ -738,6 +738,10 @@ class RigidSupportFlexibility : public SupportFamily {
   }
 
  private:
+  // The stiffness direction j's compliance ratio is relative to.
+  static double Reference(const RigidSupport& sp, Eigen::Index j) {
+    return sp.reference.size() > 0 ? sp.reference[j] : sp.k_bb(j, j);
+  }
   // The change at theta (`derivative` < 0), or its derivative with respect to
   // parameter `derivative` (a ln c).
   ModelChange Condensed(const Eigen::VectorXd& t, int derivative) const {
@@ -752,7 +756,7 @@ class RigidSupportFlexibility : public SupportFamily {
           acted(nd);  // D's diagonal; its part under `derivative`
       for (Eigen::Index j = 0; j < nd; ++j) {
         const std::size_t i = at + static_cast<std::size_t>(j);
-        springs[j] = sp.k_bb(j, j) / ComplianceAt(t, i);
+        springs[j] = Reference(sp, j) / ComplianceAt(t, i);
         acted[j] = ActingOn(i) == derivative ? springs[j] : 0.0;
       }
       const Eigen::MatrixXd kb = sp.k_bb + Eigen::MatrixXd(springs.asDiagonal());

@@ -223,11 +223,30 @@ Structure BuildCantilever(const CantileverSpec& spec) {
   const int n = next;
   Triplets kt, mt;
   const double mass_per_length = spec.section.rho * spec.section.A;
+  // A clamped base (no support spring): a rigid support whose bending
+  // directions (ux, rz) couple to the beam through its first element, so
+  // support flexibility can release them (model_effects.h), a spring's
+  // compliance relative to the whole beam's, 3 EI / L^3 and EI / L (the
+  // cantilever's own translation_ and rotation_compliance_ratio, effects.h).
+  // The axial direction stays rigid: the bending modes do not move it.
+  const bool clamped = supports[0] == 0 && supports[1] == 0 && supports[2] == 0;
+  if (clamped && spec.element_matrices) {
+    RigidSupport base;
+    base.name = "n0";
+    base.directions = {"ux", "rz"};
+    const double ei = spec.section.E * spec.section.I, l = z.back();
+    base.reference = Eigen::Vector2d(3 * ei / (l * l * l), ei / l);
+    s.rigid_supports.push_back(std::move(base));
+  }
   for (int e = 0; e + 1 < num_nodes; ++e) {
     const std::array<int, 6> d = {dof[e][0],     dof[e][1],     dof[e][2],
                                   dof[e + 1][0], dof[e + 1][1], dof[e + 1][2]};
     const Matrix6 ke = Frame2dStiffness(spec.section, 0, z[e], 0, z[e + 1]);
     const Matrix6 me = Frame2dConsistentMass(spec.section, 0, z[e], 0, z[e + 1]);
+    if (e == 0 && !s.rigid_supports.empty()) {
+      internal::AddToRigidSupport<6>(ke, me, d, {0, -1, 1, -1, -1, -1},
+                                     &s.rigid_supports.front());
+    }
     s.segments.push_back({e, e + 1, Eigen::Vector3d(0.0, z[e], 0.0),
                           Eigen::Vector3d(0.0, z[e + 1], 0.0), e});
     ElementMatrices el;

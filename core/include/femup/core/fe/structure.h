@@ -80,6 +80,10 @@ struct RigidSupport {
   // The elements' stiffness and mass between those DOFs and the restrained
   // directions (rows x directions), and among the restrained directions.
   Eigen::MatrixXd k_fb, m_fb, k_bb, m_bb;
+  // Per restrained direction, the stiffness a support spring's compliance ratio
+  // is relative to (a cantilever's 3 EI / L^3 and EI / L); empty: k_bb's
+  // diagonal, the end stiffness of the elements that meet there.
+  Eigen::VectorXd reference;
 };
 
 // One end of a member where it is connected to a joint, where the model's
