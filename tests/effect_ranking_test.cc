@@ -691,6 +691,58 @@ TEST(StructureDiagnosis, PortalFrameSensorsBetweenNodesExample) {
   EXPECT_NEAR(r.ranking.classes[0].magnitudes[0].value, 2000.0, 200.0);
 }
 
+// diagnosis.engine: a cantilever's own pipeline by default, the one engine
+// (effects as changes of the model) where the study says so and on every other
+// model; a bad value, or the cantilever's pipeline on another model, is the
+// study's error naming the field.
+TEST(StructureDiagnosis, TheStudyChoosesTheEngine) {
+  EXPECT_EQ(DiagnosisSpec().EngineFor(true), "cantilever");
+  EXPECT_EQ(DiagnosisSpec().EngineFor(false), "model_effects");
+  const std::string cantilever =
+      "name: x\nmodel: {type: cantilever, length: 2.0, elements: 4,\n"
+      "  section: {E: 2.1e11, A: 9.0e-4, I: 1.6875e-8, rho: 7850}}\n"
+      "measurements:\n  - {state: a, frequencies_hz: [3.1]}\n";
+  const Study chosen =
+      ParseStudy(cantilever + "diagnosis: {engine: model_effects}\n", "x.yaml");
+  EXPECT_EQ(chosen.diagnosis->EngineFor(true), "model_effects");
+  const Study own =
+      ParseStudy(cantilever + "diagnosis: {engine: cantilever}\n", "x.yaml");
+  EXPECT_EQ(own.diagnosis->EngineFor(true), "cantilever");
+  testing::ExpectInputError(
+      [&] { ParseStudy(cantilever + "diagnosis: {engine: fast}\n", "x.yaml"); },
+      {"engine", "model_effects or cantilever", "fast"});
+  testing::ExpectInputError(
+      [] {
+        ParseStudy(
+            "name: x\nmodel: {type: chain, masses: [1], springs: [1]}\n"
+            "measurements:\n  - {state: a, frequencies_hz: [1]}\n"
+            "diagnosis: {engine: cantilever}\n",
+            "x.yaml");
+      },
+      {"engine", "needs a cantilever model"});
+}
+
+// The bundled cantilever whose real base has springs (1.0e5 N/m, 3.5e4 N m/rad;
+// its data made by a 60-element truth) on the one engine: the clamped model's
+// base released as a rigid support, the springs found within 2 %.
+TEST(StructureDiagnosis, NamesAClampedCantileversSpringsOnTheOneEngine) {
+  Study study =
+      LoadStudy(std::string(FEMUP_EXAMPLES_DIR) + "/diagnosis/support_flexibility.yaml");
+  ASSERT_TRUE(study.diagnosis.has_value());
+  study.diagnosis->engine = "model_effects";
+  study.diagnosis->candidates = {"support_flexibility", "material_scaling", "added_mass"};
+  const StructureDiagnosisResult r = RunStructureDiagnosis(study);
+  EXPECT_EQ(r.model_type, "cantilever");
+  ASSERT_FALSE(r.ranking.classes.empty());
+  const RankedClass& top = r.ranking.classes[0];
+  EXPECT_EQ(top.kind, "support_flexibility");
+  EXPECT_GT(top.probability, 0.99);
+  std::map<std::string, double> found;
+  for (const EffectMagnitude& m : top.magnitudes) found[m.name] = m.value;
+  EXPECT_NEAR(found["base spring ux (mean of 1 supports)"], 1.0e5, 2e3);
+  EXPECT_NEAR(found["base spring rz (mean of 1 supports)"], 3.5e4, 7e2);
+}
+
 // The pipeline on the bundled example (data made by numpy, not femup).
 TEST(StructureDiagnosis, ShearBuildingExampleEndToEnd) {
   const Study study =

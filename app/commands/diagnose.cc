@@ -1,6 +1,7 @@
 // femup diagnose: the sim-to-real gap of a study, located and explained by
-// unmodelled effects. The cantilever has its own diagnosis (effects on the
-// paper's beam); every other model type has effects as changes of the model.
+// unmodelled effects as changes of the model (every model type), or, on a
+// cantilever by default, by its own pipeline (effects on the paper's beam;
+// diagnosis.engine chooses).
 #include "commands.h"
 #include "femup/reporting/outputs.h"
 #include "femup/studies/diagnose_study.h"
@@ -18,7 +19,9 @@ Command DiagnoseCommand() {
           [o](const Invocation& invocation) {
             const femup::Study study = femup::LoadStudy(o->study);
             RequireMeasurements(study);
-            if (!study.cantilever) {
+            const femup::DiagnosisSpec spec =
+                study.diagnosis.value_or(femup::DiagnosisSpec());
+            if (spec.EngineFor(study.cantilever.has_value()) == "model_effects") {
               const femup::StructureDiagnosisResult result =
                   femup::RunStructureDiagnosis(study);
               PublishStudy(invocation, "diagnose", study, *o, result,

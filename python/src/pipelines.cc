@@ -446,14 +446,17 @@ void BindDiagnosis(py::module_& m) {
       .def("report", &femup::StructureDiagnosisReport);
   m.def("run_structure_diagnosis", &femup::RunStructureDiagnosis, py::arg("study"),
         py::call_guard<py::gil_scoped_release>(),
-        "The diagnosis on any model other than the cantilever.");
+        "The diagnosis on any model (effects as changes of the model; a cantilever's "
+        "by default runs run_diagnosis).");
   m.def(
       "diagnose",
       [](const femup::Study& study) -> py::object {
         if (study.measurements.empty()) {
           throw femup::InputError(study.path, "measurements: missing");
         }
-        if (!study.cantilever) {
+        const femup::DiagnosisSpec spec =
+            study.diagnosis.value_or(femup::DiagnosisSpec());
+        if (spec.EngineFor(study.cantilever.has_value()) == "model_effects") {
           femup::StructureDiagnosisResult r;
           {
             py::gil_scoped_release release;
@@ -469,8 +472,9 @@ void BindDiagnosis(py::module_& m) {
         return py::cast(std::move(r));
       },
       py::arg("study"),
-      "`femup diagnose`: run_diagnosis for a cantilever, run_structure_diagnosis "
-      "otherwise (as the command line dispatches).");
+      "`femup diagnose`: run_structure_diagnosis, or run_diagnosis for a cantilever "
+      "whose diagnosis.engine is cantilever (its default), as the command line "
+      "dispatches.");
 }
 
 void BindModesAndSimulate(py::module_& m) {

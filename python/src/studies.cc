@@ -52,6 +52,7 @@ void BindSpecs(py::module_& m) {
       .def_readwrite("form_fit", &femup::DiagnosisSpec::form_fit)
       .def_readwrite("rotary_inertia", &femup::DiagnosisSpec::rotary_inertia)
       .def_readwrite("refine_mesh", &femup::DiagnosisSpec::refine_mesh)
+      .def_readwrite("engine", &femup::DiagnosisSpec::engine)
       .def_readwrite("bagging_copies", &femup::DiagnosisSpec::bagging_copies)
       .def_readwrite("form_error", &femup::DiagnosisSpec::form_error)
       .def_readwrite("localise", &femup::DiagnosisSpec::localise)

@@ -160,6 +160,10 @@ def test_the_two_diagnosis_pipelines_directly_and_their_refusals():
     structure = femup.run_structure_diagnosis(building)
     assert (structure.classes[0].kind, structure.classes[0].region) == (
         "stiffness_loss", "element 3")
+    # diagnosis.engine: model_effects puts the cantilever on the one engine.
+    cantilever.diagnosis.engine = "model_effects"
+    cantilever.diagnosis.candidates = ["added_mass", "material_scaling"]
+    assert isinstance(femup.diagnose(cantilever), femup.StructureDiagnosisResult)
     # The cantilever's pipeline refuses a chain, naming the model; the other
     # refuses a study without measurements.
     with pytest.raises(femup.InputError, match="model"):

@@ -112,6 +112,7 @@ def test_noise_and_diagnosis_settings_are_changed_in_place():
     assert study.diagnosis.max_effects == 1
     # The defaults of the switches a study may turn (docs/diagnosis.md).
     assert study.diagnosis.form_step and not study.diagnosis.refine_mesh
+    assert study.diagnosis.engine == ""  # the model type's own default
     study.diagnosis.form_step = False
     assert not study.diagnosis.form_step
     assert not study.diagnosis.form_fit

@@ -178,30 +178,25 @@ void ReadStatedPriors(const Field& f, const Study& study, DiagnosisSpec* d) {
 }  // namespace
 
 DiagnosisSpec ReadDiagnosis(const Field& f, const Study& study) {
-  f.ExpectKeys({"noise",
-                "candidates",
-                "max_effects",
-                "held_out",
-                "use_shapes",
-                "mesh_error",
-                "formulation_error",
-                "refine_mesh",
-                "bagging_copies",
-                "max_members",
-                "members_fitted",
-                "form_error",
-                "localise",
-                "solver",
-                "confidence",
-                "gap_confidence",
-                "evidence",
-                "evidence_samples",
-                "priors",
-                "weights",
-                "form_step",
-                "form_fit",
-                "rotary_inertia"});
+  f.ExpectKeys(
+      {"engine",         "noise",          "candidates",       "max_effects",
+       "held_out",       "use_shapes",     "mesh_error",       "formulation_error",
+       "refine_mesh",    "bagging_copies", "max_members",      "members_fitted",
+       "form_error",     "localise",       "solver",           "confidence",
+       "gap_confidence", "evidence",       "evidence_samples", "priors",
+       "weights",        "form_step",      "form_fit",         "rotary_inertia"});
   DiagnosisSpec d;
+  if (f.Has("engine")) {
+    d.engine = f["engine"].Str();
+    if (d.engine != "model_effects" && d.engine != "cantilever") {
+      f["engine"].Fail("expected model_effects or cantilever, found '" + d.engine + "'");
+    }
+    if (d.engine == "cantilever" && !study.cantilever) {
+      f["engine"].Fail(
+          "the cantilever's own pipeline needs a cantilever model (type: cantilever); "
+          "every model type runs on model_effects");
+    }
+  }
   if (f.Has("noise")) {
     const Field n = f["noise"];
     n.ExpectKeys({"frequency", "shape"});

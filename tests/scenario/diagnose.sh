@@ -5,6 +5,8 @@
 #     base): exit 0, diagnosis.json names support_flexibility as the verdict
 #     with probabilities summing to 1, the gap pairs distinct nominal modes in
 #     order, and the three plots are there when gnuplot is.
+#     The same study with diagnosis.engine: model_effects runs on the one
+#     engine: the clamped base released, the springs found within 5 %.
 #  2. femup benchmark --suite single --cases 3 --seed 5: exit 0, scores.json
 #     has top1 and calibration, cases/ and truth/ hold one file per case, and no
 #     case's study file gives its truth away (its effect kinds, its description).
@@ -44,6 +46,21 @@ if command -v gnuplot > /dev/null; then
   for f in localisation.png effects.png gap.png; do
     [ -s "diag/$f" ] || fail "missing $f"
   done
+fi
+
+# 1b. The same cantilever on the one engine (diagnosis.engine: model_effects):
+#     the clamped base released, support_flexibility at the supports, its
+#     springs within 5 % of the truth's 1.0e5 N/m and 3.5e4 N m/rad, and the map.
+cp "$ROOT/examples/diagnosis/support_flexibility.yaml" one_engine.yaml
+printf '  engine: model_effects\n' >> one_engine.yaml
+"$FEMUP" diagnose one_engine.yaml -o one > one.txt || fail "one engine exit $?: $(cat one.txt)"
+[ "$(json one/diagnosis.json "(j['model_type'], j['verdict']['kind'], j['verdict']['region'])")" \
+  = "('cantilever', 'support_flexibility', 'supports')" ] \
+  || fail "one engine verdict: $(json one/diagnosis.json "j['verdict']")"
+[ "$(json one/diagnosis.json "(lambda m: abs(m['base spring ux (mean of 1 supports)'] / 1.0e5 - 1) < 0.05 and abs(m['base spring rz (mean of 1 supports)'] / 3.5e4 - 1) < 0.05)({x['name']: x['value'] for x in j['classes'][0]['magnitudes']})")" \
+  = True ] || fail "one engine springs: $(json one/diagnosis.json "j['classes'][0]['magnitudes']")"
+if command -v gnuplot > /dev/null; then
+  [ -s one/diagnosis_map.png ] || fail "one engine: no diagnosis_map.png"
 fi
 
 # 2. The blind benchmark, small.

@@ -136,6 +136,16 @@ struct RecordsSpec {
 
 // How `femup diagnose` looks for the sim-to-real gap (diagnose_study.h).
 struct DiagnosisSpec {
+  // Which diagnosis runs: "model_effects" (effects as changes of the model,
+  // effect_ranking.h; every model type) or "cantilever" (the cantilever's own
+  // pipeline, diagnose_study.h; a cantilever model only). Empty: "cantilever"
+  // on a cantilever model, "model_effects" on every other.
+  std::string engine;
+  // The engine that runs: engine, or the model's default.
+  std::string EngineFor(bool cantilever_model) const {
+    if (!engine.empty()) return engine;
+    return cantilever_model ? "cantilever" : "model_effects";
+  }
   double frequency_noise = 0.002;       // relative standard deviation of a frequency
   double shape_noise = 0.02;            // of a shape entry, relative to its largest
   std::vector<std::string> candidates;  // effect kinds tried; empty = all
