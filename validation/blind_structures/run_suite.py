@@ -25,7 +25,9 @@ naming either, for a truth of either, is right (and counted apart as such).
 
 Suites: shear_building, plane_frame, jacket (femup's space_frame in water; see
 jacket.py for how its truths are made; --foundation springs stands every jacket
-on springs under its legs and adds soft_foundation).
+on springs under its legs and adds soft_foundation), cantilever (a bar; its
+study files run on the cantilever's own pipeline by default, and on the one
+engine with --diagnosis engine=model_effects: both are scored alike).
 
 Usage:
   python3 validation/blind_structures/run_suite.py --suite shear_building \
@@ -43,11 +45,13 @@ import sys
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import cantilever  # noqa: E402
 import jacket  # noqa: E402
 import plane_frame  # noqa: E402
 import shear_building  # noqa: E402
 
-SUITES = {"shear_building": shear_building, "plane_frame": plane_frame, "jacket": jacket}
+SUITES = {"shear_building": shear_building, "plane_frame": plane_frame, "jacket": jacket,
+          "cantilever": cantilever}
 # Classes that these models cannot tell apart (kind, region) -> group name.
 EQUIVALENT = {
     ("support_flexibility", "supports"): "base",
@@ -70,8 +74,40 @@ def diagnose(femup, case_file, out_dir):
         return json.load(f), ""
 
 
+def from_cantilever_pipeline(d, truth):
+    """A diagnosis.json of the cantilever's own pipeline (diagnosis.engine:
+    cantilever) in the one engine's terms: each class's kind (a pair's label,
+    "a+b", which no single truth matches), its region named as the one engine
+    names it from the fitted location (an attached mass at the nearest node, a
+    stiffness loss on the element holding the band's middle), its chi2 and
+    parameters, and the verdict's family probability from the kinds'."""
+    length = d["length"]
+    le = length / cantilever.ELEMENTS
+
+    def region(e):
+        loc = e.get("location") or {}
+        if e["kind"] == "attached_mass" and "x" in loc:
+            return "node n%d" % max(1, min(cantilever.ELEMENTS, round(loc["x"] / le)))
+        if e["kind"] == "stiffness_loss" and "x" in loc:
+            return "element e%d" % max(1, min(cantilever.ELEMENTS, math.ceil(loc["x"] / le)))
+        return {"added_mass": "below the water level", "support_flexibility": "supports",
+                "material_scaling": "all elements"}.get(e["kind"], "")
+
+    classes = [dict(kind=e["kind"], region=region(e), chi2=e["chi2"],
+                    parameters=list(e["parameters"]), probability=e["probability"])
+               for e in d["effects"]]
+    top = classes[0]
+    kp = d.get("kind_probabilities", {})
+    v = dict(kind=top["kind"], region=top["region"], probability=top["probability"],
+             kind_probability=kp.get(top["kind"], top["probability"]))
+    return dict(verdict=v, classes=classes, residuals=d["noise"]["degrees_of_freedom"],
+                temperature=d["noise"]["temperature"])
+
+
 def score(truth, d):
     """The case's line of results.jsonl."""
+    if "effects" in d and "classes" not in d:
+        d = from_cantilever_pipeline(d, truth)
     v = d["verdict"]
     kind_right = v["kind"] == truth["kind"]
     class_right = kind_right and v["region"] in truth.get("regions", [truth["region"]])
