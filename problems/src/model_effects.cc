@@ -1,13 +1,16 @@
 #include "femup/problems/model_effects.h"
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 
 #include "femup/core/errors.h"
+#include "femup/core/fe/beam_modifications.h"
 #include "femup/core/fe/dof_labels.h"
 #include "femup/core/fe/sensor.h"
 #include "vector_of.h"
@@ -105,6 +108,70 @@ class MaterialScaling : public Base {
 
  private:
   SparseMatrix sum_;
+};
+
+// A uniform axial force along a cantilever (a riser's or tendon's tension, a
+// pile's compression), as a fraction p of the model's own buckling load N_cr
+// (pi^2 E I / (4 L^2) for a uniform clamped bar): dK = p N_cr K_G, K_G the
+// geometric stiffness of a unit tension on every element (beam_modifications.h).
+// Linear in p, from 0.8 of the buckling load in compression (K stays positive
+// definite with other effects softening the bar a little) to 10 times it in
+// tension, as on the cantilever's own pipeline (effects.h). Not tried unless a
+// study names it: a load is known to whoever applies it.
+class AxialLoad : public Base {
+ public:
+  static constexpr double kMaxCompression = 0.8;
+  static constexpr double kMaxTension = 10.0;
+  AxialLoad(const Structure& s, EffectRegion region)
+      : Base(s, std::move(region)), unit_(AxialForceStiffness(s, 1.0)) {
+    buckling_ = BucklingLoad(s.stiffness, unit_);
+  }
+  std::string kind() const override { return "axial_load"; }
+  std::vector<EffectParameter> Parameters() const override {
+    return {LinearQuantity({"force_ratio",
+                            "axial force / the model's buckling load, tension positive, "
+                            "compression negative",
+                            -kMaxCompression, kMaxTension, false},
+                           "force_n", buckling_, -kMaxCompression * buckling_,
+                           std::numeric_limits<double>::infinity())};
+  }
+  std::vector<Eigen::VectorXd> Starts() const override {
+    return {VectorOf({0.0}), VectorOf({-0.4}), VectorOf({2.0})};
+  }
+  ModelChange Change(const Eigen::VectorXd& t, Immersion) const override {
+    return {(t[0] * buckling_) * unit_, {}};
+  }
+  ModelChange Derivative(const Eigen::VectorXd&, int, Immersion) const override {
+    return {buckling_ * unit_, {}};
+  }
+  EffectLocation Location(const Eigen::VectorXd&) const override {
+    EffectLocation l;
+    l.x0 = s_.elements.front().x0;
+    l.x1 = s_.elements.back().x1;
+    return l;
+  }
+  std::vector<EffectMagnitude> Magnitudes(const Eigen::VectorXd& t) const override {
+    return {{"axial_force", "N", t[0] * buckling_},
+            {"force_ratio", "1", t[0]},
+            {"buckling_load", "N", buckling_}};
+  }
+  // The compression N_cr at which K - N_cr K_G turns singular: 1 / the largest
+  // eigenvalue of K_G x = mu K x (dense; a cantilever's few hundred DOFs).
+  static double BucklingLoad(const SparseMatrix& k, const SparseMatrix& unit) {
+    const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(
+        Eigen::MatrixXd(unit), Eigen::MatrixXd(k), Eigen::EigenvaluesOnly);
+    if (eig.info() != Eigen::Success || !(eig.eigenvalues().maxCoeff() > 0)) {
+      throw InputError("effect",
+                       "axial_load: the model's buckling load could not be found "
+                       "(its stiffness is not positive definite, or no element "
+                       "bends under an axial force)");
+    }
+    return 1.0 / eig.eigenvalues().maxCoeff();
+  }
+
+ private:
+  SparseMatrix unit_;
+  double buckling_ = 0;
 };
 
 // One element's stiffness (or one member's of a group element) times 1 - loss,
@@ -793,8 +860,8 @@ class RigidSupportFlexibility : public SupportFamily {
 }  // namespace
 
 std::vector<std::string> ModelEffectKinds() {
-  return {"added_mass", "support_flexibility", "attached_mass", "stiffness_loss",
-          "material_scaling"};
+  return {"added_mass",     "support_flexibility", "attached_mass",
+          "stiffness_loss", "material_scaling",    "axial_load"};
 }
 
 double ReferenceLength(const Structure& structure) {
@@ -851,8 +918,13 @@ std::vector<FamilyApplicability> ApplicableModelEffects(const Structure& s) {
       }
     } else if (kind == "attached_mass") {
       if (!(ReferenceMass(s) > 0)) why = "the model has no translational DOF with mass";
+    } else if (kind == "axial_load") {
+      if (!elements || !HasHeights(s))
+        why =
+            "its elements have no geometric stiffness for an axial force (a cantilever's "
+            "do)";
     }
-    out.push_back({kind, why});
+    out.push_back({kind, why, kind != "axial_load"});
   }
   return out;
 }
@@ -984,6 +1056,10 @@ std::vector<std::unique_ptr<ModelEffect>> CreateModelEffects(
     }
     out.push_back(
         std::make_unique<AddedMass>(s, std::move(r), level, options.wet_only_added_mass));
+  } else if (kind == "axial_load") {
+    EffectRegion r{"whole length", {}, {}};
+    for (int e = 0; e < num_elements; ++e) r.elements.push_back(e);
+    out.push_back(std::make_unique<AxialLoad>(s, std::move(r)));
   } else if (kind == "support_flexibility") {
     EffectRegion r{"supports", {}, {}};
     if (!s.supports.empty()) {

@@ -237,6 +237,7 @@ EffectRanking RankModelEffects(const Structure& structure_in,
   std::vector<std::string> kinds = options.kinds;
   if (kinds.empty()) {
     for (const FamilyApplicability& a : ApplicableModelEffects(*structure)) {
+      if (!a.by_default) continue;  // tried where named
       if (a.why_not.empty()) {
         kinds.push_back(a.kind);
       } else {

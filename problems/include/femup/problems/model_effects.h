@@ -147,6 +147,9 @@ std::vector<std::string> ModelEffectKinds();
 struct FamilyApplicability {
   std::string kind;
   std::string why_not;  // empty when it applies
+  // Tried where a study names no candidates (axial_load is not: a load is
+  // known to whoever applies it, and a study names it when it may be there).
+  bool by_default = true;
 };
 std::vector<FamilyApplicability> ApplicableModelEffects(const Structure& structure);
 
