@@ -450,6 +450,9 @@ TEST(ModelEffects, ClampedCantileverBaseReleasedMatchesTheBeamOnSprings) {
   ASSERT_TRUE(base);
   ASSERT_EQ(base->Parameters().size(), 2u);
   EXPECT_EQ(base->Parameters()[0].quantity, "translation_compliance_ratio");
+  // The cantilever's own pipeline's range, [1e-6, 10] of the beam's stiffness.
+  EXPECT_NEAR(base->Parameters()[1].lower, std::log(1e-6), 1e-12);
+  EXPECT_NEAR(base->Parameters()[1].upper, std::log(10.0), 1e-12);
   const double to_t = 3, to_r = 1;
   const double rigid = 1e-12;  // a compliance ratio that leaves a direction clamped
   for (const auto& [t, r] :

@@ -627,11 +627,13 @@ class AddedMass : public Base {
 };
 
 // What both forms of support_flexibility share: a compliance ratio c =
-// exp(theta) in [1e-3, 100] (what it is relative to, each form says) on every
+// exp(theta) in [1e-3, 100] (what it is relative to and, where a builder
+// states another range, that range: each form says) on every
 // restrained direction, one for the translations and one for the rotations
 // where the supports restrain both (a footing gives sideways and in rocking by
 // different amounts: a soil's horizontal and rocking stiffness are not one
-// number), else one for all; starts at 0.01 and 1 of each, and a location at
+// number), else one for all; starts at a fifth and three fifths of the range
+// in ln c (0.01 and 1 of the default), and a location at
 // the structure's first element.
 class SupportFamily : public Base {
  public:
@@ -649,20 +651,25 @@ class SupportFamily : public Base {
   }
   std::string kind() const override { return "support_flexibility"; }
   std::vector<EffectParameter> Parameters() const override {
+    const auto [lo, hi] = Range();
     if (!split_) {
       return {LogQuantity(
-          {"ln_compliance_ratio", Meaning(""), std::log(1e-3), std::log(100.0), false},
+          {"ln_compliance_ratio", Meaning(""), std::log(lo), std::log(hi), false},
           "compliance_ratio", 1.0)};
     }
     return {LogQuantity({"ln_translation_compliance_ratio", Meaning("translation "),
-                         std::log(1e-3), std::log(100.0), false},
+                         std::log(lo), std::log(hi), false},
                         "translation_compliance_ratio", 1.0),
             LogQuantity({"ln_rotation_compliance_ratio", Meaning("rotation "),
-                         std::log(1e-3), std::log(100.0), false},
+                         std::log(lo), std::log(hi), false},
                         "rotation_compliance_ratio", 1.0)};
   }
+  // At a fifth and three fifths of the range in ln c (0.01 and 1 of the
+  // default range).
   std::vector<Eigen::VectorXd> Starts() const override {
-    const double stiff = std::log(0.01), soft = std::log(1.0);
+    const auto [lo, hi] = Range();
+    const double stiff = std::log(lo) + 0.2 * std::log(hi / lo),
+                 soft = std::log(lo) + 0.6 * std::log(hi / lo);
     if (!split_) return {VectorOf({stiff}), VectorOf({soft})};
     return {VectorOf({stiff, stiff}), VectorOf({soft, soft}), VectorOf({stiff, soft}),
             VectorOf({soft, stiff})};
@@ -676,6 +683,8 @@ class SupportFamily : public Base {
  protected:
   // What a compliance ratio is relative to ("ln(added compliance / ...)").
   virtual std::string Meaning(const std::string& which) const = 0;
+  // The range of the compliance ratios.
+  virtual std::pair<double, double> Range() const { return {1e-3, 100.0}; }
   // The parameter that acts on a direction.
   int ParameterOf(bool rotation) const { return split_ && rotation ? 1 : 0; }
   // The compliance ratio on a direction.
@@ -802,6 +811,14 @@ class RigidSupportFlexibility : public SupportFamily {
   std::string Meaning(const std::string& which) const override {
     return "ln(a base spring's " + which +
            "compliance / the members' own end compliance)";
+  }
+
+  // The builder's range where it states one (its first support's).
+  std::pair<double, double> Range() const override {
+    const RigidSupport& first = s_.rigid_supports.front();
+    if (first.min_compliance > 0 && first.max_compliance > first.min_compliance)
+      return {first.min_compliance, first.max_compliance};
+    return SupportFamily::Range();
   }
 
  private:

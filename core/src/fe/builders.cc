@@ -226,8 +226,9 @@ Structure BuildCantilever(const CantileverSpec& spec) {
   // A clamped base (no support spring): a rigid support whose bending
   // directions (ux, rz) couple to the beam through its first element, so
   // support flexibility can release them (model_effects.h), a spring's
-  // compliance relative to the whole beam's, 3 EI / L^3 and EI / L (the
-  // cantilever's own translation_ and rotation_compliance_ratio, effects.h).
+  // compliance relative to the whole beam's, 3 EI / L^3 and EI / L, in
+  // [1e-6, 10] (the cantilever's own translation_ and
+  // rotation_compliance_ratio and their range, effects.h).
   // The axial direction stays rigid: the bending modes do not move it.
   const bool clamped = supports[0] == 0 && supports[1] == 0 && supports[2] == 0;
   if (clamped && spec.element_matrices) {
@@ -236,6 +237,8 @@ Structure BuildCantilever(const CantileverSpec& spec) {
     base.directions = {"ux", "rz"};
     const double ei = spec.section.E * spec.section.I, l = z.back();
     base.reference = Eigen::Vector2d(3 * ei / (l * l * l), ei / l);
+    base.min_compliance = 1e-6;
+    base.max_compliance = 10;
     s.rigid_supports.push_back(std::move(base));
   }
   for (int e = 0; e + 1 < num_nodes; ++e) {

@@ -84,6 +84,10 @@ struct RigidSupport {
   // is relative to (a cantilever's 3 EI / L^3 and EI / L); empty: k_bb's
   // diagonal, the end stiffness of the elements that meet there.
   Eigen::VectorXd reference;
+  // The range of that compliance ratio support flexibility fits, where the
+  // builder states one (a cantilever's [1e-6, 10], as its own pipeline's);
+  // 0: the family's default [1e-3, 100].
+  double min_compliance = 0, max_compliance = 0;
 };
 
 // One end of a member where it is connected to a joint, where the model's
