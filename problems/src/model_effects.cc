@@ -73,6 +73,13 @@ class Base : public ModelEffect {
 
  protected:
   int n() const { return static_cast<int>(s_.dof_labels.size()); }
+  // The span from the first element's start to the last one's end.
+  EffectLocation WholeLength() const {
+    EffectLocation l;
+    l.x0 = s_.elements.front().x0;
+    l.x1 = s_.elements.back().x1;
+    return l;
+  }
   const Structure& s_;
   EffectRegion region_;
 };
@@ -96,12 +103,7 @@ class MaterialScaling : public Base {
   ModelChange Derivative(const Eigen::VectorXd& t, int, Immersion) const override {
     return {std::exp(t[0]) * sum_, {}};
   }
-  EffectLocation Location(const Eigen::VectorXd&) const override {
-    EffectLocation l;
-    l.x0 = s_.elements.front().x0;
-    l.x1 = s_.elements.back().x1;
-    return l;
-  }
+  EffectLocation Location(const Eigen::VectorXd&) const override { return WholeLength(); }
   std::vector<EffectMagnitude> Magnitudes(const Eigen::VectorXd& t) const override {
     return {{"e_factor", "1", std::exp(t[0])}};
   }
@@ -144,12 +146,7 @@ class AxialLoad : public Base {
   ModelChange Derivative(const Eigen::VectorXd&, int, Immersion) const override {
     return {buckling_ * unit_, {}};
   }
-  EffectLocation Location(const Eigen::VectorXd&) const override {
-    EffectLocation l;
-    l.x0 = s_.elements.front().x0;
-    l.x1 = s_.elements.back().x1;
-    return l;
-  }
+  EffectLocation Location(const Eigen::VectorXd&) const override { return WholeLength(); }
   std::vector<EffectMagnitude> Magnitudes(const Eigen::VectorXd& t) const override {
     return {{"axial_force", "N", t[0] * buckling_},
             {"force_ratio", "1", t[0]},

@@ -211,7 +211,8 @@ void ScoreClasses(const DiagnosisSpec& spec, const std::vector<std::string>& kin
   if (spec.evidence == "sampled") sample_all(r.temperature);
   Eigen::VectorXd scores(static_cast<Eigen::Index>(r.candidates.size()));
   Eigen::VectorXd prior(scores.size());
-  const double levels = spec.max_effects >= 2 && num_pairs > 0 ? 3.0 : 2.0;
+  const double levels =
+      spec.MaxEffectsFor(/*own_pipeline=*/true) >= 2 && num_pairs > 0 ? 3.0 : 2.0;
   for (std::size_t i = 0; i < r.candidates.size(); ++i) {
     const auto& c = r.candidates[i];
     scores[static_cast<Eigen::Index>(i)] = c.score;

@@ -16,6 +16,7 @@
 #include "femup/core/linalg/node_ordering.h"
 #include "femup/core/parallel.h"
 #include "femup/problems/effect_priors.h"
+#include "femup/problems/model_effect_pair.h"
 #include "femup/problems/model_effect_pencil.h"
 #include "femup/solvers/bagged_posterior.h"
 #include "femup/solvers/nonlinear_solver.h"
@@ -214,6 +215,8 @@ Invalid EffectRankingOptions::Validate() const {
     return {"members_fitted", "must be >= 0, or -1 to fit every member"};
   if (bagging_copies < 0)
     return {"bagging_copies", "must be >= 0 (0: the Laplace posterior alone)"};
+  if (max_effects < 1 || max_effects > 2)
+    return {"max_effects", "expected 1 (single effects) or 2 (also pairs)"};
   if (!(gap_confidence >= 0 && gap_confidence < 1))
     return {"gap_confidence", "must be in [0, 1) (0: the most probable family)"};
   const auto names = AvailableNonlinearSolvers();
@@ -332,12 +335,21 @@ EffectRanking RankModelEffects(const Structure& structure_in,
   for (const ModalData& d : states)
     shape_modes += options.use_shapes && d.HasShapes() ? d.num_modes() : 0;
   // Each family's share of the prior: its weight over the sum of "none"'s and
-  // every tried family's (1 each unless stated: 1 / (families + 1)).
+  // every tried family's (1 each unless stated: 1 / (families + 1)). With
+  // pairs (max_effects 2) the shares are set once the pairs are known, below.
   double total_weight = options.priors.Weight("none");
   for (const std::string& kind : kinds) total_weight += options.priors.Weight(kind);
   auto log_family_prior = [&](const std::string& kind) {
     return std::log(options.priors.Weight(kind)) - std::log(total_weight);
   };
+  // The classes' kinds (the families, then any pairs), each one's log share of
+  // the prior, and among how many places it is split.
+  std::vector<std::string> class_kinds = kinds;
+  std::vector<double> log_share, places;
+  for (std::size_t k = 0; k < kinds.size(); ++k) {
+    log_share.push_back(log_family_prior(kinds[k]));
+    places.push_back(static_cast<double>(instances[k].size()));
+  }
 
   // "none", then every instance of every family.
   RankedClass none;
@@ -402,6 +414,54 @@ EffectRanking RankModelEffects(const Structure& structure_in,
     fits[e] = FitInstance(structure, effects[e], states, fit, *solver, ritz);
   });
 
+  // Pairs of effects (max_effects 2): the best-fitting place of each of two
+  // families, fitted together from where their fits ended.
+  if (options.max_effects >= 2) {
+    std::vector<int> best(kinds.size(), -1);
+    for (std::size_t e = 0; e < effects.size(); ++e) {
+      const Fit& f = fits[e];
+      int& b = best[effect_kind[e]];
+      if (f.ok && f.fitted && (b < 0 || f.chi2 < fits[static_cast<std::size_t>(b)].chi2))
+        b = static_cast<int>(e);
+    }
+    const std::size_t singles = effects.size();
+    int num_pairs = 0;
+    for (std::size_t k1 = 0; k1 < kinds.size(); ++k1) {
+      for (std::size_t k2 = k1 + 1; k2 < kinds.size(); ++k2) {
+        const int b1 = best[k1], b2 = best[k2];
+        if (b1 < 0 || b2 < 0) continue;
+        ++num_pairs;
+        const Fit& f1 = fits[static_cast<std::size_t>(b1)];
+        const Fit& f2 = fits[static_cast<std::size_t>(b2)];
+        Eigen::VectorXd from(f1.theta.size() + f2.theta.size());
+        from << f1.theta, f2.theta;
+        effects.emplace_back(PairOfModelEffects(effects[static_cast<std::size_t>(b1)],
+                                                effects[static_cast<std::size_t>(b2)],
+                                                {from}));
+        effect_kind.push_back(class_kinds.size());
+        class_kinds.push_back(effects.back()->kind());
+        log_share.push_back(std::log(options.priors.Weight(kinds[k1]) *
+                                     options.priors.Weight(kinds[k2])));
+        places.push_back(places[k1] * places[k2]);
+      }
+    }
+    // One third each on none, one effect and two (two levels where no pair
+    // could be formed), equal within a level, each class's share times its
+    // family's weight (a pair's: the product of its two; none's: weights.none).
+    const double levels = num_pairs > 0 ? 3.0 : 2.0;
+    const double num_singles = static_cast<double>(kinds.size());
+    for (std::size_t k = 0; k < kinds.size(); ++k)
+      log_share[k] = std::log(options.priors.Weight(kinds[k]) / num_singles / levels);
+    for (std::size_t k = kinds.size(); k < class_kinds.size(); ++k)
+      log_share[k] -= std::log(num_pairs * levels);
+    none.log_prior = std::log(options.priors.Weight("none") / levels);
+    fits.resize(effects.size());
+    ParallelFor(static_cast<int>(effects.size() - singles), options.threads, [&](int i) {
+      const std::size_t e = singles + static_cast<std::size_t>(i);
+      fits[e] = FitInstance(structure, effects[e], states, fit, *solver, ritz);
+    });
+  }
+
   // The model's own form error (Structure::form_variants, model_form_error.h):
   // the frequencies' noise becomes I + sum_j u_j u_j', one standard deviation
   // of model-form error along each variant's change u_j, and every class's
@@ -442,9 +502,8 @@ EffectRanking RankModelEffects(const Structure& structure_in,
     std::vector<ClassPriors> priors = {{}};  // box and local normal priors
     for (std::size_t e = 0; e < effects.size(); ++e) {
       const std::size_t k = effect_kind[e];
-      const std::string& kind = kinds[k];
-      const double log_prior =
-          log_family_prior(kind) - std::log(static_cast<double>(instances[k].size()));
+      const std::string& kind = class_kinds[k];
+      const double log_prior = log_share[k] - std::log(places[k]);
       const std::shared_ptr<const ModelEffect>& effect = effects[e];
       const Fit& f = fits[e];
       if (!f.ok) continue;

@@ -121,6 +121,7 @@ StructureDiagnosisResult RunStructureDiagnosis(const Study& study) {
   options.rotary_inertia = spec.rotary_inertia;
   options.members_fitted = spec.members_fitted;
   options.gap_confidence = spec.gap_confidence;
+  options.max_effects = spec.MaxEffectsFor(/*own_pipeline=*/false);
   r.priors = spec.priors;
   // A named family that does not apply is the study's error, before any fit.
   for (const std::string& kind : options.kinds) {

@@ -3,6 +3,10 @@ set -euo pipefail
 FEMUP="$1"; ROOT="$2"; WORK="$3"
 rm -rf "$WORK"; mkdir -p "$WORK"; cd "$WORK"
 fail() { echo "FAIL: $*" >&2; exit 1; }
+# sanitized: true in the sanitizer build's run (tests/CMakeLists.txt sets
+# FEMUP_SANITIZED), where a scenario may leave out a section of minutes whose
+# paths a named unit test runs under the sanitizers as well.
+sanitized() { [ -n "${FEMUP_SANITIZED:-}" ]; }
 # json FILE EXPR: evaluates a Python expression on the parsed JSON `j`.
 json() { python3 -c "import json,sys; j=json.load(open(sys.argv[1])); print($2)" "$1"; }
 # small_problem [HEADER]: A.csv (6 x 3, under the header line HEADER when given)

@@ -74,7 +74,7 @@ def diagnose(femup, case_file, out_dir):
         return json.load(f), ""
 
 
-def from_cantilever_pipeline(d, truth):
+def from_cantilever_pipeline(d):
     """A diagnosis.json of the cantilever's own pipeline (diagnosis.engine:
     cantilever) in the one engine's terms: each class's kind (a pair's label,
     "a+b", which no single truth matches), its region named as the one engine
@@ -107,7 +107,7 @@ def from_cantilever_pipeline(d, truth):
 def score(truth, d):
     """The case's line of results.jsonl."""
     if "effects" in d and "classes" not in d:
-        d = from_cantilever_pipeline(d, truth)
+        d = from_cantilever_pipeline(d)
     v = d["verdict"]
     kind_right = v["kind"] == truth["kind"]
     class_right = kind_right and v["region"] in truth.get("regions", [truth["region"]])

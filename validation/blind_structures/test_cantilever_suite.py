@@ -73,7 +73,7 @@ class CantileverPipelineScoreTest(unittest.TestCase):
                                parameters={"a": 1, "b": 2}, probability=0.8),
                           dict(kind="none", location=None, chi2=300.0, parameters={},
                                probability=0.1)])
-        r = run_suite.from_cantilever_pipeline(d, {})
+        r = run_suite.from_cantilever_pipeline(d)
         self.assertEqual(r["verdict"]["kind"], "attached_mass")
         self.assertEqual(r["verdict"]["region"], "node n16")
         self.assertEqual(r["verdict"]["kind_probability"], 0.9)

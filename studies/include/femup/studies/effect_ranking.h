@@ -139,6 +139,17 @@ struct EffectRankingOptions {
   // user's choice. 0 (the default): the most probable family, whatever its
   // probability. In [0, 1).
   double gap_confidence = 0;
+  // 1: single effects. 2: also pairs of two families acting at once
+  // (model_effect_pair.h): for every two families tried, the place of each
+  // that fitted best alone, fitted together from where the two fits ended
+  // (and from the families' starts). The prior is then the cantilever
+  // pipeline's: 1/3 on none, 1/3 on one effect (the families by their
+  // weights), 1/3 on two (each pair by the product of its families' weights),
+  // and a pair's share is split among every combination of its families'
+  // places, as a family's is among its places. A pair's kind is "<first
+  // kind>+<second kind>" in the families' order; it is a family of its own in
+  // kind_probabilities.
+  int max_effects = 1;
   // Ok when valid, else the field and what is wrong.
   Invalid Validate() const;
 };

@@ -149,7 +149,14 @@ struct DiagnosisSpec {
   double frequency_noise = 0.002;       // relative standard deviation of a frequency
   double shape_noise = 0.02;            // of a shape entry, relative to its largest
   std::vector<std::string> candidates;  // effect kinds tried; empty = all
-  int max_effects = 2;                  // 1: single effects only; 2: also pairs
+  // 1: single effects only; 2: also pairs; 0 (unstated): the engine's default,
+  // 2 on the cantilever's own pipeline and 1 on the one engine (pairs there
+  // are new and not yet measured on the blind suites).
+  int max_effects = 0;
+  int MaxEffectsFor(bool own_pipeline) const {
+    if (max_effects > 0) return max_effects;
+    return own_pipeline ? 2 : 1;
+  }
   // Held-out modes: "auto" (the highest mode of each state with 3 or more),
   // "none", or the listed (state, 1-based measured mode) pairs.
   std::string held_out = "auto";
