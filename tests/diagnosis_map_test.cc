@@ -126,6 +126,7 @@ TEST(DiagnosisMap, DrawsAMassBetweenNodesAtItsFittedPoint) {
   const DiagnosisMap map = MapGeometry(BuildPlaneFrameStructure(Portal()));
   EffectRanking r;
   RankedClass c = Class("attached_mass", "n1-n5", 0.7);
+  c.names = {"ln_mass_ratio", "xi"};
   c.theta = Eigen::Vector2d(std::log(0.01), 0.25);
   r.classes = {c, Class("none", "", 0.3)};
   r.kind_probabilities = {{"attached_mass", 0.7}, {"none", 0.3}};
@@ -142,6 +143,44 @@ TEST(DiagnosisMap, DrawsAMassBetweenNodesAtItsFittedPoint) {
   };
   EXPECT_DOUBLE_EQ(p.series[1].x[0], 0.75 * node("n1").x + 0.25 * node("n5").x);
   EXPECT_DOUBLE_EQ(p.series[1].y[0], 0.75 * node("n1").y + 0.25 * node("n5").y);
+}
+
+// A pair of effects counts for each of its two: its local part drawn where it
+// lies (a softer support; a mass between nodes at its fitted xi, whatever its
+// place among the pair's parameters), its global part in the title, each with
+// the probability of every class that holds it.
+TEST(DiagnosisMap, DrawsEachPartOfAPairWhereItLies) {
+  const DiagnosisMap map = MapGeometry(BuildPlaneFrameStructure(Portal()));
+  EffectRanking r;
+  RankedClass mass_and_e =
+      Class("material_scaling+attached_mass", "all elements + n1-n5", 0.15);
+  mass_and_e.names = {"ln_e_factor", "ln_mass_ratio", "xi"};
+  mass_and_e.theta = Eigen::Vector3d(0.01, std::log(0.01), 0.25);
+  r.classes = {Class("added_mass+support_flexibility", "below 1.2 m + supports", 0.55),
+               Class("added_mass", "below 1.2 m", 0.25), mass_and_e,
+               Class("none", "", 0.05)};
+  r.kind_probabilities = {{"added_mass+support_flexibility", 0.55},
+                          {"added_mass", 0.25},
+                          {"material_scaling+attached_mass", 0.15},
+                          {"none", 0.05}};
+  const Plot p = DiagnosisMapFigure(map, r, "portal").panels.at(0);
+  // added_mass alone and in the pair; the pair's support part is drawn.
+  EXPECT_NE(p.title.find(
+                "(everywhere: added_mass P 0.8, material_scaling P 0.15, none P 0.05)"),
+            std::string::npos)
+      << p.title;
+  EXPECT_EQ(p.title.find("support_flexibility"), std::string::npos) << p.title;
+  ASSERT_EQ(p.series.size(), 3u);  // the model, the mass, the supports
+  EXPECT_EQ(p.series[1].title, "attached mass, P 0.1-0.5");
+  ASSERT_EQ(p.series[1].x.size(), 1u);
+  const auto node = [&](const std::string& name) {
+    for (const auto& n : map.nodes)
+      if (n.region == "node " + name) return n;
+    ADD_FAILURE() << name;
+    return DiagnosisMap::Node();
+  };
+  EXPECT_DOUBLE_EQ(p.series[1].x[0], 0.75 * node("n1").x + 0.25 * node("n5").x);
+  EXPECT_EQ(p.series[2].title, "softer supports, P 0.55");
 }
 
 TEST(DiagnosisMap, RendersWithGnuplot) {

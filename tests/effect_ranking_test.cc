@@ -779,12 +779,44 @@ void ExpectWaterAndAMaterialErrorTogether(const std::vector<std::string>& candid
   double sum = 0;
   for (const RankedClass& c : r.ranking.classes) sum += c.probability;
   EXPECT_NEAR(sum, 1.0, 1e-9);
+  // Each of the two is present with at least the pair's probability, and the
+  // report says so.
+  for (const auto& [family, p] : FamilyPresence(r.ranking)) {
+    if (family == "added_mass" || family == "material_scaling") {
+      EXPECT_GE(p, top.probability - 1e-12) << family;
+    }
+  }
+  EXPECT_NE(StructureDiagnosisReport(r).find("each family, alone or in a pair: "),
+            std::string::npos)
+      << StructureDiagnosisReport(r);
 
   study.diagnosis->max_effects = 0;  // the one engine's default
   study.diagnosis->candidates = {"added_mass", "material_scaling"};
   const StructureDiagnosisResult single = RunStructureDiagnosis(study);
   for (const RankedClass& c : single.ranking.classes)
     EXPECT_EQ(c.kind.find('+'), std::string::npos) << c.kind;
+  EXPECT_EQ(FamilyPresence(single.ranking), single.ranking.kind_probabilities);
+  EXPECT_EQ(StructureDiagnosisReport(single).find("alone or in a pair"),
+            std::string::npos);
+}
+
+// A pair's probability counts for each of its two families; a family's own
+// entry and its pairs add up.
+TEST(EffectRanking, FamilyPresenceSumsEachFamilyOverThePairsThatHoldIt) {
+  EXPECT_EQ(FamiliesOf("added_mass"), (std::vector<std::string>{"added_mass"}));
+  EXPECT_EQ(FamiliesOf("added_mass+support_flexibility"),
+            (std::vector<std::string>{"added_mass", "support_flexibility"}));
+  EffectRanking r;
+  r.kind_probabilities = {{"added_mass+support_flexibility", 0.5},
+                          {"support_flexibility", 0.25},
+                          {"added_mass+material_scaling", 0.125},
+                          {"none", 0.125}};
+  const std::vector<std::pair<std::string, double>> expected = {
+      {"support_flexibility", 0.75},
+      {"added_mass", 0.625},
+      {"material_scaling", 0.125},
+      {"none", 0.125}};
+  EXPECT_EQ(FamilyPresence(r), expected);
 }
 
 TEST(StructureDiagnosis, NamesWaterAndAMaterialErrorTogetherOnTheOneEngine) {

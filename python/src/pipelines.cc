@@ -423,6 +423,10 @@ void BindDiagnosis(py::module_& m) {
   py::class_<femup::EffectRanking>(m, "EffectRanking")
       .def_readonly("classes", &femup::EffectRanking::classes)
       .def_readonly("kind_probabilities", &femup::EffectRanking::kind_probabilities)
+      .def_property_readonly(
+          "family_presence",
+          [](const femup::EffectRanking& r) { return femup::FamilyPresence(r); },
+          "Each family's probability alone or in a pair (femup::FamilyPresence).")
       .def_readonly("gap_probability", &femup::EffectRanking::gap_probability)
       .def_readonly("gap_below_confidence", &femup::EffectRanking::gap_below_confidence)
       .def_readonly("temperature", &femup::EffectRanking::temperature)

@@ -132,6 +132,13 @@ def test_structure_diagnosis_matches_diagnosis_json(run_cli):
             assert m.name == em["name"] and m.unit == em["unit"]
             close(m.value, em["value"], rel=1e-9)
     close(result.ranking.temperature, expected["temperature"])
+    # Without pairs, each family's presence is its own probability.
+    assert [f for f, _ in result.ranking.family_presence] == [
+        e["family"] for e in expected["family_presence"]]
+    for (f, p), e in zip(result.ranking.family_presence, expected["family_presence"]):
+        close(p, e["probability"], rel=1e-9)
+    assert dict(result.ranking.family_presence) == pytest.approx(
+        dict(result.ranking.kind_probabilities), rel=1e-12)
     close(result.ranking.gap_probability, expected["verdict"]["gap_probability"], rel=1e-9)
     assert result.ranking.gap_below_confidence is False
     assert expected["verdict"]["gap_below_confidence"] is False

@@ -3,20 +3,56 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace femup {
 namespace {
-// Probability of each region for the given kinds.
+
+struct Part {
+  std::string kind, region;
+};
+
+// The effects a class holds: itself, or both of a pair (kind "a+b", region
+// "A + B"; model_effect_pair.h).
+std::vector<Part> Parts(const std::string& kind, const std::string& region) {
+  const std::size_t plus = kind.find('+');
+  const std::size_t joint = region.find(" + ");
+  if (plus == std::string::npos) return {{kind, region}};
+  if (joint == std::string::npos)
+    return {{kind.substr(0, plus), region}, {kind.substr(plus + 1), region}};
+  return {{kind.substr(0, plus), region.substr(0, joint)},
+          {kind.substr(plus + 1), region.substr(joint + 3)}};
+}
+
+bool IsLocal(const std::string& kind) {
+  return kind == "stiffness_loss" || kind == "attached_mass" ||
+         kind == "support_flexibility";
+}
+
+// Probability of an effect of one of `kinds` at each region: the classes
+// there, alone or in a pair.
 std::map<std::string, double> RegionProbability(const EffectRanking& r,
                                                 const std::vector<std::string>& kinds) {
   std::map<std::string, double> p;
   for (const RankedClass& c : r.classes) {
-    if (std::find(kinds.begin(), kinds.end(), c.kind) != kinds.end())
-      p[c.region] += c.probability;
+    for (const Part& part : Parts(c.kind, c.region)) {
+      if (std::find(kinds.begin(), kinds.end(), part.kind) != kinds.end())
+        p[part.region] += c.probability;
+    }
   }
   return p;
+}
+
+// The fitted position along its element of the mass between nodes in `c`
+// (its parameter "xi"), or NaN.
+double MassPosition(const RankedClass& c) {
+  const auto at = std::find(c.names.begin(), c.names.end(), "xi");
+  const auto i = at - c.names.begin();
+  if (at == c.names.end() || i >= c.theta.size()) return NAN;
+  return c.theta[i];
 }
 
 // Each segment of `e`, broken from the next by a NaN point.
@@ -86,19 +122,21 @@ Figure DiagnosisMapFigure(const DiagnosisMap& map, const EffectRanking& ranking,
       s.x.push_back(n.x);
       s.y.push_back(n.y);
     }
-    // Masses between nodes ("n1-n7", position xi = theta[1] fitted, then the
-    // radius of gyration where there is one): at their fitted point.
+    // Masses between nodes ("n1-n7", alone or in a pair): at their fitted
+    // position xi along the element.
     for (const RankedClass& c : ranking.classes) {
-      const std::size_t dash = c.region.find('-');
-      if (c.kind != "attached_mass" || dash == std::string::npos || c.theta.size() < 2 ||
-          c.probability < kBands[k].low || c.probability >= kBands[k].high)
-        continue;
-      const auto a = at.find("node " + c.region.substr(0, dash));
-      const auto b = at.find("node " + c.region.substr(dash + 1));
-      if (a == at.end() || b == at.end()) continue;  // an end on a rigid support
-      const double xi = c.theta[1];
-      s.x.push_back((1 - xi) * a->second.first + xi * b->second.first);
-      s.y.push_back((1 - xi) * a->second.second + xi * b->second.second);
+      if (c.probability < kBands[k].low || c.probability >= kBands[k].high) continue;
+      for (const Part& part : Parts(c.kind, c.region)) {
+        const std::size_t dash = part.region.find('-');
+        const double xi = MassPosition(c);
+        if (part.kind != "attached_mass" || dash == std::string::npos || std::isnan(xi))
+          continue;
+        const auto a = at.find("node " + part.region.substr(0, dash));
+        const auto b = at.find("node " + part.region.substr(dash + 1));
+        if (a == at.end() || b == at.end()) continue;  // an end on a rigid support
+        s.x.push_back((1 - xi) * a->second.first + xi * b->second.first);
+        s.y.push_back((1 - xi) * a->second.second + xi * b->second.second);
+      }
     }
     if (s.x.empty()) continue;
     s.title = std::string("attached mass, ") + kBands[k].label;
@@ -121,13 +159,13 @@ Figure DiagnosisMapFigure(const DiagnosisMap& map, const EffectRanking& ranking,
     s.title = t.str();
     p.series.push_back(s);
   }
-  // The explanations that have no place: in the title, with their probability.
+  // The explanations that have no place: in the title, each with the
+  // probability of the families that hold it (alone or in a pair; a pair's
+  // local part is drawn above).
   std::ostringstream global;
   global.precision(2);
-  for (const auto& [kind, prob] : ranking.kind_probabilities) {
-    if (kind == "stiffness_loss" || kind == "attached_mass" ||
-        kind == "support_flexibility" || prob < 0.01)
-      continue;
+  for (const auto& [kind, prob] : FamilyPresence(ranking)) {
+    if (IsLocal(kind) || prob < 0.01) continue;
     global << (global.tellp() > 0 ? ", " : "") << kind << " P " << prob;
   }
   p.title = title + (global.tellp() > 0 ? " (everywhere: " + global.str() + ")" : "");

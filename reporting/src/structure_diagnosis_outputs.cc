@@ -60,6 +60,11 @@ void WriteStructureDiagnosisOutputs(const StructureDiagnosisResult& r, bool plot
   j["kinds"] = nlohmann::json::array();
   for (const auto& [kind, p] : k.kind_probabilities)
     j["kinds"].push_back({{"kind", kind}, {"probability", p}});
+  // Each family's probability alone or in a pair (= "kinds" where no pair
+  // was tried).
+  j["family_presence"] = nlohmann::json::array();
+  for (const auto& [family, p] : FamilyPresence(k))
+    j["family_presence"].push_back({{"family", family}, {"probability", p}});
   j["classes"] = nlohmann::json::array();
   for (const RankedClass& c : k.classes) {
     nlohmann::json cj = {{"kind", c.kind},
@@ -150,6 +155,15 @@ std::string StructureDiagnosisReport(const StructureDiagnosisResult& r) {
          "scaled by "
       << std::fixed << std::setprecision(2) << std::sqrt(k.temperature)
       << " (frequencies) and " << std::sqrt(k.shape_temperature) << " (shapes)\n";
+  }
+  if (std::any_of(k.kind_probabilities.begin(), k.kind_probabilities.end(),
+                  [](const auto& e) { return FamiliesOf(e.first).size() > 1; })) {
+    o << "each family, alone or in a pair:";
+    for (const auto& [family, p] : FamilyPresence(k)) {
+      if (p >= 0.005)
+        o << " " << family << " P " << std::fixed << std::setprecision(2) << p << ";";
+    }
+    o << "\n";
   }
   o << "classes (the most probable family first, then its most probable places):\n";
   const std::size_t shown = std::min<std::size_t>(k.classes.size(), 8);

@@ -768,4 +768,25 @@ EffectRanking RankModelEffects(const Structure& structure_in,
   return out;
 }
 
+std::vector<std::string> FamiliesOf(const std::string& kind) {
+  const std::size_t plus = kind.find('+');
+  if (plus == std::string::npos) return {kind};
+  return {kind.substr(0, plus), kind.substr(plus + 1)};
+}
+
+std::vector<std::pair<std::string, double>> FamilyPresence(const EffectRanking& ranking) {
+  std::vector<std::pair<std::string, double>> presence;
+  for (const auto& [kind, p] : ranking.kind_probabilities) {
+    for (const std::string& family : FamiliesOf(kind)) {
+      auto it = std::find_if(presence.begin(), presence.end(),
+                             [&](const auto& e) { return e.first == family; });
+      if (it == presence.end()) it = presence.insert(presence.end(), {family, 0.0});
+      it->second += p;
+    }
+  }
+  std::stable_sort(presence.begin(), presence.end(),
+                   [](const auto& a, const auto& b) { return a.second > b.second; });
+  return presence;
+}
+
 }  // namespace femup

@@ -216,4 +216,14 @@ EffectRanking RankModelEffects(const Structure& structure,
                                const std::vector<ModalData>& states,
                                const EffectRankingOptions& options);
 
+// The families a class's kind holds: the kind itself, or both of a pair ("a+b",
+// EffectRankingOptions::max_effects 2).
+std::vector<std::string> FamiliesOf(const std::string& kind);
+
+// The probability that each family is part of the explanation: the sum of
+// kind_probabilities over its own entry and every pair that holds it (so the
+// figures can add up to more than 1 where pairs were tried; without pairs they
+// are kind_probabilities). Most probable first.
+std::vector<std::pair<std::string, double>> FamilyPresence(const EffectRanking& ranking);
+
 }  // namespace femup
