@@ -413,5 +413,27 @@ TEST(EffectPriors, NormalPriorResidualsAreAppendedWithTheirDerivative) {
   EXPECT_EQ(sigma[1], 0.0);
 }
 
+// The three levels: none, one effect, two effects, a third each (a half each
+// on none and one effect without pairs), equal within a level, times the
+// stated weights; the classes' priors add up to 1 when the weights are 1.
+TEST(EffectPriors, LevelPriorSplitsNoneSinglesAndPairs) {
+  const StatedPriors flat;
+  const std::vector<std::string> a = {"added_mass"},
+                                 ab = {"added_mass", "material_scaling"};
+  EXPECT_DOUBLE_EQ(LevelPrior(flat, {}, 4, 6), 1.0 / 3);
+  EXPECT_DOUBLE_EQ(LevelPrior(flat, a, 4, 6), 1.0 / 12);
+  EXPECT_DOUBLE_EQ(LevelPrior(flat, ab, 4, 6), 1.0 / 18);
+  EXPECT_DOUBLE_EQ(LevelPrior(flat, {}, 4, 6) + 4 * LevelPrior(flat, a, 4, 6) +
+                       6 * LevelPrior(flat, ab, 4, 6),
+                   1.0);
+  EXPECT_DOUBLE_EQ(LevelPrior(flat, {}, 4, 0), 0.5);
+  EXPECT_DOUBLE_EQ(LevelPrior(flat, a, 4, 0), 1.0 / 8);
+  StatedPriors weighted;
+  weighted.weights = {{"none", 3.0}, {"added_mass", 2.0}, {"material_scaling", 0.5}};
+  EXPECT_DOUBLE_EQ(LevelPrior(weighted, {}, 4, 6), 1.0);
+  EXPECT_DOUBLE_EQ(LevelPrior(weighted, a, 4, 6), 2.0 / 12);
+  EXPECT_DOUBLE_EQ(LevelPrior(weighted, ab, 4, 6), 1.0 / 18);
+}
+
 }  // namespace
 }  // namespace femup

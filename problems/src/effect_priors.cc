@@ -150,6 +150,17 @@ double StatedPriors::Weight(const std::string& kind) const {
   return it == weights.end() ? 1.0 : it->second;
 }
 
+double LevelPrior(const StatedPriors& priors, const std::vector<std::string>& families,
+                  std::size_t num_singles, std::size_t num_pairs) {
+  const double levels = num_pairs > 0 ? 3.0 : 2.0;
+  const double share = families.empty()       ? 1.0
+                       : families.size() == 1 ? 1.0 / static_cast<double>(num_singles)
+                                              : 1.0 / static_cast<double>(num_pairs);
+  double weight = families.empty() ? priors.Weight("none") : 1.0;
+  for (const std::string& k : families) weight *= priors.Weight(k);
+  return weight * share / levels;
+}
+
 Invalid StatedPriors::Validate() const {
   std::set<std::string> kinds;
   for (const FamilyPrior& f : families) {

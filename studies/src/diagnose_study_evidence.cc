@@ -211,18 +211,13 @@ void ScoreClasses(const DiagnosisSpec& spec, const std::vector<std::string>& kin
   if (spec.evidence == "sampled") sample_all(r.temperature);
   Eigen::VectorXd scores(static_cast<Eigen::Index>(r.candidates.size()));
   Eigen::VectorXd prior(scores.size());
-  const double levels =
-      spec.MaxEffectsFor(/*own_pipeline=*/true) >= 2 && num_pairs > 0 ? 3.0 : 2.0;
+  const std::size_t pairs =
+      spec.MaxEffectsFor(/*own_pipeline=*/true) >= 2 ? num_pairs : 0;
   for (std::size_t i = 0; i < r.candidates.size(); ++i) {
     const auto& c = r.candidates[i];
     scores[static_cast<Eigen::Index>(i)] = c.score;
-    const double share = c.kinds.empty()       ? 1.0
-                         : c.kinds.size() == 1 ? 1.0 / num_singles
-                                               : 1.0 / num_pairs;
-    // Stated weights: "none"'s, a family's, a pair's the product of its two.
-    double weight = c.kinds.empty() ? spec.priors.Weight("none") : 1.0;
-    for (const std::string& k : c.kinds) weight *= spec.priors.Weight(k);
-    prior[static_cast<Eigen::Index>(i)] = weight * share / levels;
+    prior[static_cast<Eigen::Index>(i)] =
+        LevelPrior(spec.priors, c.kinds, num_singles, pairs);
   }
   const Eigen::VectorXd post = PosteriorProbabilities(scores, prior);
   for (std::size_t i = 0; i < r.candidates.size(); ++i)

@@ -426,6 +426,7 @@ EffectRanking RankModelEffects(const Structure& structure_in,
     }
     const std::size_t singles = effects.size();
     int num_pairs = 0;
+    std::vector<std::vector<std::string>> pair_families;
     for (std::size_t k1 = 0; k1 < kinds.size(); ++k1) {
       for (std::size_t k2 = k1 + 1; k2 < kinds.size(); ++k2) {
         const int b1 = best[k1], b2 = best[k2];
@@ -440,21 +441,22 @@ EffectRanking RankModelEffects(const Structure& structure_in,
                                                 {from}));
         effect_kind.push_back(class_kinds.size());
         class_kinds.push_back(effects.back()->kind());
-        log_share.push_back(std::log(options.priors.Weight(kinds[k1]) *
-                                     options.priors.Weight(kinds[k2])));
+        pair_families.push_back({kinds[k1], kinds[k2]});
+        log_share.push_back(0);  // set below, once the pairs are counted
         places.push_back(places[k1] * places[k2]);
       }
     }
     // One third each on none, one effect and two (two levels where no pair
-    // could be formed), equal within a level, each class's share times its
-    // family's weight (a pair's: the product of its two; none's: weights.none).
-    const double levels = num_pairs > 0 ? 3.0 : 2.0;
-    const double num_singles = static_cast<double>(kinds.size());
-    for (std::size_t k = 0; k < kinds.size(); ++k)
-      log_share[k] = std::log(options.priors.Weight(kinds[k]) / num_singles / levels);
-    for (std::size_t k = kinds.size(); k < class_kinds.size(); ++k)
-      log_share[k] -= std::log(num_pairs * levels);
-    none.log_prior = std::log(options.priors.Weight("none") / levels);
+    // could be formed), equal within a level, times the stated weights.
+    for (std::size_t k = 0; k < class_kinds.size(); ++k) {
+      const std::vector<std::string> families = k < kinds.size()
+                                                    ? std::vector<std::string>{kinds[k]}
+                                                    : pair_families[k - kinds.size()];
+      log_share[k] = std::log(LevelPrior(options.priors, families, kinds.size(),
+                                         static_cast<std::size_t>(num_pairs)));
+    }
+    none.log_prior = std::log(LevelPrior(options.priors, {}, kinds.size(),
+                                         static_cast<std::size_t>(num_pairs)));
     fits.resize(effects.size());
     ParallelFor(static_cast<int>(effects.size() - singles), options.threads, [&](int i) {
       const std::size_t e = singles + static_cast<std::size_t>(i);

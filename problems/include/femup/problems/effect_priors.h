@@ -74,6 +74,15 @@ struct StatedPriors {
   Invalid Validate() const;
 };
 
+// The prior probability of one explanation by its families (none: empty; one
+// effect; a pair: two). The classes lie on levels, none, one effect and two
+// effects, a third each (a half each on none and one effect where no pair is
+// tried, num_pairs 0), equal within a level among the num_singles families or
+// the num_pairs pairs, times the stated weights (none's; the family's; a pair's
+// the product of its two's). A family's places then split its share.
+double LevelPrior(const StatedPriors& priors, const std::vector<std::string>& families,
+                  std::size_t num_singles, std::size_t num_pairs);
+
 // q at theta and theta at q for a parameter (EffectParameter's map).
 double QuantityAt(const EffectParameter& p, double theta);
 double CoordinateOf(const EffectParameter& p, double quantity);
