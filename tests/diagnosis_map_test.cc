@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 
@@ -181,6 +182,40 @@ TEST(DiagnosisMap, DrawsEachPartOfAPairWhereItLies) {
   };
   EXPECT_DOUBLE_EQ(p.series[1].x[0], 0.75 * node("n1").x + 0.25 * node("n5").x);
   EXPECT_EQ(p.series[2].title, "softer supports, P 0.55");
+}
+
+// Two places of one family: both drawn, each mass between nodes at its own
+// fitted xi, and two damaged members each in the pair's band.
+TEST(DiagnosisMap, DrawsBothPlacesOfAPairOfOneFamily) {
+  const DiagnosisMap map = MapGeometry(BuildPlaneFrameStructure(Portal()));
+  EffectRanking r;
+  RankedClass masses = Class("attached_mass+attached_mass", "n1-n5 + n5-n2", 0.6);
+  masses.names = {"ln_mass_ratio", "xi", "ln_mass_ratio", "xi"};
+  masses.theta = Eigen::Vector4d(std::log(0.01), 0.25, std::log(0.02), 0.5);
+  r.classes = {
+      masses,
+      Class("stiffness_loss+stiffness_loss", "element s1:col1 + element s1:col2", 0.3),
+      Class("none", "", 0.1)};
+  r.kind_probabilities = {{"attached_mass+attached_mass", 0.6},
+                          {"stiffness_loss+stiffness_loss", 0.3},
+                          {"none", 0.1}};
+  const Plot p = DiagnosisMapFigure(map, r, "portal").panels.at(0);
+  EXPECT_NE(p.title.find("(everywhere: none P 0.1)"), std::string::npos) << p.title;
+  ASSERT_EQ(p.series.size(), 3u);  // the model, the two columns, the two masses
+  EXPECT_EQ(p.series[1].title, "stiffness loss, P 0.1-0.5");
+  EXPECT_EQ(p.series[2].title, "attached mass, P >= 0.5");
+  ASSERT_EQ(p.series[2].x.size(), 2u);
+  const auto node = [&](const std::string& name) {
+    for (const auto& n : map.nodes)
+      if (n.region == "node " + name) return n;
+    ADD_FAILURE() << name;
+    return DiagnosisMap::Node();
+  };
+  EXPECT_DOUBLE_EQ(p.series[2].x[0], 0.75 * node("n1").x + 0.25 * node("n5").x);
+  EXPECT_DOUBLE_EQ(p.series[2].x[1], 0.5 * node("n5").x + 0.5 * node("n2").x);
+  const auto& columns = p.series[1].x;  // both columns, x 0 and 5
+  EXPECT_NE(std::find(columns.begin(), columns.end(), 0.0), columns.end());
+  EXPECT_NE(std::find(columns.begin(), columns.end(), 5.0), columns.end());
 }
 
 TEST(DiagnosisMap, RendersWithGnuplot) {

@@ -81,6 +81,42 @@ TEST(EffectRanking, NamesTheDamagedStorey) {
   EXPECT_NE(r.skipped[0].find("added_mass"), std::string::npos);
 }
 
+// Two damaged storeys (20 % and 25 % of their springs lost), with pairs: the
+// two storeys named together (not the storey that fits best alone, the first,
+// beside the next best), each loss within 0.03; without pairs one storey alone
+// is named, with a misfit more than ten times the pair's.
+TEST(EffectRanking, NamesTwoDamagedStoreysTogether) {
+  ChainSpec truth = ShearBuilding();
+  truth.springs[1] *= 0.8;
+  truth.springs[4] *= 0.75;
+  const Structure nominal = BuildSpringMassChain(ShearBuilding());
+  EffectRankingOptions o = Options();
+  o.kinds = {"stiffness_loss"};
+  o.max_effects = 2;
+  const std::vector<ModalData> data = {Measured(truth, 7)};
+  const EffectRanking r = RankModelEffects(nominal, data, o);
+  ASSERT_FALSE(r.classes.empty());
+  const RankedClass& top = r.classes[0];
+  EXPECT_EQ(top.kind, "stiffness_loss+stiffness_loss");
+  EXPECT_TRUE(top.region == "element 2 + element 5" ||
+              top.region == "element 5 + element 2")
+      << top.region;
+  EXPECT_GT(top.probability, 0.9);
+  ASSERT_EQ(top.magnitudes.size(), 2u);
+  const bool second_first = top.region.rfind("element 2", 0) == 0;
+  EXPECT_NEAR(top.magnitudes[second_first ? 0 : 1].value, 0.2, 0.03);
+  EXPECT_NEAR(top.magnitudes[second_first ? 1 : 0].value, 0.25, 0.03);
+  double total = 0;
+  for (const RankedClass& c : r.classes) total += c.probability;
+  EXPECT_NEAR(total, 1.0, 1e-12);
+  EXPECT_EQ(FamilyPresence(r).front().first, "stiffness_loss");
+
+  o.max_effects = 1;
+  const EffectRanking single = RankModelEffects(nominal, data, o);
+  EXPECT_EQ(single.classes[0].kind, "stiffness_loss");
+  EXPECT_GT(single.classes[0].chi2, 10 * top.chi2);
+}
+
 // A model whose frequencies are off by a form error (the higher the mode, the
 // more: 1 % per mode above the first, as an idealised model's often are) while
 // its shapes are right: the frequencies' noise is scaled (a temperature of
@@ -806,14 +842,17 @@ TEST(EffectRanking, FamilyPresenceSumsEachFamilyOverThePairsThatHoldIt) {
   EXPECT_EQ(FamiliesOf("added_mass"), (std::vector<std::string>{"added_mass"}));
   EXPECT_EQ(FamiliesOf("added_mass+support_flexibility"),
             (std::vector<std::string>{"added_mass", "support_flexibility"}));
+  EXPECT_EQ(FamiliesOf("stiffness_loss+stiffness_loss"),
+            (std::vector<std::string>{"stiffness_loss"}));
   EffectRanking r;
   r.kind_probabilities = {{"added_mass+support_flexibility", 0.5},
                           {"support_flexibility", 0.25},
-                          {"added_mass+material_scaling", 0.125},
+                          {"added_mass+material_scaling", 0.0625},
+                          {"material_scaling+material_scaling", 0.0625},
                           {"none", 0.125}};
   const std::vector<std::pair<std::string, double>> expected = {
       {"support_flexibility", 0.75},
-      {"added_mass", 0.625},
+      {"added_mass", 0.5625},
       {"material_scaling", 0.125},
       {"none", 0.125}};
   EXPECT_EQ(FamilyPresence(r), expected);

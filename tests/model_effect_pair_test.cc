@@ -13,6 +13,7 @@
 #include "femup/core/fe/builders.h"
 #include "femup/core/linalg/modal.h"
 #include "paper_beam.h"
+#include "structure_specs.h"
 #include "vector_of.h"
 
 namespace femup {
@@ -133,12 +134,47 @@ TEST(ModelEffectPair, SaysWhatBothSay) {
   EXPECT_EQ(pair->Location(from).depth, water->Location(from.head(nw)).depth);
 }
 
+// Two places of one family: a shear building's second and fifth storeys
+// softened by 10 % and 20 % are the chain built with those springs, and the
+// pair's parameters are its two places' in order.
+TEST(ModelEffectPair, TwoStoreysOfOneChainAreTheChainWithBothSpringsSoftened) {
+  const ChainSpec spec = fixtures::UniformChain(6, 1e5, 2e8);
+  const Structure s = BuildSpringMassChain(spec);
+  std::vector<std::shared_ptr<const ModelEffect>> storeys;
+  for (auto& e : CreateModelEffects("stiffness_loss", s, {}))
+    storeys.push_back(std::move(e));
+  ASSERT_EQ(storeys.size(), 6u);
+  const auto pair = PairOfModelEffects(storeys[1], storeys[4]);
+  EXPECT_EQ(pair->kind(), "stiffness_loss+stiffness_loss");
+  EXPECT_EQ(pair->region().name,
+            storeys[1]->region().name + " + " + storeys[4]->region().name);
+  EXPECT_EQ(pair->region().elements, (std::vector<int>{1, 4}));
+  const Eigen::VectorXd theta = fixtures::VectorOf({std::log(0.1), std::log(0.2)});
+  SparseMatrix k, m;
+  ApplyModelEffects(s, {pair.get()}, {theta}, Immersion::kDry, &k, &m);
+  ChainSpec softened = spec;
+  softened.springs[1] *= 0.9;
+  softened.springs[4] *= 0.8;
+  const Structure truth = BuildSpringMassChain(softened);
+  const Eigen::VectorXd expected = SolveModes(truth.stiffness, truth.mass).eigenvalues;
+  const Eigen::VectorXd after = SolveModes(k, m).eigenvalues;
+  for (int i = 0; i < 6; ++i) EXPECT_NEAR(after[i] / expected[i], 1.0, 1e-10) << i;
+  const auto magnitudes = pair->Magnitudes(theta);
+  ASSERT_EQ(magnitudes.size(), 2u);
+  EXPECT_NEAR(magnitudes[0].value, 0.1, 1e-12);
+  EXPECT_NEAR(magnitudes[1].value, 0.2, 1e-12);
+  EXPECT_TRUE(RegionsOverlap(storeys[1]->region(), storeys[1]->region()));
+  EXPECT_FALSE(RegionsOverlap(storeys[1]->region(), storeys[2]->region()));
+  testing::ExpectInputError([&] { PairOfModelEffects(storeys[3], storeys[3]); },
+                            {"pair", "stiffness_loss", "share an element or a DOF"});
+}
+
 TEST(ModelEffectPair, RefusesWhatIsNotAPair) {
   const Structure s = Beam();
   const auto water = First("added_mass", s);
   testing::ExpectInputError([&] { PairOfModelEffects(water, nullptr); }, {"pair"});
   testing::ExpectInputError([&] { PairOfModelEffects(water, First("added_mass", s)); },
-                            {"pair", "added_mass", "two different families"});
+                            {"pair", "added_mass", "share an element or a DOF"});
   testing::ExpectInputError(
       [&] {
         PairOfModelEffects(water, First("material_scaling", s),

@@ -92,15 +92,28 @@ class ModelEffectPair : public ModelEffect {
   std::vector<Eigen::VectorXd> starts_;
 };
 
+bool Shares(const std::vector<int>& a, const std::vector<int>& b) {
+  return std::any_of(a.begin(), a.end(),
+                     [&](int i) { return std::find(b.begin(), b.end(), i) != b.end(); });
+}
+
 }  // namespace
+
+bool RegionsOverlap(const EffectRegion& a, const EffectRegion& b) {
+  return Shares(a.elements, b.elements) || Shares(a.dofs, b.dofs);
+}
 
 std::unique_ptr<ModelEffect> PairOfModelEffects(std::shared_ptr<const ModelEffect> first,
                                                 std::shared_ptr<const ModelEffect> second,
                                                 std::vector<Eigen::VectorXd> starts) {
   if (!first || !second) throw InputError("pair", "both effects are needed");
-  if (first->kind() == second->kind()) {
+  if (first->kind() == second->kind() &&
+      RegionsOverlap(first->region(), second->region())) {
     throw InputError("pair", "both effects are " + first->kind() +
-                                 "; a pair is of two different families");
+                                 " and their regions (" + first->region().name + ", " +
+                                 second->region().name +
+                                 ") share an element or a DOF; two places of one family "
+                                 "must lie apart");
   }
   return std::make_unique<ModelEffectPair>(std::move(first), std::move(second),
                                            std::move(starts));

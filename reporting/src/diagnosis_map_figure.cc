@@ -46,13 +46,17 @@ std::map<std::string, double> RegionProbability(const EffectRanking& r,
   return p;
 }
 
-// The fitted position along its element of the mass between nodes in `c`
-// (its parameter "xi"), or NaN.
-double MassPosition(const RankedClass& c) {
-  const auto at = std::find(c.names.begin(), c.names.end(), "xi");
-  const auto i = at - c.names.begin();
-  if (at == c.names.end() || i >= c.theta.size()) return NAN;
-  return c.theta[i];
+// The fitted position along its element of the `which`-th mass between nodes
+// in `c` (its parameters "xi", in the order of the class's parts), or NaN.
+double MassPosition(const RankedClass& c, int which) {
+  for (std::size_t i = 0; i < c.names.size(); ++i) {
+    if (c.names[i] != "xi") continue;
+    if (which-- > 0) continue;
+    return static_cast<Eigen::Index>(i) < c.theta.size()
+               ? c.theta[static_cast<Eigen::Index>(i)]
+               : NAN;
+  }
+  return NAN;
 }
 
 // Each segment of `e`, broken from the next by a NaN point.
@@ -126,11 +130,12 @@ Figure DiagnosisMapFigure(const DiagnosisMap& map, const EffectRanking& ranking,
     // position xi along the element.
     for (const RankedClass& c : ranking.classes) {
       if (c.probability < kBands[k].low || c.probability >= kBands[k].high) continue;
+      int between = 0;  // masses between nodes so far in this class
       for (const Part& part : Parts(c.kind, c.region)) {
         const std::size_t dash = part.region.find('-');
-        const double xi = MassPosition(c);
-        if (part.kind != "attached_mass" || dash == std::string::npos || std::isnan(xi))
-          continue;
+        if (part.kind != "attached_mass" || dash == std::string::npos) continue;
+        const double xi = MassPosition(c, between++);
+        if (std::isnan(xi)) continue;
         const auto a = at.find("node " + part.region.substr(0, dash));
         const auto b = at.find("node " + part.region.substr(dash + 1));
         if (a == at.end() || b == at.end()) continue;  // an end on a rigid support

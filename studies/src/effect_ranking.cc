@@ -415,35 +415,63 @@ EffectRanking RankModelEffects(const Structure& structure_in,
   });
 
   // Pairs of effects (max_effects 2): the best-fitting place of each of two
-  // families, fitted together from where their fits ended.
+  // families; and of one family, every two of its kPairPlaces best-fitting
+  // places that lie apart (regions sharing no element or DOF). Each is fitted
+  // from where its two places' fits ended.
   if (options.max_effects >= 2) {
-    std::vector<int> best(kinds.size(), -1);
-    for (std::size_t e = 0; e < effects.size(); ++e) {
-      const Fit& f = fits[e];
-      int& b = best[effect_kind[e]];
-      if (f.ok && f.fitted && (b < 0 || f.chi2 < fits[static_cast<std::size_t>(b)].chi2))
-        b = static_cast<int>(e);
-    }
+    constexpr std::size_t kPairPlaces = 3;
+    // Kind k's fitted instances, the least chi2 first.
+    const auto ranked = [&](std::size_t k) {
+      std::vector<int> r;
+      for (std::size_t e = 0; e < effects.size(); ++e)
+        if (effect_kind[e] == k && fits[e].ok && fits[e].fitted)
+          r.push_back(static_cast<int>(e));
+      std::stable_sort(r.begin(), r.end(), [&](int a, int b) {
+        return fits[static_cast<std::size_t>(a)].chi2 <
+               fits[static_cast<std::size_t>(b)].chi2;
+      });
+      return r;
+    };
+    std::vector<std::vector<int>> by_fit(kinds.size());
+    for (std::size_t k = 0; k < kinds.size(); ++k) by_fit[k] = ranked(k);
     const std::size_t singles = effects.size();
-    int num_pairs = 0;
+    int num_pairs = 0;  // pairs of families (one family twice included)
     std::vector<std::vector<std::string>> pair_families;
     for (std::size_t k1 = 0; k1 < kinds.size(); ++k1) {
-      for (std::size_t k2 = k1 + 1; k2 < kinds.size(); ++k2) {
-        const int b1 = best[k1], b2 = best[k2];
-        if (b1 < 0 || b2 < 0) continue;
+      for (std::size_t k2 = k1; k2 < kinds.size(); ++k2) {
+        std::vector<std::pair<int, int>> combos;
+        if (k1 != k2 && !by_fit[k1].empty() && !by_fit[k2].empty()) {
+          combos.emplace_back(by_fit[k1][0], by_fit[k2][0]);
+        } else if (k1 == k2) {
+          const std::size_t n = std::min(kPairPlaces, by_fit[k1].size());
+          for (std::size_t i = 0; i < n; ++i) {
+            for (std::size_t j = i + 1; j < n; ++j) {
+              const int a = by_fit[k1][i], b = by_fit[k1][j];
+              if (!RegionsOverlap(effects[static_cast<std::size_t>(a)]->region(),
+                                  effects[static_cast<std::size_t>(b)]->region()))
+                combos.emplace_back(a, b);
+            }
+          }
+        }
+        if (combos.empty()) continue;
         ++num_pairs;
-        const Fit& f1 = fits[static_cast<std::size_t>(b1)];
-        const Fit& f2 = fits[static_cast<std::size_t>(b2)];
-        Eigen::VectorXd from(f1.theta.size() + f2.theta.size());
-        from << f1.theta, f2.theta;
-        effects.emplace_back(PairOfModelEffects(effects[static_cast<std::size_t>(b1)],
-                                                effects[static_cast<std::size_t>(b2)],
-                                                {from}));
-        effect_kind.push_back(class_kinds.size());
+        const std::size_t class_index = class_kinds.size();
+        for (const auto& [b1, b2] : combos) {
+          const Fit& f1 = fits[static_cast<std::size_t>(b1)];
+          const Fit& f2 = fits[static_cast<std::size_t>(b2)];
+          Eigen::VectorXd from(f1.theta.size() + f2.theta.size());
+          from << f1.theta, f2.theta;
+          effects.emplace_back(PairOfModelEffects(effects[static_cast<std::size_t>(b1)],
+                                                  effects[static_cast<std::size_t>(b2)],
+                                                  {from}));
+          effect_kind.push_back(class_index);
+        }
         class_kinds.push_back(effects.back()->kind());
         pair_families.push_back({kinds[k1], kinds[k2]});
         log_share.push_back(0);  // set below, once the pairs are counted
-        places.push_back(places[k1] * places[k2]);
+        // Among how many combinations of places its share is split.
+        places.push_back(k1 == k2 ? std::max(1.0, places[k1] * (places[k1] - 1) / 2)
+                                  : places[k1] * places[k2]);
       }
     }
     // One third each on none, one effect and two (two levels where no pair
@@ -773,7 +801,9 @@ EffectRanking RankModelEffects(const Structure& structure_in,
 std::vector<std::string> FamiliesOf(const std::string& kind) {
   const std::size_t plus = kind.find('+');
   if (plus == std::string::npos) return {kind};
-  return {kind.substr(0, plus), kind.substr(plus + 1)};
+  std::string first = kind.substr(0, plus), second = kind.substr(plus + 1);
+  if (first == second) return {first};  // two places of one family
+  return {first, second};
 }
 
 std::vector<std::pair<std::string, double>> FamilyPresence(const EffectRanking& ranking) {

@@ -139,16 +139,19 @@ struct EffectRankingOptions {
   // user's choice. 0 (the default): the most probable family, whatever its
   // probability. In [0, 1).
   double gap_confidence = 0;
-  // 1: single effects. 2: also pairs of two families acting at once
+  // 1: single effects. 2: also pairs of effects acting at once
   // (model_effect_pair.h): for every two families tried, the place of each
-  // that fitted best alone, fitted together from where the two fits ended
-  // (and from the families' starts). The prior is then the cantilever
-  // pipeline's: 1/3 on none, 1/3 on one effect (the families by their
-  // weights), 1/3 on two (each pair by the product of its families' weights),
-  // and a pair's share is split among every combination of its families'
-  // places, as a family's is among its places. A pair's kind is "<first
-  // kind>+<second kind>" in the families' order; it is a family of its own in
-  // kind_probabilities.
+  // that fitted best alone, and for every family, each two of its three
+  // best-fitting places that lie apart (two damaged storeys, two masses),
+  // fitted together from where the two fits ended (and from the families'
+  // starts). The prior is then the cantilever pipeline's (LevelPrior): 1/3 on
+  // none, 1/3 on one effect (the families by their weights), 1/3 on two (each
+  // pair of families, one family twice included, by the product of their
+  // weights), and a pair's share is split among every combination of its
+  // places (n (n - 1) / 2 for one family's n), as a family's is among its
+  // places. A pair's kind is "<first kind>+<second kind>" in the families'
+  // order ("a+a" for one family's); it is a family of its own in
+  // kind_probabilities (FamilyPresence sums each family over its pairs).
   int max_effects = 1;
   // Ok when valid, else the field and what is wrong.
   Invalid Validate() const;
@@ -217,7 +220,7 @@ EffectRanking RankModelEffects(const Structure& structure,
                                const EffectRankingOptions& options);
 
 // The families a class's kind holds: the kind itself, or both of a pair ("a+b",
-// EffectRankingOptions::max_effects 2).
+// EffectRankingOptions::max_effects 2; "a+a", two places of one family: a).
 std::vector<std::string> FamiliesOf(const std::string& kind);
 
 // The probability that each family is part of the explanation: the sum of
