@@ -29,6 +29,13 @@ const DiagnosisMap::Element& ElementOf(const DiagnosisMap& map,
   return map.elements.front();
 }
 
+DiagnosisMap::Node NodeOf(const DiagnosisMap& map, const std::string& name) {
+  for (const auto& n : map.nodes)
+    if (n.region == "node " + name) return n;
+  ADD_FAILURE() << name;
+  return DiagnosisMap::Node();
+}
+
 TEST(DiagnosisMap, DrawsAPlaneFrameToScale) {
   const DiagnosisMap map = MapGeometry(BuildPlaneFrameStructure(Portal()));
   EXPECT_TRUE(map.to_scale);
@@ -136,12 +143,7 @@ TEST(DiagnosisMap, DrawsAMassBetweenNodesAtItsFittedPoint) {
   ASSERT_EQ(p.series.size(), 2u);
   EXPECT_EQ(p.series[1].title, "attached mass, P >= 0.5");
   ASSERT_EQ(p.series[1].x.size(), 1u);
-  const auto node = [&](const std::string& name) {
-    for (const auto& n : map.nodes)
-      if (n.region == "node " + name) return n;
-    ADD_FAILURE() << name;
-    return DiagnosisMap::Node();
-  };
+  const auto node = [&](const std::string& name) { return NodeOf(map, name); };
   EXPECT_DOUBLE_EQ(p.series[1].x[0], 0.75 * node("n1").x + 0.25 * node("n5").x);
   EXPECT_DOUBLE_EQ(p.series[1].y[0], 0.75 * node("n1").y + 0.25 * node("n5").y);
 }
@@ -174,12 +176,7 @@ TEST(DiagnosisMap, DrawsEachPartOfAPairWhereItLies) {
   ASSERT_EQ(p.series.size(), 3u);  // the model, the mass, the supports
   EXPECT_EQ(p.series[1].title, "attached mass, P 0.1-0.5");
   ASSERT_EQ(p.series[1].x.size(), 1u);
-  const auto node = [&](const std::string& name) {
-    for (const auto& n : map.nodes)
-      if (n.region == "node " + name) return n;
-    ADD_FAILURE() << name;
-    return DiagnosisMap::Node();
-  };
+  const auto node = [&](const std::string& name) { return NodeOf(map, name); };
   EXPECT_DOUBLE_EQ(p.series[1].x[0], 0.75 * node("n1").x + 0.25 * node("n5").x);
   EXPECT_EQ(p.series[2].title, "softer supports, P 0.55");
 }
@@ -205,12 +202,7 @@ TEST(DiagnosisMap, DrawsBothPlacesOfAPairOfOneFamily) {
   EXPECT_EQ(p.series[1].title, "stiffness loss, P 0.1-0.5");
   EXPECT_EQ(p.series[2].title, "attached mass, P >= 0.5");
   ASSERT_EQ(p.series[2].x.size(), 2u);
-  const auto node = [&](const std::string& name) {
-    for (const auto& n : map.nodes)
-      if (n.region == "node " + name) return n;
-    ADD_FAILURE() << name;
-    return DiagnosisMap::Node();
-  };
+  const auto node = [&](const std::string& name) { return NodeOf(map, name); };
   EXPECT_DOUBLE_EQ(p.series[2].x[0], 0.75 * node("n1").x + 0.25 * node("n5").x);
   EXPECT_DOUBLE_EQ(p.series[2].x[1], 0.5 * node("n5").x + 0.5 * node("n2").x);
   const auto& columns = p.series[1].x;  // both columns, x 0 and 5
