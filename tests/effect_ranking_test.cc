@@ -111,6 +111,16 @@ TEST(EffectRanking, NamesTwoDamagedStoreysTogether) {
   EXPECT_NEAR(total, 1.0, 1e-12);
   EXPECT_EQ(FamilyPresence(r).front().first, "stiffness_loss");
 
+  // Pairs among the two places that fit best alone only (storeys 1 and 5):
+  // the true pair is not fitted.
+  o.pair_places = 2;
+  const EffectRanking two_places = RankModelEffects(nominal, data, o);
+  for (const RankedClass& c : two_places.classes) {
+    if (c.kind == "stiffness_loss+stiffness_loss") {
+      EXPECT_EQ(c.region, "element 1 + element 5");
+    }
+  }
+
   o.max_effects = 1;
   const EffectRanking single = RankModelEffects(nominal, data, o);
   EXPECT_EQ(single.classes[0].kind, "stiffness_loss");
@@ -766,6 +776,21 @@ TEST(StructureDiagnosis, TheStudyChoosesTheEngine) {
   EffectRankingOptions three;
   three.max_effects = 3;
   EXPECT_EQ(three.Validate().field, "max_effects");
+  // pair_places: 10 unless stated, at least 2 or -1 (every place).
+  EXPECT_EQ(pairs.diagnosis->pair_places, 10);
+  EXPECT_EQ(EffectRankingOptions().pair_places, 10);
+  EXPECT_EQ(
+      ParseStudy(cantilever + "diagnosis: {max_effects: 2, pair_places: -1}\n", "x.yaml")
+          .diagnosis->pair_places,
+      -1);
+  testing::ExpectInputError(
+      [&] { ParseStudy(cantilever + "diagnosis: {pair_places: 1}\n", "x.yaml"); },
+      {"diagnosis.pair_places", "at least 2, or -1"});
+  EffectRankingOptions one_place;
+  one_place.pair_places = 1;
+  EXPECT_EQ(one_place.Validate().field, "pair_places");
+  one_place.pair_places = -1;
+  EXPECT_FALSE(one_place.Validate());
 }
 
 // The bundled cantilever whose real base has springs (1.0e5 N/m, 3.5e4 N m/rad;

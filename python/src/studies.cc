@@ -44,6 +44,7 @@ void BindSpecs(py::module_& m) {
       .def_readwrite("shape_noise", &femup::DiagnosisSpec::shape_noise)
       .def_readwrite("candidates", &femup::DiagnosisSpec::candidates)
       .def_readwrite("max_effects", &femup::DiagnosisSpec::max_effects)
+      .def_readwrite("pair_places", &femup::DiagnosisSpec::pair_places)
       .def_readwrite("held_out", &femup::DiagnosisSpec::held_out)
       .def_readwrite("use_shapes", &femup::DiagnosisSpec::use_shapes)
       .def_readwrite("mesh_error", &femup::DiagnosisSpec::mesh_error)

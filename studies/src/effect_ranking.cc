@@ -217,6 +217,8 @@ Invalid EffectRankingOptions::Validate() const {
     return {"bagging_copies", "must be >= 0 (0: the Laplace posterior alone)"};
   if (max_effects < 1 || max_effects > 2)
     return {"max_effects", "expected 1 (single effects) or 2 (also pairs)"};
+  if (pair_places < 2 && pair_places != -1)
+    return {"pair_places", "expected at least 2, or -1 (every place)"};
   if (!(gap_confidence >= 0 && gap_confidence < 1))
     return {"gap_confidence", "must be in [0, 1) (0: the most probable family)"};
   const auto names = AvailableNonlinearSolvers();
@@ -415,11 +417,13 @@ EffectRanking RankModelEffects(const Structure& structure_in,
   });
 
   // Pairs of effects (max_effects 2): the best-fitting place of each of two
-  // families; and of one family, every two of its kPairPlaces best-fitting
+  // families; and of one family, every two of its pair_places best-fitting
   // places that lie apart (regions sharing no element or DOF). Each is fitted
   // from where its two places' fits ended.
   if (options.max_effects >= 2) {
-    constexpr std::size_t kPairPlaces = 3;
+    const std::size_t pair_places = options.pair_places < 0
+                                        ? effects.size()
+                                        : static_cast<std::size_t>(options.pair_places);
     // Kind k's fitted instances, the least chi2 first.
     const auto ranked = [&](std::size_t k) {
       std::vector<int> r;
@@ -443,7 +447,7 @@ EffectRanking RankModelEffects(const Structure& structure_in,
         if (k1 != k2 && !by_fit[k1].empty() && !by_fit[k2].empty()) {
           combos.emplace_back(by_fit[k1][0], by_fit[k2][0]);
         } else if (k1 == k2) {
-          const std::size_t n = std::min(kPairPlaces, by_fit[k1].size());
+          const std::size_t n = std::min(pair_places, by_fit[k1].size());
           for (std::size_t i = 0; i < n; ++i) {
             for (std::size_t j = i + 1; j < n; ++j) {
               const int a = by_fit[k1][i], b = by_fit[k1][j];

@@ -122,6 +122,7 @@ StructureDiagnosisResult RunStructureDiagnosis(const Study& study) {
   options.members_fitted = spec.members_fitted;
   options.gap_confidence = spec.gap_confidence;
   options.max_effects = spec.MaxEffectsFor(/*own_pipeline=*/false);
+  options.pair_places = spec.pair_places;
   r.priors = spec.priors;
   // A named family that does not apply is the study's error, before any fit.
   for (const std::string& kind : options.kinds) {

@@ -184,7 +184,8 @@ DiagnosisSpec ReadDiagnosis(const Field& f, const Study& study) {
        "refine_mesh",    "bagging_copies", "max_members",      "members_fitted",
        "form_error",     "localise",       "solver",           "confidence",
        "gap_confidence", "evidence",       "evidence_samples", "priors",
-       "weights",        "form_step",      "form_fit",         "rotary_inertia"});
+       "weights",        "form_step",      "form_fit",         "rotary_inertia",
+       "pair_places"});
   DiagnosisSpec d;
   if (f.Has("engine")) {
     d.engine = f["engine"].Str();
@@ -230,6 +231,11 @@ DiagnosisSpec ReadDiagnosis(const Field& f, const Study& study) {
     d.max_effects = f["max_effects"].Int();
     if (d.max_effects < 1 || d.max_effects > 2)
       f["max_effects"].Fail("expected 1 (single effects) or 2 (also pairs)");
+  }
+  if (f.Has("pair_places")) {
+    d.pair_places = f["pair_places"].Int();
+    if (d.pair_places < 2 && d.pair_places != -1)
+      f["pair_places"].Fail("expected at least 2, or -1 (every place)");
   }
   if (f.Has("held_out")) {
     const Field h = f["held_out"];

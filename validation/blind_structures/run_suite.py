@@ -326,7 +326,9 @@ def main():
     ap.add_argument("--suite", default="shear_building", choices=sorted(SUITES))
     ap.add_argument("--cases", type=int, default=100)
     ap.add_argument("--seed", type=int, default=20261126)
-    ap.add_argument("--design", default="mixed", choices=["mixed", "informative"])
+    ap.add_argument("--design", default="mixed", choices=["mixed", "informative", "two_losses"],
+                    help="two_losses: every case two damaged storeys (shear_building "
+                         "only; give --diagnosis max_effects=2)")
     ap.add_argument("--floors", default="flexible", choices=["flexible", "stiff"],
                     help="shear_building: beam-to-column stiffness 10-100 or 1000-10000")
     ap.add_argument("--foundation", default="clamped", choices=["clamped", "springs", "soft"],
@@ -358,6 +360,8 @@ def main():
                  "column bases" % args.foundation)
     if args.foundation == "soft" and args.suite != "plane_frame":
         ap.error("--foundation soft: only the plane_frame suite")
+    if args.design == "two_losses" and args.suite != "shear_building":
+        ap.error("--design two_losses: only the shear_building suite")
     if not (0 <= args.stated_model_error < 1):
         ap.error("--stated-model-error must be in [0, 1)")
     if not (os.path.isfile(args.femup) and os.access(args.femup, os.X_OK)):

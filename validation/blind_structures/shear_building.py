@@ -32,6 +32,10 @@ Effects made in the frame (never in the chain):
   material_scaling     every member's E times s (concrete stiffer or softer than
                        assumed);
   none.
+With --design two_losses every case is two storeys damaged at once (the second's
+loss a fraction 0.5-1 of the first's), for a diagnosis allowed pairs
+(diagnosis.max_effects 2); the truth is "stiffness_loss+stiffness_loss" at
+"element a + element b", in either order.
 Each effect's size is set by the largest relative frequency shift it causes on
 the measured modes, in multiples of the case's frequency noise (log-uniform in
 [5, 50] for four cases in five, [1, 5] for the rest).
@@ -171,6 +175,35 @@ def random_building(rng, floors="flexible"):
                 beam_column_ratio=ratio, column_axial_factor=100.0)
 
 
+class TwoLosses:
+    """Two storeys damaged at once (design "two_losses"): the second storey's
+    loss is a fixed fraction (0.5-1) of the first's, both grown together by
+    the size `a` (monotone)."""
+
+    def __init__(self, rng, p):
+        self.kind = "stiffness_loss+stiffness_loss"
+        self.first = Effect("stiffness_loss", rng, p)
+        self.second = Effect("stiffness_loss", rng, p)
+        while self.second.storey == self.first.storey:
+            self.second = Effect("stiffness_loss", rng, p)
+        self.ratio = float(rng.uniform(0.5, 1.0))
+        self.a_max = 0.9
+        low, high = sorted([self.first.storey, self.second.storey])
+        self.region = "element %d + element %d" % (low, high)
+        self.regions = [self.region, "element %d + element %d" % (high, low)]
+        self.detail = dict(first=self.first.detail, second=self.second.detail,
+                           ratio=self.ratio)
+
+    def building(self, p, a):
+        b = self.first.building(p, a)
+        self.second.damage(b, p, a * self.ratio)
+        return b
+
+    def size_description(self, p, a):
+        return "%s; %s" % (self.first.size_description(p, a),
+                           self.second.size_description(p, a * self.ratio))
+
+
 class Effect:
     """An effect in a Building at a size `a` in (0, a_max] (monotone)."""
 
@@ -215,20 +248,7 @@ class Effect:
         b = Building(q)
         f = b.frame
         if self.kind == "stiffness_loss":
-            parts = p["column_parts"]
-            for c in self.columns:
-                els = b.column_elements[self.storey - 1][c]
-                for k, e in enumerate(els):
-                    centre = (k + 0.5) / parts
-                    hit = ((self.ends in ("bottom", "both") and centre < self.zone) or
-                           (self.ends in ("top", "both") and centre > 1 - self.zone))
-                    if hit:
-                        f.elements[e]["I"] *= 1 - a
-                # A zone shorter than an element still damages the end element.
-                if self.ends in ("bottom", "both") and self.zone < 0.5 / parts:
-                    f.elements[els[0]]["I"] *= 1 - a * self.zone * parts
-                if self.ends in ("top", "both") and self.zone < 0.5 / parts:
-                    f.elements[els[-1]]["I"] *= 1 - a * self.zone * parts
+            self.damage(b, p, a)
         if self.kind == "attached_mass":
             bays = range(p["bays"]) if self.bay is None else [self.bay]
             extra = a * p["slab_line_mass"] * (p["bays"] / len(bays))
@@ -236,6 +256,24 @@ class Effect:
                 for e in b.beam_elements[self.floor - 1][bay]:
                     f.elements[e]["line_mass"] += extra
         return b
+
+    def damage(self, b, p, a):
+        """A stiffness loss's cracked column ends, made in Building b's frame."""
+        f = b.frame
+        parts = p["column_parts"]
+        for c in self.columns:
+            els = b.column_elements[self.storey - 1][c]
+            for k, e in enumerate(els):
+                centre = (k + 0.5) / parts
+                hit = ((self.ends in ("bottom", "both") and centre < self.zone) or
+                       (self.ends in ("top", "both") and centre > 1 - self.zone))
+                if hit:
+                    f.elements[e]["I"] *= 1 - a
+            # A zone shorter than an element still damages the end element.
+            if self.ends in ("bottom", "both") and self.zone < 0.5 / parts:
+                f.elements[els[0]]["I"] *= 1 - a * self.zone * parts
+            if self.ends in ("top", "both") and self.zone < 0.5 / parts:
+                f.elements[els[-1]]["I"] *= 1 - a * self.zone * parts
 
     def size_description(self, p, a):
         if self.kind == "stiffness_loss":
@@ -259,6 +297,8 @@ def make_case(rng, name, design="mixed", noise_free=False, floors="flexible",
     p = random_building(rng, floors)
     ns = p["storeys"]
     kind = KINDS[int(rng.integers(0, len(KINDS)))]
+    if design == "two_losses":
+        kind = "stiffness_loss+stiffness_loss"
     if design == "informative":
         modes = int(rng.integers(3, 6))
         shapes = True
@@ -273,7 +313,7 @@ def make_case(rng, name, design="mixed", noise_free=False, floors="flexible",
         sensors = sorted(set(sensors))
     fnoise = [0.001, 0.002, 0.005][int(rng.integers(0, 3))]
     snoise = [0.01, 0.02, 0.05][int(rng.integers(0, 3))]
-    effect = Effect(kind, rng, p)
+    effect = TwoLosses(rng, p) if design == "two_losses" else Effect(kind, rng, p)
     target = draw_target(rng)
     nominal = Building(p)
     f0, _ = nominal.sway_modes(modes)
@@ -292,7 +332,8 @@ def make_case(rng, name, design="mixed", noise_free=False, floors="flexible",
                  sensors=["x%d" % (i + 1) for i in sensors],
                  shapes=shape_rows if shapes else None, frequency_noise=fnoise,
                  shape_noise=snoise)
-    truth = dict(name=name, kind=kind, region=effect.region, size=a,
+    truth = dict(name=name, kind=kind, region=effect.region,
+                 regions=getattr(effect, "regions", [effect.region]), size=a,
                  description=effect.size_description(p, a), detail=effect.detail,
                  shift_in_noise=achieved, target_shift_in_noise=target, modes=modes,
                  sensors=len(sensors), shapes=bool(shapes), frequency_noise=fnoise,

@@ -157,6 +157,10 @@ struct DiagnosisSpec {
     if (max_effects > 0) return max_effects;
     return own_pipeline ? 2 : 1;
   }
+  // With pairs on the one engine: among how many of a family's best-fitting
+  // places its pairs of places are formed (EffectRankingOptions::pair_places;
+  // -1: every place).
+  int pair_places = 10;
   // Held-out modes: "auto" (the highest mode of each state with 3 or more),
   // "none", or the listed (state, 1-based measured mode) pairs.
   std::string held_out = "auto";
