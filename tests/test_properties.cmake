@@ -32,10 +32,12 @@ set(femup_long_tests
     # EigenSensitivity.RepeatedEigenvaluesAreRotatedToTheMeasuredShapes pairs a
     # repeated pair the same way (AlignRepeatedModes) there.
     "EigenSensitivity.EqualPairsArePairedWhateverTheirRotation=117"
-    # Pairs on the one engine among every family (26 s in Release, session 52):
+    # Pairs on the one engine among every family, two places of one family
+    # among its ten best included (89 s in Release, session 53; its COST is
+    # that times 8, an estimate: it has not run under the sanitizers):
     # StructureDiagnosis.NamesWaterAndAMaterialErrorTogetherAmongThreeFamilies
-    # fits the same pairs among three families (2 s) there.
-    "StructureDiagnosis.NamesWaterAndAMaterialErrorTogetherOnTheOneEngine=200")
+    # fits the same pairs among three families (3 s in Release) there.
+    "StructureDiagnosis.NamesWaterAndAMaterialErrorTogetherOnTheOneEngine=700")
 set(femup_costly_tests
     "StructureDiagnosis.RunsOnAFinerMeshWhereTheModelsMovesTheModes=184"
     "StructureDiagnosis.RunsOnASpaceFrame=170"

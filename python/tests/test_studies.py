@@ -110,6 +110,9 @@ def test_noise_and_diagnosis_settings_are_changed_in_place():
     study.diagnosis = femup.DiagnosisSpec()
     study.diagnosis.max_effects = 1
     assert study.diagnosis.max_effects == 1
+    assert study.diagnosis.pair_places == 10
+    study.diagnosis.pair_places = -1
+    assert study.diagnosis.pair_places == -1
     # The defaults of the switches a study may turn (docs/diagnosis.md).
     assert study.diagnosis.form_step and not study.diagnosis.refine_mesh
     assert study.diagnosis.engine == ""  # the model type's own default
