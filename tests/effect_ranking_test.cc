@@ -110,6 +110,12 @@ TEST(EffectRanking, NamesTwoDamagedStoreysTogether) {
   for (const RankedClass& c : r.classes) total += c.probability;
   EXPECT_NEAR(total, 1.0, 1e-12);
   EXPECT_EQ(FamilyPresence(r).front().first, "stiffness_loss");
+  // The report names each family's presence where only one family's pairs
+  // were tried too.
+  StructureDiagnosisResult result;
+  result.ranking = r;
+  EXPECT_NE(StructureDiagnosisReport(result).find("each family, alone or in a pair: "),
+            std::string::npos);
 
   // Pairs among the two places that fit best alone only (storeys 1 and 5):
   // the true pair is not fitted.

@@ -157,7 +157,7 @@ std::string StructureDiagnosisReport(const StructureDiagnosisResult& r) {
       << " (frequencies) and " << std::sqrt(k.shape_temperature) << " (shapes)\n";
   }
   if (std::any_of(k.kind_probabilities.begin(), k.kind_probabilities.end(),
-                  [](const auto& e) { return FamiliesOf(e.first).size() > 1; })) {
+                  [](const auto& e) { return e.first.find('+') != std::string::npos; })) {
     o << "each family, alone or in a pair:";
     for (const auto& [family, p] : FamilyPresence(k)) {
       if (p >= 0.005)
