@@ -178,6 +178,51 @@ TEST(EffectRanking, FormErrorInFrequenciesIsTemperedApartFromTheShapes) {
   EXPECT_EQ(r.classes[0].region, "element 3");
 }
 
+// A model stiffer than its structure by 1.5 % overall (every frequency about
+// 0.75 % high: 3.7 noise units) is named a material scaling when nothing is
+// stated, and `none` when the user states its overall stiffness is known to
+// 2 % (the uniform change is then the model's own form error). A real E error
+// of 10 % (5 % on every frequency, 2.5 times the stated uncertainty's 2 %
+// on lambda) is still named, and a damaged storey, which changes the modes
+// unevenly, still at its storey.
+TEST(EffectRanking, AllowsForAStatedUncertaintyOfTheModelsStiffness) {
+  ChainSpec truth = ShearBuilding();
+  for (double& k : truth.springs) k *= 0.985;
+  const Structure nominal = BuildSpringMassChain(ShearBuilding());
+  const ModalData d = Measured(truth, 7);
+  EffectRankingOptions stated = Options();
+  stated.stiffness_uncertainty = 0.02;
+  const EffectRanking plain = RankModelEffects(nominal, {d}, Options());
+  EXPECT_EQ(plain.classes[0].kind, "material_scaling");
+  const EffectRanking allowed = RankModelEffects(nominal, {d}, stated);
+  EXPECT_EQ(allowed.classes[0].kind, "none");
+  EXPECT_GT(allowed.classes[0].probability, 0.5);
+  ASSERT_EQ(allowed.form_errors.size(), 1u);
+  EXPECT_NE(allowed.form_errors[0].name.find("overall stiffness (2 %)"),
+            std::string::npos);
+  // Relative to the measured frequencies, 0.75 % and noise away from the model's.
+  EXPECT_NEAR(allowed.form_errors[0].max_frequency_change, 0.01, 3e-4);
+
+  ChainSpec softer = ShearBuilding();
+  for (double& k : softer.springs) k *= 0.9;
+  const EffectRanking e = RankModelEffects(nominal, {Measured(softer, 7)}, stated);
+  EXPECT_EQ(e.classes[0].kind, "material_scaling");
+  EXPECT_GT(e.classes[0].probability, 0.9);
+
+  ChainSpec damaged = ShearBuilding();
+  damaged.springs[2] *= 0.8;
+  const EffectRanking s = RankModelEffects(nominal, {Measured(damaged, 7)}, stated);
+  EXPECT_EQ(s.classes[0].kind, "stiffness_loss");
+  EXPECT_EQ(s.classes[0].region, "element 3");
+
+  EffectRankingOptions bad = Options();
+  bad.stiffness_uncertainty = -0.01;
+  EXPECT_NE(bad.Validate().ToString().find("stiffness_uncertainty"), std::string::npos);
+  bad = Options();
+  bad.mass_uncertainty = 0.5;
+  EXPECT_NE(bad.Validate().ToString().find("mass_uncertainty"), std::string::npos);
+}
+
 TEST(EffectRanking, NamesAnAttachedMassOnTheRoof) {
   ChainSpec truth = ShearBuilding();
   truth.masses[5] += 1.5e4;  // 15 % of a floor on the roof
@@ -797,6 +842,60 @@ TEST(StructureDiagnosis, TheStudyChoosesTheEngine) {
   EXPECT_EQ(one_place.Validate().field, "pair_places");
   one_place.pair_places = -1;
   EXPECT_FALSE(one_place.Validate());
+}
+
+// diagnosis.model_uncertainty: what the study states of the model's overall
+// stiffness and mass reaches the ranking, and the report names it among the
+// form errors allowed for; out of range, an unknown key, or on the
+// cantilever's own pipeline, the field is named before any fit.
+TEST(StructureDiagnosis, ReadsAStatedModelUncertainty) {
+  const std::string chain =
+      "name: x\nmodel: {type: chain, masses: [1e5, 1e5, 1e5], springs: [2e8, 2e8, 2e8]}\n"
+      "measurements:\n  - {state: air, frequencies_hz: [3.48, 9.6, 13.9]}\n";
+  const Study study = ParseStudy(
+      chain + "diagnosis: {model_uncertainty: {stiffness: 0.02, mass: 0.01}}\n",
+      "x.yaml");
+  EXPECT_EQ(study.diagnosis->stiffness_uncertainty, 0.02);
+  EXPECT_EQ(study.diagnosis->mass_uncertainty, 0.01);
+  EXPECT_EQ(DiagnosisSpec().stiffness_uncertainty, 0);
+  EXPECT_EQ(EffectRankingOptions().mass_uncertainty, 0);
+  const StructureDiagnosisResult r = RunStructureDiagnosis(study);
+  ASSERT_EQ(r.ranking.form_errors.size(), 2u);
+  EXPECT_NE(r.ranking.form_errors[0].name.find("overall stiffness (2 %)"),
+            std::string::npos);
+  EXPECT_NE(StructureDiagnosisReport(r).find("overall mass (1 %)"), std::string::npos);
+  testing::ExpectInputError(
+      [&] {
+        ParseStudy(chain + "diagnosis: {model_uncertainty: {stiffness: -0.01}}\n",
+                   "x.yaml");
+      },
+      {"diagnosis.model_uncertainty.stiffness", "0 <= value < 0.5", "-0.01"});
+  testing::ExpectInputError(
+      [&] {
+        ParseStudy(chain + "diagnosis: {model_uncertainty: {mass: 0.5}}\n", "x.yaml");
+      },
+      {"diagnosis.model_uncertainty.mass", "0 <= value < 0.5"});
+  testing::ExpectInputError(
+      [&] {
+        ParseStudy(chain + "diagnosis: {model_uncertainty: {damping: 0.1}}\n", "x.yaml");
+      },
+      {"damping"});
+  const std::string cantilever =
+      "name: x\nmodel: {type: cantilever, length: 2.0, elements: 4,\n"
+      "  section: {E: 2.1e11, A: 9.0e-4, I: 1.6875e-8, rho: 7850}}\n"
+      "measurements:\n  - {state: a, frequencies_hz: [3.1]}\n";
+  testing::ExpectInputError(
+      [&] {
+        ParseStudy(cantilever + "diagnosis: {model_uncertainty: {stiffness: 0.02}}\n",
+                   "x.yaml");
+      },
+      {"diagnosis.model_uncertainty", "engine: model_effects"});
+  EXPECT_EQ(
+      ParseStudy(cantilever + "diagnosis: {engine: model_effects, model_uncertainty: "
+                              "{stiffness: 0.02}}\n",
+                 "x.yaml")
+          .diagnosis->stiffness_uncertainty,
+      0.02);
 }
 
 // The bundled cantilever whose real base has springs (1.0e5 N/m, 3.5e4 N m/rad;

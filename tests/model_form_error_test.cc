@@ -1,6 +1,7 @@
 // The model's own form error as the effect ranking allows for it
 // (studies/src/model_form_error.h): the whitening against the covariance
-// written out (Sherman-Morrison for one direction, a dense inverse for two),
+// written out (Sherman-Morrison for one direction, a dense inverse for two)
+// and its independence of the rows' order,
 // the share of a Jacobian along the variants, the Gauss-Newton step against the
 // normal equations, and a portal frame's shear variant to first order against
 // the eigenvalues of the same frame built with Timoshenko members.
@@ -13,6 +14,7 @@
 #include <string_view>
 
 #include "expect_error.h"
+#include "femup/core/fe/builders.h"
 #include "femup/core/fe/plane_frame.h"
 #include "femup/core/linalg/modal.h"
 #include "femup/problems/effect_priors.h"
@@ -57,6 +59,30 @@ TEST(ModelFormError, WhitensByTheCovarianceOfOneDirection) {
   along[3] = u[2];
   form.Whiten(&along, nullptr);
   EXPECT_NEAR(along.squaredNorm(), u.squaredNorm() / (1 + u.squaredNorm()), 1e-12);
+}
+
+// The bagged posterior resamples the whitened rows one by one, so how a
+// residual is spread over them matters: along a direction shared by every
+// row (a uniform change) it stays uniform, 1 / sqrt(1 + n a^2) on each of n
+// rows for u = a (1, ..., 1), and permuting the rows (u's with them) permutes
+// the whitened rows alike. A Cholesky factor put nearly all of it on the first.
+TEST(ModelFormError, WhitensTheSameWhateverTheRowsOrder) {
+  const ModelFormError uniform(kRows, {Eigen::Vector3d::Constant(5.0)});
+  Eigen::VectorXd r = Eigen::VectorXd::Ones(5);
+  uniform.Whiten(&r, nullptr);
+  for (int k : {0, 2, 3}) EXPECT_NEAR(r[k], 1 / std::sqrt(1 + 3 * 25.0), 1e-12) << k;
+
+  std::mt19937 rng(13);
+  const Eigen::VectorXd u = Random(3, &rng), rf = Random(3, &rng);
+  const std::vector<char> all(3, 1);
+  Eigen::VectorXd w = rf;
+  ModelFormError(all, {u}).Whiten(&w, nullptr);
+  const Eigen::Vector3d pu(u[2], u[0], u[1]);
+  Eigen::VectorXd pw = Eigen::Vector3d(rf[2], rf[0], rf[1]);
+  ModelFormError(all, {pu}).Whiten(&pw, nullptr);
+  EXPECT_NEAR(pw[0], w[2], 1e-12);
+  EXPECT_NEAR(pw[1], w[0], 1e-12);
+  EXPECT_NEAR(pw[2], w[1], 1e-12);
 }
 
 TEST(ModelFormError, WhitensResidualAndJacobianAlikeAndUnwhitensBack) {
@@ -308,8 +334,9 @@ TEST(ModelFormError, MeasuresAPortalsShearDeformationToFirstOrder) {
   EXPECT_LT(r.norm(), 1e-6);  // the model against its own frequencies
 
   std::vector<FormErrorAllowance> allowances;
-  const ModelFormError form = ModelFormError::Measure(model, {d}, options, is_frequency,
-                                                      frequency_sigma, &allowances);
+  const ModelFormError form =
+      ModelFormError::Measure(model, model.form_variants, {d}, options, is_frequency,
+                              frequency_sigma, &allowances);
   ASSERT_TRUE(form.Active());
   ASSERT_EQ(allowances.size(), model.form_variants.size());
   EXPECT_EQ(allowances[0].name, model.form_variants[0].name);
@@ -346,6 +373,58 @@ TEST(ModelFormError, MeasuresAPortalsShearDeformationToFirstOrder) {
   form.Whiten(&u, nullptr);
   EXPECT_LT(u.squaredNorm(), 1.0);
   EXPECT_GT(change.squaredNorm(), 1.0);
+}
+
+}  // namespace
+}  // namespace femup
+
+namespace femup {
+namespace {
+
+// A stated uncertainty of the model's overall stiffness (or mass) scales every
+// eigenvalue by (1 + s) exactly: each frequency row (a lambda row, in units of
+// 2 sigma_f relative) moves by s / (2 sigma_f), the same on every mode, and the
+// allowance's largest relative frequency change is s / 2.
+TEST(StatedUncertaintyVariants, MoveEveryFrequencyAlike) {
+  const Structure chain = BuildSpringMassChain(fixtures::UniformChain(5, 1e5, 2e8));
+  const std::vector<FormVariant> none = StatedUncertaintyVariants(chain, 0, 0);
+  EXPECT_TRUE(none.empty());
+  const std::vector<FormVariant> both = StatedUncertaintyVariants(chain, 0.02, 0.01);
+  ASSERT_EQ(both.size(), 2u);
+  EXPECT_NE(both[0].name.find("stiffness (2 %)"), std::string::npos) << both[0].name;
+  EXPECT_NE(both[1].name.find("mass (1 %)"), std::string::npos) << both[1].name;
+
+  const Modes nominal = SolveModes(chain.stiffness, chain.mass);
+  ModalData d;
+  d.state = "air";
+  d.frequencies_hz = nominal.FrequenciesHz().head(3);
+  EigenSensitivityOptions options;
+  const double frequency_sigma = 0.002;
+  options.frequency_sigma = 2 * frequency_sigma;
+  const std::vector<char> is_frequency(3, 1);
+  for (std::size_t k = 0; k < both.size(); ++k) {
+    const Eigen::VectorXd change = FormVariantChange(chain, both[k], {d}, options);
+    const double s = k == 0 ? 0.02 : -0.01;  // a heavier model is a softer one
+    ASSERT_EQ(change.size(), 3);
+    for (int m = 0; m < 3; ++m)
+      EXPECT_NEAR(change[m], s / (2 * frequency_sigma), 1e-9) << k << " " << m;
+  }
+  std::vector<FormErrorAllowance> allowances;
+  const ModelFormError form = ModelFormError::Measure(
+      chain, both, {d}, options, is_frequency, frequency_sigma, &allowances);
+  ASSERT_TRUE(form.Active());
+  EXPECT_EQ(form.NumDirections(), 1);  // both along the uniform change
+  ASSERT_EQ(allowances.size(), 2u);
+  EXPECT_NEAR(allowances[0].max_frequency_change, 0.01, 1e-12);
+  EXPECT_NEAR(allowances[1].max_frequency_change, 0.005, 1e-12);
+  EXPECT_NEAR(allowances[0].noise_units, std::sqrt(3.0) * 5.0, 1e-8);
+
+  // The covariance I + u u' with u = 5 (1, 1, 1) + (-2.5) (1, 1, 1): a uniform
+  // residual of 1 per row is whitened to 1 / sqrt(1 + 3 (5^2 + 2.5^2)) along
+  // its direction.
+  Eigen::VectorXd r = Eigen::VectorXd::Ones(3);
+  form.Whiten(&r, nullptr);
+  EXPECT_NEAR(r.squaredNorm(), 3.0 / (1 + 3 * (25 + 6.25)), 1e-12);
 }
 
 }  // namespace

@@ -51,6 +51,9 @@ void BindSpecs(py::module_& m) {
       .def_readwrite("formulation_error", &femup::DiagnosisSpec::formulation_error)
       .def_readwrite("form_step", &femup::DiagnosisSpec::form_step)
       .def_readwrite("form_fit", &femup::DiagnosisSpec::form_fit)
+      .def_readwrite("stiffness_uncertainty",
+                     &femup::DiagnosisSpec::stiffness_uncertainty)
+      .def_readwrite("mass_uncertainty", &femup::DiagnosisSpec::mass_uncertainty)
       .def_readwrite("rotary_inertia", &femup::DiagnosisSpec::rotary_inertia)
       .def_readwrite("refine_mesh", &femup::DiagnosisSpec::refine_mesh)
       .def_readwrite("engine", &femup::DiagnosisSpec::engine)

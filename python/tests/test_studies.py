@@ -119,6 +119,11 @@ def test_noise_and_diagnosis_settings_are_changed_in_place():
     study.diagnosis.form_step = False
     assert not study.diagnosis.form_step
     assert not study.diagnosis.form_fit
+    assert study.diagnosis.stiffness_uncertainty == 0
+    study.diagnosis.stiffness_uncertainty = 0.02
+    study.diagnosis.mass_uncertainty = 0.01
+    assert study.diagnosis.stiffness_uncertainty == 0.02
+    assert study.diagnosis.mass_uncertainty == 0.01
     study.diagnosis.form_fit = True
     assert study.diagnosis.form_fit
     assert study.diagnosis.rotary_inertia

@@ -219,6 +219,12 @@ Invalid EffectRankingOptions::Validate() const {
     return {"max_effects", "expected 1 (single effects) or 2 (also pairs)"};
   if (pair_places < 2 && pair_places != -1)
     return {"pair_places", "expected at least 2, or -1 (every place)"};
+  if (!(stiffness_uncertainty >= 0 && stiffness_uncertainty < 0.5))
+    return {"stiffness_uncertainty",
+            "a relative standard deviation: expected 0 <= value < 0.5"};
+  if (!(mass_uncertainty >= 0 && mass_uncertainty < 0.5))
+    return {"mass_uncertainty",
+            "a relative standard deviation: expected 0 <= value < 0.5"};
   if (!(gap_confidence >= 0 && gap_confidence < 1))
     return {"gap_confidence", "must be in [0, 1) (0: the most probable family)"};
   const auto names = AvailableNonlinearSolvers();
@@ -502,11 +508,17 @@ EffectRanking RankModelEffects(const Structure& structure_in,
   // frequency residuals and Jacobian rows are whitened by it. A change the
   // model's own formulation can make (all modes softer alike, for shear
   // deformation) then costs little, and no family is named for it alone.
+  // What the user states of the model's overall stiffness and mass joins them
+  // as variants of its own (StatedUncertaintyVariants), with or without the
+  // builder's.
+  std::vector<FormVariant> variants;
+  if (options.formulation_error) variants = structure->form_variants;
+  for (FormVariant& v : StatedUncertaintyVariants(
+           *structure, options.stiffness_uncertainty, options.mass_uncertainty))
+    variants.push_back(std::move(v));
   const ModelFormError form =
-      options.formulation_error
-          ? ModelFormError::Measure(*structure, states, fit, is_frequency,
-                                    options.frequency_sigma, &out.form_errors)
-          : ModelFormError();
+      ModelFormError::Measure(*structure, variants, states, fit, is_frequency,
+                              options.frequency_sigma, &out.form_errors);
   const bool whitened = form.Active();
   // Each fitted class's fit to the whitened misfit's mode (form_fit), kept per
   // instance, and done again only where the instance's raw fit changed (a

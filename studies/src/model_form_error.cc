@@ -1,9 +1,11 @@
 #include "model_form_error.h"
 
-#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 #include <string>
 #include <utility>
 
@@ -78,11 +80,22 @@ ModelFormError::ModelFormError(std::vector<char> is_frequency,
     }
   }
   if (rows == 0) return;
-  // The frequency rows' covariance I + sum_j u_j u_j', as its lower Cholesky
-  // factor; the identity when there is no direction.
+  // The frequency rows' covariance I + sum_j u_j u_j' (the identity when there
+  // is no direction), as its symmetric square root and that root's inverse.
+  // Any W with W' W = C^-1 gives every class the same chi2 and Laplace
+  // evidence, but the bagged posterior resamples the whitened rows one by
+  // one: a Cholesky factor would put nearly all of a residual along a
+  // direction shared by every row into the first frequency row, and the
+  // copies that do not draw that row (a third of them) would see none of it.
+  // C^-1/2 is the whitening nearest the identity and the same whatever the
+  // rows' order: a residual along u_j stays spread over the rows as u_j is.
   Eigen::MatrixXd cov = Eigen::MatrixXd::Identity(rows, rows);
   for (const Eigen::VectorXd& u : directions) cov += u * u.transpose();
-  factor_ = cov.llt().matrixL();
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(cov);
+  const Eigen::VectorXd root = eig.eigenvalues().cwiseSqrt();
+  root_ = eig.eigenvectors() * root.asDiagonal() * eig.eigenvectors().transpose();
+  inverse_root_ = eig.eigenvectors() * root.cwiseInverse().asDiagonal() *
+                  eig.eigenvectors().transpose();
   if (directions.empty()) return;
   Eigen::MatrixXd u(rows, static_cast<Eigen::Index>(directions.size()));
   for (std::size_t j = 0; j < directions.size(); ++j)
@@ -93,7 +106,34 @@ ModelFormError::ModelFormError(std::vector<char> is_frequency,
   basis_ = qr.householderQ() * Eigen::MatrixXd::Identity(rows, qr.rank());
 }
 
+std::vector<FormVariant> StatedUncertaintyVariants(const Structure& structure,
+                                                   double stiffness, double mass) {
+  std::vector<FormVariant> out;
+  const auto percent = [](double x) {
+    std::ostringstream s;
+    s << std::setprecision(3) << 100 * x << " %";
+    return s.str();
+  };
+  if (stiffness != 0) {
+    FormVariant v;
+    v.name = "the stated uncertainty of the model's overall stiffness (" +
+             percent(stiffness) + ")";
+    v.stiffness = (1 + stiffness) * structure.stiffness;
+    v.mass = structure.mass;
+    out.push_back(std::move(v));
+  }
+  if (mass != 0) {
+    FormVariant v;
+    v.name = "the stated uncertainty of the model's overall mass (" + percent(mass) + ")";
+    v.stiffness = structure.stiffness;
+    v.mass = (1 + mass) * structure.mass;
+    out.push_back(std::move(v));
+  }
+  return out;
+}
+
 ModelFormError ModelFormError::Measure(const Structure& structure,
+                                       const std::vector<FormVariant>& variants,
                                        const std::vector<ModalData>& states,
                                        const EigenSensitivityOptions& options,
                                        const std::vector<char>& is_frequency,
@@ -101,9 +141,9 @@ ModelFormError ModelFormError::Measure(const Structure& structure,
                                        std::vector<FormErrorAllowance>* allowances) {
   const bool any_frequency =
       std::any_of(is_frequency.begin(), is_frequency.end(), [](char f) { return f; });
-  if (structure.form_variants.empty() || !any_frequency) return {};
+  if (variants.empty() || !any_frequency) return {};
   std::vector<Eigen::VectorXd> directions;
-  for (const FormVariant& v : structure.form_variants) {
+  for (const FormVariant& v : variants) {
     const Eigen::VectorXd change = FormVariantChange(structure, v, states, options);
     if (change.size() != static_cast<Eigen::Index>(is_frequency.size())) {
       throw InputError("measurements", "the model's form variant (" + v.name +
@@ -144,11 +184,9 @@ void ModelFormError::Transform(Eigen::VectorXd* r, Eigen::MatrixXd* j, bool back
     rf[k] = (*r)[frequency_rows_[static_cast<std::size_t>(k)]];
     if (cols > 0) jf.row(k) = j->row(frequency_rows_[static_cast<std::size_t>(k)]);
   }
-  const auto l = factor_.triangularView<Eigen::Lower>();
-  rf = back ? Eigen::VectorXd(l * rf) : Eigen::VectorXd(l.solve(rf));
-  // "none" has no unknowns: Eigen's triangular solve of an empty right-hand
-  // side reads its first coefficient (UBSan: a null reference).
-  if (cols > 0) jf = back ? Eigen::MatrixXd(l * jf) : Eigen::MatrixXd(l.solve(jf));
+  const Eigen::MatrixXd& w = back ? root_ : inverse_root_;
+  rf = w * rf;
+  if (cols > 0) jf = w * jf;
   for (Eigen::Index k = 0; k < rows; ++k) {
     (*r)[frequency_rows_[static_cast<std::size_t>(k)]] = rf[k];
     if (cols > 0) j->row(frequency_rows_[static_cast<std::size_t>(k)]) = jf.row(k);

@@ -7,7 +7,7 @@
 // at the nominal model's paired modes. The frequency rows' covariance is then
 // I + sum_j u_j u_j' (one standard deviation of form error along each
 // variant's change), and a class is judged on its residuals and Jacobian
-// whitened by it.
+// whitened by it (by its symmetric inverse square root).
 //
 // Also here, the two ways a fitted class is moved to the mode of its whitened
 // misfit before its evidence is taken: one Gauss-Newton step
@@ -53,6 +53,17 @@ Eigen::VectorXd FormVariantChange(const Structure& structure, const FormVariant&
                                   const std::vector<ModalData>& states,
                                   const EigenSensitivityOptions& options);
 
+// What the user states of the nominal model's overall stiffness and mass
+// (relative standard deviations: EffectRankingOptions::stiffness_uncertainty,
+// mass_uncertainty) as form variants on the model's DOFs: the model with its
+// stiffness times (1 + stiffness), and with its mass times (1 + mass); none
+// for a zero. Both move every frequency by the same relative amount (half the
+// value, in opposite senses), so together they are one direction of the
+// frequencies' covariance, of variance (stiffness^2 + mass^2) / 4 relative to
+// a frequency: an overall error the user already expects, not a gap.
+std::vector<FormVariant> StatedUncertaintyVariants(const Structure& structure,
+                                                   double stiffness, double mass);
+
 class ModelFormError {
  public:
   // No form error allowed for: not Active(), and Whiten and Unwhiten leave
@@ -68,28 +79,30 @@ class ModelFormError {
   ModelFormError(std::vector<char> is_frequency,
                  const std::vector<Eigen::VectorXd>& directions);
 
-  // Measured on the data: every one of structure.form_variants
-  // (FormVariantChange) on the frequency rows of the nominal model's residuals
-  // (is_frequency), and for the report each variant's size (`allowances`,
-  // appended: the largest relative frequency change, a lambda row being in
+  // Measured on the data: every one of `variants` (FormVariantChange; the
+  // structure's form_variants, StatedUncertaintyVariants) on the frequency rows of the
+  // nominal model's residuals (is_frequency), and for the report each variant's size
+  // (`allowances`, appended: the largest relative frequency change, a lambda row being in
   // units of 2 frequency_sigma, and the change's norm in noise units). Not
-  // Active, and nothing appended, where the structure has no variant or the
-  // data no frequency.
+  // Active, and nothing appended, where there is no variant or the data no
+  // frequency.
   static ModelFormError Measure(const Structure& structure,
+                                const std::vector<FormVariant>& variants,
                                 const std::vector<ModalData>& states,
                                 const EigenSensitivityOptions& options,
                                 const std::vector<char>& is_frequency,
                                 double frequency_sigma,
                                 std::vector<FormErrorAllowance>* allowances);
 
-  bool Active() const { return factor_.size() > 0; }
+  bool Active() const { return root_.size() > 0; }
   const std::vector<int>& frequency_rows() const { return frequency_rows_; }
   // The rank of the variants' changes (columns of an orthonormal basis).
   int NumDirections() const { return static_cast<int>(basis_.cols()); }
 
   // The frequency rows of a residual, and of its Jacobian where `j` is not
-  // null, whitened (L^-1 r, L the covariance's lower Cholesky factor), or
-  // turned back into raw ones (L r). Rows of the shapes are left as they are.
+  // null, whitened (C^-1/2 r, C^-1/2 the covariance's symmetric inverse square
+  // root, the same whatever the rows' order), or turned back into raw ones
+  // (C^1/2 r). Rows of the shapes are left as they are.
   // Throws InputError("residual", ...) for a residual of another length than
   // the is_frequency flags, or a Jacobian whose rows do not match it.
   void Whiten(Eigen::VectorXd* r, Eigen::MatrixXd* j) const;
@@ -106,8 +119,9 @@ class ModelFormError {
 
   std::size_t num_rows_ = 0;
   std::vector<int> frequency_rows_;
-  Eigen::MatrixXd factor_;  // lower Cholesky factor of I + sum_j u_j u_j'
-  Eigen::MatrixXd basis_;   // orthonormal basis of the u_j
+  Eigen::MatrixXd root_;          // symmetric square root of I + sum_j u_j u_j'
+  Eigen::MatrixXd inverse_root_;  // and its inverse
+  Eigen::MatrixXd basis_;         // orthonormal basis of the u_j
 };
 
 // A class's parameter box and its stated normal priors linearised at its theta

@@ -123,6 +123,8 @@ StructureDiagnosisResult RunStructureDiagnosis(const Study& study) {
   options.gap_confidence = spec.gap_confidence;
   options.max_effects = spec.MaxEffectsFor(/*own_pipeline=*/false);
   options.pair_places = spec.pair_places;
+  options.stiffness_uncertainty = spec.stiffness_uncertainty;
+  options.mass_uncertainty = spec.mass_uncertainty;
   r.priors = spec.priors;
   // A named family that does not apply is the study's error, before any fit.
   for (const std::string& kind : options.kinds) {

@@ -178,14 +178,19 @@ void ReadStatedPriors(const Field& f, const Study& study, DiagnosisSpec* d) {
 }  // namespace
 
 DiagnosisSpec ReadDiagnosis(const Field& f, const Study& study) {
-  f.ExpectKeys(
-      {"engine",         "noise",          "candidates",       "max_effects",
-       "held_out",       "use_shapes",     "mesh_error",       "formulation_error",
-       "refine_mesh",    "bagging_copies", "max_members",      "members_fitted",
-       "form_error",     "localise",       "solver",           "confidence",
-       "gap_confidence", "evidence",       "evidence_samples", "priors",
-       "weights",        "form_step",      "form_fit",         "rotary_inertia",
-       "pair_places"});
+  f.ExpectKeys({"engine",           "noise",
+                "candidates",       "max_effects",
+                "held_out",         "use_shapes",
+                "mesh_error",       "formulation_error",
+                "refine_mesh",      "bagging_copies",
+                "max_members",      "members_fitted",
+                "form_error",       "localise",
+                "solver",           "confidence",
+                "gap_confidence",   "evidence",
+                "evidence_samples", "priors",
+                "weights",          "form_step",
+                "form_fit",         "rotary_inertia",
+                "pair_places",      "model_uncertainty"});
   DiagnosisSpec d;
   if (f.Has("engine")) {
     d.engine = f["engine"].Str();
@@ -236,6 +241,26 @@ DiagnosisSpec ReadDiagnosis(const Field& f, const Study& study) {
     d.pair_places = f["pair_places"].Int();
     if (d.pair_places < 2 && d.pair_places != -1)
       f["pair_places"].Fail("expected at least 2, or -1 (every place)");
+  }
+  if (f.Has("model_uncertainty")) {
+    const Field u = f["model_uncertainty"];
+    if (d.EngineFor(study.cantilever.has_value()) == "cantilever") {
+      u.Fail(
+          "the cantilever's own pipeline does not allow for a stated model uncertainty; "
+          "engine: model_effects does");
+    }
+    u.ExpectKeys({"stiffness", "mass"});
+    const auto read = [&](const char* key, double* out) {
+      if (!u.Has(key)) return;
+      *out = u[key].Num();
+      if (!(*out >= 0 && *out < 0.5)) {
+        u[key].Fail("a relative standard deviation of the model's overall " +
+                    std::string(key) + ": expected 0 <= value < 0.5, found " +
+                    u[key].Str());
+      }
+    };
+    read("stiffness", &d.stiffness_uncertainty);
+    read("mass", &d.mass_uncertainty);
   }
   if (f.Has("held_out")) {
     const Field h = f["held_out"];

@@ -111,6 +111,16 @@ struct EffectRankingOptions {
   // (-1: however many), or where the study states its regions: each member is
   // one more fit.
   int max_members = 200;
+  // What the user knows of the nominal model's overall stiffness and mass, as
+  // relative standard deviations (an E known to within 2 %: 0.02; 0: nothing
+  // stated). Each is allowed for as a form variant of the model
+  // (model_form_error.h: the frequencies' covariance gains one standard
+  // deviation along the uniform change it makes), with or without
+  // formulation_error: an overall change the model is already expected to be
+  // off by is not named a gap, and a material scaling must exceed it. In
+  // [0, 0.5).
+  double stiffness_uncertainty = 0;
+  double mass_uncertainty = 0;
   // Attached masses carry a fitted rotary inertia (a radius of gyration) where
   // the structure has rotational DOFs and node coordinates; false: point
   // masses on the translations only (ModelEffectOptions::rotary_inertia).

@@ -187,6 +187,13 @@ struct DiagnosisSpec {
   // and 7 wrong that it had right (docs/diagnosis.md, "Diagnosing on the finer
   // mesh"). Not used by the cantilever's own pipeline.
   bool refine_mesh = false;
+  // What the user knows of the nominal model's overall stiffness and mass
+  // (`model_uncertainty: {stiffness: 0.02, mass: 0.01}`, relative standard
+  // deviations; 0: nothing stated), allowed for as the model's form error
+  // rather than named a gap (EffectRankingOptions::stiffness_uncertainty).
+  // The one engine only: refused with engine: cantilever.
+  double stiffness_uncertainty = 0;
+  double mass_uncertainty = 0;
   // Bootstrap copies the structures' probabilities are averaged over (a
   // bagged posterior, effect_ranking.h); 0: the Laplace posterior alone. Not
   // used by the cantilever's own pipeline.
