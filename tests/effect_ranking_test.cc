@@ -25,6 +25,8 @@
 #include "femup/core/fe/plane_frame.h"
 #include "femup/core/fe/space_frame.h"
 #include "femup/core/linalg/modal.h"
+#include "femup/problems/model_effect_pair.h"
+#include "femup/problems/model_effects.h"
 #include "femup/reporting/outputs.h"
 #include "femup/studies/structure_diagnosis.h"
 #include "prior_builders.h"
@@ -275,6 +277,45 @@ ModalData PortalMeasured(const Structure& truth, unsigned seed,
       d.shapes(i, j) += 0.02 * peak * normal(rng);
   }
   return d;
+}
+
+// A pair of one family's places takes its share of the prior split among the
+// pairs that family can form: every two of its places that lie apart. On a
+// portal, stiffness loss acts on members and on their parts, which overlap
+// and never pair, so the count (by brute force here) is below n (n - 1) / 2.
+TEST(EffectRanking, SplitsAOneFamilyPairsPriorAmongThePlacesThatLieApart) {
+  const Structure portal = BuildPlaneFrameStructure(TwoStoreyPortal());
+  const auto instances = CreateModelEffects("stiffness_loss", portal);
+  const auto n = static_cast<double>(instances.size());
+  double apart = 0;
+  for (std::size_t i = 0; i < instances.size(); ++i)
+    for (std::size_t j = i + 1; j < instances.size(); ++j)
+      if (!RegionsOverlap(instances[i]->region(), instances[j]->region())) apart += 1;
+  ASSERT_GT(apart, 0);
+  EXPECT_LT(apart, n * (n - 1) / 2);
+
+  const Modes modes = SolveModes(portal.stiffness, portal.mass);
+  ModalData d;
+  d.state = "air";
+  d.frequencies_hz = modes.FrequenciesHz().head(3);
+  EffectRankingOptions o = Options();
+  o.kinds = {"stiffness_loss"};
+  o.max_effects = 2;
+  o.pair_places = 2;
+  o.bagging_copies = 0;
+  const EffectRanking r = RankModelEffects(portal, {d}, o);
+  int pairs = 0, singles = 0;
+  for (const RankedClass& c : r.classes) {
+    if (c.kind == "stiffness_loss+stiffness_loss") {
+      ++pairs;
+      EXPECT_NEAR(c.log_prior, std::log(1.0 / 3) - std::log(apart), 1e-12) << c.region;
+    } else if (c.kind == "stiffness_loss") {
+      ++singles;
+      EXPECT_NEAR(c.log_prior, std::log(1.0 / 3) - std::log(n), 1e-12) << c.region;
+    }
+  }
+  EXPECT_EQ(singles, static_cast<int>(n));
+  EXPECT_GE(pairs, 1);
 }
 
 // A portal frame on base rotation springs (the foundation as the engineer

@@ -159,6 +159,22 @@ def test_frame_diagnosis_states_the_form_error_it_allowed_for(run_cli):
         expected["verdict"]["kind"], expected["verdict"]["region"])
 
 
+def test_a_stated_model_uncertainty_is_allowed_for_as_form_error():
+    building = femup.load_study(str(EXAMPLES / "diagnosis" / "shear_building.yaml"))
+    building.diagnosis.stiffness_uncertainty = 0.02
+    result = femup.run_structure_diagnosis(building)
+    names = [e.name for e in result.ranking.form_errors]
+    assert names == ["the stated uncertainty of the model's overall stiffness (2 %)"]
+    # K (1 + s) moves each frequency by s / 2 of the model's, stated relative to
+    # the measured ones, which the damaged storey has lowered by up to 11 %.
+    assert 0.01 <= result.ranking.form_errors[0].max_frequency_change <= 0.0112
+    # A damaged storey changes the modes unevenly and is still named.
+    assert (result.classes[0].kind, result.classes[0].region) == ("stiffness_loss", "element 3")
+    building.diagnosis.mass_uncertainty = 0.7
+    with pytest.raises(femup.InputError, match="mass_uncertainty"):
+        femup.run_structure_diagnosis(building)
+
+
 def test_the_two_diagnosis_pipelines_directly_and_their_refusals():
     cantilever = femup.load_study(str(EXAMPLES / "diagnosis" / "added_mass.yaml"))
     building = femup.load_study(str(EXAMPLES / "diagnosis" / "shear_building.yaml"))

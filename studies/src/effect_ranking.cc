@@ -202,6 +202,21 @@ Nominal NominalResidual(const Structure& structure, const std::vector<ModalData>
   return out;
 }
 
+// How many two of kind k's places (the first `singles` effects) lie apart:
+// the pairs of places one family can form (RegionsOverlap).
+double PlacesApart(const std::vector<std::shared_ptr<const ModelEffect>>& effects,
+                   const std::vector<std::size_t>& effect_kind, std::size_t singles,
+                   std::size_t k) {
+  std::vector<const EffectRegion*> of;
+  for (std::size_t e = 0; e < singles; ++e)
+    if (effect_kind[e] == k) of.push_back(&effects[e]->region());
+  double apart = 0;
+  for (std::size_t i = 0; i < of.size(); ++i)
+    for (std::size_t j = i + 1; j < of.size(); ++j)
+      if (!RegionsOverlap(*of[i], *of[j])) apart += 1;
+  return apart;
+}
+
 }  // namespace
 
 Invalid EffectRankingOptions::Validate() const {
@@ -479,8 +494,12 @@ EffectRanking RankModelEffects(const Structure& structure_in,
         class_kinds.push_back(effects.back()->kind());
         pair_families.push_back({kinds[k1], kinds[k2]});
         log_share.push_back(0);  // set below, once the pairs are counted
-        // Among how many combinations of places its share is split.
-        places.push_back(k1 == k2 ? std::max(1.0, places[k1] * (places[k1] - 1) / 2)
+        // Among how many combinations of places its share is split: every
+        // place of one family with every place of the other; of one family,
+        // every two of its places that lie apart (a member and its own parts
+        // never form a pair, so they take no share).
+        places.push_back(k1 == k2 ? std::max(1.0, PlacesApart(effects, effect_kind,
+                                                              singles, k1))
                                   : places[k1] * places[k2]);
       }
     }

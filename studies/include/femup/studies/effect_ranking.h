@@ -158,8 +158,8 @@ struct EffectRankingOptions {
   // none, 1/3 on one effect (the families by their weights), 1/3 on two (each
   // pair of families, one family twice included, by the product of their
   // weights), and a pair's share is split among every combination of its
-  // places (n (n - 1) / 2 for one family's n), as a family's is among its
-  // places. A pair's kind is "<first kind>+<second kind>" in the families'
+  // places (for one family, every two of its places that lie apart), as a
+  // family's is among its places. A pair's kind is "<first kind>+<second kind>" in the families'
   // order ("a+a" for one family's); it is a family of its own in
   // kind_probabilities (FamilyPresence sums each family over its pairs).
   int max_effects = 1;
