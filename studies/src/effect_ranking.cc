@@ -498,9 +498,9 @@ EffectRanking RankModelEffects(const Structure& structure_in,
         // place of one family with every place of the other; of one family,
         // every two of its places that lie apart (a member and its own parts
         // never form a pair, so they take no share).
-        places.push_back(k1 == k2 ? std::max(1.0, PlacesApart(effects, effect_kind,
-                                                              singles, k1))
-                                  : places[k1] * places[k2]);
+        places.push_back(
+            k1 == k2 ? std::max(1.0, PlacesApart(effects, effect_kind, singles, k1))
+                     : places[k1] * places[k2]);
       }
     }
     // One third each on none, one effect and two (two levels where no pair

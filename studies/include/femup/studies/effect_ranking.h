@@ -159,8 +159,8 @@ struct EffectRankingOptions {
   // pair of families, one family twice included, by the product of their
   // weights), and a pair's share is split among every combination of its
   // places (for one family, every two of its places that lie apart), as a
-  // family's is among its places. A pair's kind is "<first kind>+<second kind>" in the families'
-  // order ("a+a" for one family's); it is a family of its own in
+  // family's is among its places. A pair's kind is "<first kind>+<second kind>" in the
+  // families' order ("a+a" for one family's); it is a family of its own in
   // kind_probabilities (FamilyPresence sums each family over its pairs).
   int max_effects = 1;
   // With max_effects 2: among how many of a family's best-fitting places
