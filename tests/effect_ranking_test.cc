@@ -180,6 +180,62 @@ TEST(EffectRanking, FormErrorInFrequenciesIsTemperedApartFromTheShapes) {
   EXPECT_EQ(r.classes[0].region, "element 3");
 }
 
+// With a marginal frequency temperature, a class's evidence is its likelihood
+// integrated over T = 1 + d^2 (d: each mode's discrepancy in noise units),
+// half the prior at T = 1 and half uniform in log T up to 1e4. For `none`
+// (no parameter, no Occam factor) on frequencies alone that is
+//   log(1/2 e^(-chi2/2) + 1/2 int_0^U T^(-n/2) e^(-chi2/(2T)) du / U),
+// u = log T, U = log 1e4: checked here by Simpson's rule on 20,000 intervals
+// against the ranking's 41-point grid.
+TEST(EffectRanking, AMarginalTemperatureIntegratesNonesEvidenceOverT) {
+  ModalData d = Measured(ShearBuilding(), 3);
+  const double offsets[4] = {0.012, -0.010, 0.008, -0.012};  // 4-6 noise units
+  for (int j = 0; j < 4; ++j) d.frequencies_hz[j] *= 1 + offsets[j];
+  EffectRankingOptions o = Options();
+  o.use_shapes = false;
+  o.frequency_temperature = EffectRankingOptions::FrequencyTemperature::kMarginal;
+  const EffectRanking r = RankModelEffects(BuildSpringMassChain(ShearBuilding()), {d}, o);
+  const auto none = std::find_if(r.classes.begin(), r.classes.end(),
+                                 [](const RankedClass& c) { return c.kind == "none"; });
+  ASSERT_NE(none, r.classes.end());
+  const double chi2 = none->chi2, n = 4, span = std::log(1e4);
+  ASSERT_GT(chi2, 50.0);  // far beyond the noise: the integral is what decides
+  const int intervals = 20000;
+  double integral = 0;
+  for (int k = 0; k <= intervals; ++k) {
+    const double u = span * k / intervals, t = std::exp(u);
+    const double w = (k == 0 || k == intervals) ? 1 : (k % 2 == 1 ? 4 : 2);
+    integral += w * std::exp(-0.5 * n * u - 0.5 * chi2 / t);
+  }
+  integral *= span / intervals / 3 / span;
+  const double expected = std::log(0.5 * std::exp(-0.5 * chi2) + 0.5 * integral);
+  EXPECT_NEAR(none->evidence.log_evidence, expected, 1e-3);
+  // The frequencies' misfit is uneven, mode by mode, as a form error of no
+  // particular shape makes it: no family is named for it.
+  EXPECT_EQ(r.classes[0].kind, "none");
+  EXPECT_GT(none->frequency_temperature, 5.0);
+}
+
+// A marginal temperature still names real effects: a storey at 80 % with
+// shapes (the frequencies then fitted at T near 1), and leaves data that fit
+// the model within the noise at T near 1.
+TEST(EffectRanking, AMarginalTemperatureStillNamesTheDamagedStorey) {
+  EffectRankingOptions o = Options();
+  o.frequency_temperature = EffectRankingOptions::FrequencyTemperature::kMarginal;
+  ChainSpec truth = ShearBuilding();
+  truth.springs[2] *= 0.8;
+  const Structure nominal = BuildSpringMassChain(ShearBuilding());
+  const EffectRanking r = RankModelEffects(nominal, {Measured(truth, 7)}, o);
+  EXPECT_EQ(r.classes[0].kind, "stiffness_loss");
+  EXPECT_EQ(r.classes[0].region, "element 3");
+  EXPECT_GT(r.classes[0].probability, 0.9);
+  EXPECT_LT(r.classes[0].frequency_temperature, 2.0);
+  const EffectRanking quiet =
+      RankModelEffects(nominal, {Measured(ShearBuilding(), 3)}, o);
+  EXPECT_EQ(quiet.classes[0].kind, "none");
+  EXPECT_LT(quiet.classes[0].frequency_temperature, 2.0);
+}
+
 // A model stiffer than its structure by 1.5 % overall (every frequency about
 // 0.75 % high: 3.7 noise units) is named a material scaling when nothing is
 // stated, and `none` when the user states its overall stiffness is known to
@@ -394,6 +450,13 @@ TEST(EffectRanking, AllowsForTheModelsOwnShearDeformation) {
 
   const EffectRanking r = RankModelEffects(model, {d}, Options());
   ASSERT_EQ(r.form_errors.size(), 2u);
+  // With its form variants allowed for, the frame's frequencies are tempered by
+  // the threshold rule (FrequencyTemperature::kAuto); without them, by the
+  // marginal one.
+  EXPECT_EQ(r.frequency_temperature,
+            EffectRankingOptions::FrequencyTemperature::kThreshold);
+  EXPECT_EQ(blind.frequency_temperature,
+            EffectRankingOptions::FrequencyTemperature::kMarginal);
   EXPECT_NE(r.form_errors[1].name.find("finer mesh"), std::string::npos);
   EXPECT_NE(r.form_errors[0].name.find("shear deformation"), std::string::npos);
   // Shear makes the four modes up to 6 % softer here (the stocky columns' higher
@@ -501,10 +564,22 @@ TEST(EffectRanking, GlobalMatricesOnlyGetTheFamiliesThatNeedNoElements) {
 }
 
 TEST(EffectRanking, NoGapWhenTheNoiseExplainsTheData) {
+  // A chain has no form variant: its temperature is marginal by default, the
+  // verdict's a little above 1 (the prior's half above 1 keeps some weight).
   const EffectRanking r = RankModelEffects(BuildSpringMassChain(ShearBuilding()),
                                            {Measured(ShearBuilding(), 3)}, Options());
   EXPECT_EQ(r.kind_probabilities[0].first, "none");
-  EXPECT_DOUBLE_EQ(r.temperature, 1.0);
+  EXPECT_EQ(r.frequency_temperature,
+            EffectRankingOptions::FrequencyTemperature::kMarginal);
+  EXPECT_GE(r.temperature, 1.0);
+  EXPECT_LT(r.temperature, 1.5);
+  EffectRankingOptions threshold = Options();
+  threshold.frequency_temperature =
+      EffectRankingOptions::FrequencyTemperature::kThreshold;
+  const EffectRanking t = RankModelEffects(BuildSpringMassChain(ShearBuilding()),
+                                           {Measured(ShearBuilding(), 3)}, threshold);
+  EXPECT_EQ(t.kind_probabilities[0].first, "none");
+  EXPECT_DOUBLE_EQ(t.temperature, 1.0);
 }
 
 // A gap is named only at the stated confidence: with the gap's probability
@@ -937,6 +1012,40 @@ TEST(StructureDiagnosis, ReadsAStatedModelUncertainty) {
                  "x.yaml")
           .diagnosis->stiffness_uncertainty,
       0.02);
+}
+
+// diagnosis.frequency_temperature chooses how the frequencies' noise
+// temperature enters the evidence; the report and diagnosis.json say which.
+TEST(StructureDiagnosis, ReadsTheFrequencyTemperature) {
+  const std::string chain =
+      "name: x\nmodel: {type: chain, masses: [1e5, 1e5, 1e5], springs: [2e8, 2e8, 2e8]}\n"
+      "measurements:\n  - {state: air, frequencies_hz: [3.48, 9.6, 13.9]}\n";
+  const Study study =
+      ParseStudy(chain + "diagnosis: {frequency_temperature: marginal}\n", "x.yaml");
+  EXPECT_EQ(study.diagnosis->frequency_temperature,
+            EffectRankingOptions::FrequencyTemperature::kMarginal);
+  EXPECT_EQ(ToString(DiagnosisSpec().frequency_temperature), "auto");
+  const StructureDiagnosisResult r = RunStructureDiagnosis(study);
+  EXPECT_EQ(ToString(r.ranking.frequency_temperature), "marginal");
+  EXPECT_EQ(r.ranking.temperature, r.ranking.classes[0].frequency_temperature);
+  EXPECT_NE(StructureDiagnosisReport(r).find("integrated over for each class"),
+            std::string::npos);
+  EXPECT_EQ(FrequencyTemperatureNamed("threshold"),
+            EffectRankingOptions::FrequencyTemperature::kThreshold);
+  EXPECT_FALSE(FrequencyTemperatureNamed("Marginal").has_value());
+  testing::ExpectInputError(
+      [&] { ParseStudy(chain + "diagnosis: {frequency_temperature: Auto}\n", "x.yaml"); },
+      {"diagnosis.frequency_temperature", "auto, threshold or marginal", "Auto"});
+  const std::string cantilever =
+      "name: x\nmodel: {type: cantilever, length: 2.0, elements: 4,\n"
+      "  section: {E: 2.1e11, A: 9.0e-4, I: 1.6875e-8, rho: 7850}}\n"
+      "measurements:\n  - {state: a, frequencies_hz: [3.1]}\n";
+  testing::ExpectInputError(
+      [&] {
+        ParseStudy(cantilever + "diagnosis: {frequency_temperature: marginal}\n",
+                   "x.yaml");
+      },
+      {"diagnosis.frequency_temperature", "engine: model_effects"});
 }
 
 // The bundled cantilever whose real base has springs (1.0e5 N/m, 3.5e4 N m/rad;

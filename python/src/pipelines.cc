@@ -404,6 +404,7 @@ void BindDiagnosis(py::module_& m) {
       .def_readonly("names", &femup::RankedClass::names)
       .def_readonly("theta", &femup::RankedClass::theta)
       .def_readonly("chi2", &femup::RankedClass::chi2)
+      .def_readonly("frequency_temperature", &femup::RankedClass::frequency_temperature)
       .def_readonly("evidence", &femup::RankedClass::evidence)
       .def_readonly("log_prior", &femup::RankedClass::log_prior)
       .def_readonly("converged", &femup::RankedClass::converged)
@@ -431,6 +432,10 @@ void BindDiagnosis(py::module_& m) {
       .def_readonly("gap_below_confidence", &femup::EffectRanking::gap_below_confidence)
       .def_readonly("temperature", &femup::EffectRanking::temperature)
       .def_readonly("shape_temperature", &femup::EffectRanking::shape_temperature)
+      .def_property_readonly("frequency_temperature",
+                             [](const femup::EffectRanking& r) {
+                               return femup::ToString(r.frequency_temperature);
+                             })
       .def_readonly("best_chi2_p_value", &femup::EffectRanking::best_chi2_p_value)
       .def_readonly("num_residuals", &femup::EffectRanking::num_residuals)
       .def_readonly("bagging_copies", &femup::EffectRanking::bagging_copies)

@@ -54,6 +54,23 @@ void BindSpecs(py::module_& m) {
       .def_readwrite("stiffness_uncertainty",
                      &femup::DiagnosisSpec::stiffness_uncertainty)
       .def_readwrite("mass_uncertainty", &femup::DiagnosisSpec::mass_uncertainty)
+      .def_readwrite("gap_confidence", &femup::DiagnosisSpec::gap_confidence)
+      .def_property(
+          "frequency_temperature",
+          [](const femup::DiagnosisSpec& d) {
+            return femup::ToString(d.frequency_temperature);
+          },
+          [](femup::DiagnosisSpec& d, const std::string& name) {
+            const auto t = femup::FrequencyTemperatureNamed(name);
+            if (!t) {
+              throw femup::InputError(
+                  "DiagnosisSpec.frequency_temperature",
+                  "expected auto, threshold or marginal, found '" + name + "'");
+            }
+            d.frequency_temperature = *t;
+          },
+          "\"threshold\" (the best fit's temperature where it fails) or \"marginal\" "
+          "(each class's evidence integrated over it)")
       .def_readwrite("rotary_inertia", &femup::DiagnosisSpec::rotary_inertia)
       .def_readwrite("refine_mesh", &femup::DiagnosisSpec::refine_mesh)
       .def_readwrite("engine", &femup::DiagnosisSpec::engine)

@@ -175,6 +175,23 @@ def test_a_stated_model_uncertainty_is_allowed_for_as_form_error():
         femup.run_structure_diagnosis(building)
 
 
+def test_a_marginal_frequency_temperature_is_chosen_from_python():
+    building = femup.load_study(str(EXAMPLES / "diagnosis" / "shear_building.yaml"))
+    assert building.diagnosis.frequency_temperature == "auto"
+    building.diagnosis.frequency_temperature = "marginal"
+    result = femup.run_structure_diagnosis(building)
+    assert result.ranking.frequency_temperature == "marginal"
+    top = result.classes[0]
+    assert (top.kind, top.region) == ("stiffness_loss", "element 3")
+    # The damaged storey explains the frequencies: its temperature stays near 1,
+    # while none, which misfits them, is judged at a far higher one.
+    none = next(c for c in result.classes if c.kind == "none")
+    assert top.frequency_temperature < 2 < none.frequency_temperature
+    assert result.ranking.temperature == top.frequency_temperature
+    with pytest.raises(femup.InputError, match="frequency_temperature"):
+        building.diagnosis.frequency_temperature = "hot"
+
+
 def test_the_two_diagnosis_pipelines_directly_and_their_refusals():
     cantilever = femup.load_study(str(EXAMPLES / "diagnosis" / "added_mass.yaml"))
     building = femup.load_study(str(EXAMPLES / "diagnosis" / "shear_building.yaml"))

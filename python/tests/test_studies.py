@@ -124,6 +124,11 @@ def test_noise_and_diagnosis_settings_are_changed_in_place():
     study.diagnosis.mass_uncertainty = 0.01
     assert study.diagnosis.stiffness_uncertainty == 0.02
     assert study.diagnosis.mass_uncertainty == 0.01
+    assert study.diagnosis.gap_confidence == 0
+    study.diagnosis.gap_confidence = 0.9
+    assert study.diagnosis.gap_confidence == 0.9
+    study.diagnosis.frequency_temperature = "marginal"
+    assert study.diagnosis.frequency_temperature == "marginal"
     study.diagnosis.form_fit = True
     assert study.diagnosis.form_fit
     assert study.diagnosis.rotary_inertia

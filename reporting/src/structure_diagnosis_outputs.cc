@@ -48,6 +48,7 @@ void WriteStructureDiagnosisOutputs(const StructureDiagnosisResult& r, bool plot
   j["confidence"] = r.confidence;
   j["gap_confidence"] = r.gap_confidence;
   j["temperature"] = k.temperature;
+  j["frequency_temperature"] = ToString(k.frequency_temperature);
   j["shape_temperature"] = k.shape_temperature;
   j["best_chi2_p_value"] = k.best_chi2_p_value;
   j["residuals"] = k.num_residuals;
@@ -75,6 +76,7 @@ void WriteStructureDiagnosisOutputs(const StructureDiagnosisResult& r, bool plot
                          {"log_evidence", c.evidence.log_evidence},
                          {"log_occam", c.evidence.log_occam},
                          {"log_prior", c.log_prior},
+                         {"frequency_temperature", c.frequency_temperature},
                          {"converged", c.converged},
                          {"fitted", c.fitted},
                          {"equivalent", c.equivalent},
@@ -148,7 +150,18 @@ std::string StructureDiagnosisReport(const StructureDiagnosisResult& r) {
       << 100 * e.max_frequency_change << " % (" << std::setprecision(1) << e.noise_units
       << " noise units)\n";
   }
-  if (k.temperature > 1 || k.shape_temperature > 1) {
+  const bool marginal =
+      k.frequency_temperature == EffectRankingOptions::FrequencyTemperature::kMarginal;
+  if (marginal) {
+    o << "frequencies' noise temperature: integrated over for each class (a discrepancy "
+         "of "
+         "each mode of unknown size); the verdict's at T "
+      << std::fixed << std::setprecision(2) << k.temperature
+      << " (standard deviations scaled by " << std::sqrt(k.temperature) << ")";
+    if (k.shape_temperature > 1)
+      o << "; the shapes' scaled by " << std::sqrt(k.shape_temperature);
+    o << "\n";
+  } else if (k.temperature > 1 || k.shape_temperature > 1) {
     o << "note: no class fits within the stated noise (best p " << std::scientific
       << std::setprecision(1) << k.best_chi2_p_value
       << "): the model's own form error, or noise understated; standard deviations "
@@ -172,6 +185,8 @@ std::string StructureDiagnosisReport(const StructureDiagnosisResult& r) {
     o << "  " << std::left << std::setw(40) << Label(c) << std::right << " P "
       << std::fixed << std::setprecision(3) << c.probability << "  chi2 "
       << std::setprecision(1) << c.chi2;
+    if (marginal && c.frequency_temperature > 1.05)
+      o << "  T " << std::setprecision(1) << c.frequency_temperature;
     if (!c.fitted) o << "  (screened, not fitted)";
     for (const EffectMagnitude& m : c.magnitudes) {
       o << "  " << m.name << " " << std::setprecision(4) << std::defaultfloat << m.value;

@@ -219,6 +219,92 @@ double PlacesApart(const std::vector<std::shared_ptr<const ModelEffect>>& effect
 
 }  // namespace
 
+namespace {
+
+// A class's evidence integrated over the frequencies' noise temperature
+// (EffectRankingOptions::FrequencyTemperature::kMarginal): T = exp(u) on a
+// grid of u in [0, log kMaxFrequencyTemperature], half the prior at T = 1 and
+// half uniform in u; at each T the frequency rows' variances are T times
+// their stated ones (the likelihood's normalisation, -n_f / 2 log T, with
+// them) and the shapes' t_s. Returns the log of the integral, the evidence at
+// the grid's most probable T (its Occam factor and covariance), and the
+// posterior's harmonic mean temperature 1 / E[1 / T].
+struct MarginalTemperature {
+  ModelEvidence evidence;
+  double log_evidence = 0;
+  double temperature = 1;
+};
+
+constexpr double kMaxFrequencyTemperature = 1e4;  // 100 noise units a mode
+constexpr int kTemperatureGrid = 41;
+
+MarginalTemperature MarginalFrequencyTemperature(const Eigen::VectorXd& residual,
+                                                 const Eigen::MatrixXd& jacobian,
+                                                 const std::vector<char>& is_frequency,
+                                                 double shape_temperature,
+                                                 const Eigen::VectorXd& theta,
+                                                 const ClassPriors& priors) {
+  const Eigen::Index n = residual.size();
+  int num_frequencies = 0;
+  for (Eigen::Index r = 0; r < n; ++r) num_frequencies += is_frequency[r] ? 1 : 0;
+  const double span = std::log(kMaxFrequencyTemperature);
+  const double du = span / (kTemperatureGrid - 1);
+  std::vector<double> log_term(kTemperatureGrid), precision(kTemperatureGrid);
+  std::vector<ModelEvidence> evidences(kTemperatureGrid);
+  Eigen::VectorXd scale(n);
+  for (int g = 0; g < kTemperatureGrid; ++g) {
+    const double t = std::exp(g * du);
+    for (Eigen::Index r = 0; r < n; ++r)
+      scale[r] = 1.0 / std::sqrt(is_frequency[r] ? t : shape_temperature);
+    const double chi2 = residual.cwiseProduct(scale).squaredNorm();
+    const Eigen::MatrixXd jac = scale.asDiagonal() * jacobian;
+    evidences[g] = LaplaceEvidence(chi2, jac, theta, priors.lower, priors.upper, 1.0,
+                                   priors.mean, priors.sigma);
+    // Trapezoid weights of the uniform half, plus the point mass at T = 1.
+    const double w =
+        0.5 * du / span * ((g == 0 || g == kTemperatureGrid - 1) ? 0.5 : 1.0) +
+        (g == 0 ? 0.5 : 0.0);
+    log_term[g] =
+        evidences[g].log_evidence - 0.5 * num_frequencies * std::log(t) + std::log(w);
+    precision[g] = 1.0 / t;
+  }
+  const auto most = std::max_element(log_term.begin(), log_term.end());
+  double sum = 0, mean_precision = 0;
+  for (int g = 0; g < kTemperatureGrid; ++g) {
+    const double e = std::exp(log_term[g] - *most);
+    sum += e;
+    mean_precision += e * precision[g];
+  }
+  MarginalTemperature m;
+  m.evidence = evidences[most - log_term.begin()];
+  m.log_evidence = *most + std::log(sum);
+  m.evidence.log_evidence = m.log_evidence;
+  m.temperature = sum / mean_precision;
+  return m;
+}
+
+}  // namespace
+
+std::string ToString(EffectRankingOptions::FrequencyTemperature t) {
+  switch (t) {
+    case EffectRankingOptions::FrequencyTemperature::kMarginal:
+      return "marginal";
+    case EffectRankingOptions::FrequencyTemperature::kThreshold:
+      return "threshold";
+    case EffectRankingOptions::FrequencyTemperature::kAuto:
+      break;
+  }
+  return "auto";
+}
+
+std::optional<EffectRankingOptions::FrequencyTemperature> FrequencyTemperatureNamed(
+    const std::string& name) {
+  if (name == "auto") return EffectRankingOptions::FrequencyTemperature::kAuto;
+  if (name == "threshold") return EffectRankingOptions::FrequencyTemperature::kThreshold;
+  if (name == "marginal") return EffectRankingOptions::FrequencyTemperature::kMarginal;
+  return std::nullopt;
+}
+
 Invalid EffectRankingOptions::Validate() const {
   if (!(frequency_sigma > 0) || !std::isfinite(frequency_sigma))
     return {"frequency_sigma", "must be positive and finite"};
@@ -532,6 +618,14 @@ EffectRanking RankModelEffects(const Structure& structure_in,
   // builder's.
   std::vector<FormVariant> variants;
   if (options.formulation_error) variants = structure->form_variants;
+  // The temperature's use, kAuto resolved by whether the structure's own form
+  // variants are allowed for (not the stated uncertainty's).
+  out.frequency_temperature = options.frequency_temperature;
+  if (out.frequency_temperature == EffectRankingOptions::FrequencyTemperature::kAuto) {
+    out.frequency_temperature =
+        variants.empty() ? EffectRankingOptions::FrequencyTemperature::kMarginal
+                         : EffectRankingOptions::FrequencyTemperature::kThreshold;
+  }
   for (FormVariant& v : StatedUncertaintyVariants(
            *structure, options.stiffness_uncertainty, options.mass_uncertainty))
     variants.push_back(std::move(v));
@@ -699,14 +793,32 @@ EffectRanking RankModelEffects(const Structure& structure_in,
       row_scale[r] = 1.0 / std::sqrt(is_frequency[r] ? t_f : t_s);
 
     Eigen::VectorXd log_evidence(classes.size()), prior(classes.size());
+    // Each class's rows as its evidence weighs them (the bagged posterior
+    // resamples them): row_scale, or with a marginal temperature the class's
+    // own mean precision on the frequencies.
+    std::vector<Eigen::VectorXd> class_scale(classes.size(), row_scale);
+    const bool marginal = out.frequency_temperature ==
+                              EffectRankingOptions::FrequencyTemperature::kMarginal &&
+                          num_frequencies > 0;
     for (std::size_t i = 0; i < classes.size(); ++i) {
+      prior[i] = std::exp(classes[i].log_prior);
+      if (marginal) {
+        const MarginalTemperature m = MarginalFrequencyTemperature(
+            residuals[i], jacobians[i], is_frequency, t_s, classes[i].theta, priors[i]);
+        classes[i].evidence = m.evidence;
+        classes[i].frequency_temperature = m.temperature;
+        log_evidence[i] = m.log_evidence;
+        for (int r = 0; r < out.num_residuals; ++r)
+          if (is_frequency[r]) class_scale[i][r] = 1.0 / std::sqrt(m.temperature);
+        continue;
+      }
       const double chi2 = residuals[i].cwiseProduct(row_scale).squaredNorm();
       const Eigen::MatrixXd jac = row_scale.asDiagonal() * jacobians[i];
       classes[i].evidence =
           LaplaceEvidence(chi2, jac, classes[i].theta, priors[i].lower, priors[i].upper,
                           1.0, priors[i].mean, priors[i].sigma);
+      classes[i].frequency_temperature = t_f;
       log_evidence[i] = classes[i].evidence.log_evidence;
-      prior[i] = std::exp(classes[i].log_prior);
     }
     const Eigen::VectorXd laplace = PosteriorProbabilities(log_evidence, prior);
     Eigen::VectorXd p = laplace;
@@ -714,7 +826,7 @@ EffectRanking RankModelEffects(const Structure& structure_in,
       std::vector<ClassFit> fits_for_bagging(classes.size());
       for (std::size_t i = 0; i < classes.size(); ++i) {
         ClassFit& b = fits_for_bagging[i];
-        b.residual = residuals[i].cwiseProduct(row_scale);
+        b.residual = residuals[i].cwiseProduct(class_scale[i]);
         b.log_evidence = log_evidence[static_cast<Eigen::Index>(i)];
         b.prior = prior[static_cast<Eigen::Index>(i)];
       }
@@ -827,6 +939,10 @@ EffectRanking RankModelEffects(const Structure& structure_in,
                      return a.probability > b.probability;
                    });
   out.classes = std::move(classes);
+  if (out.frequency_temperature ==
+          EffectRankingOptions::FrequencyTemperature::kMarginal &&
+      !out.classes.empty())
+    out.temperature = out.classes[0].frequency_temperature;
   out.kind_probabilities.assign(by_kind.begin(), by_kind.end());
   std::stable_sort(out.kind_probabilities.begin(), out.kind_probabilities.end(),
                    [](const auto& a, const auto& b) { return a.second > b.second; });

@@ -121,6 +121,7 @@ StructureDiagnosisResult RunStructureDiagnosis(const Study& study) {
   options.rotary_inertia = spec.rotary_inertia;
   options.members_fitted = spec.members_fitted;
   options.gap_confidence = spec.gap_confidence;
+  options.frequency_temperature = spec.frequency_temperature;
   options.max_effects = spec.MaxEffectsFor(/*own_pipeline=*/false);
   options.pair_places = spec.pair_places;
   options.stiffness_uncertainty = spec.stiffness_uncertainty;

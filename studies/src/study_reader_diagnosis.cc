@@ -178,19 +178,33 @@ void ReadStatedPriors(const Field& f, const Study& study, DiagnosisSpec* d) {
 }  // namespace
 
 DiagnosisSpec ReadDiagnosis(const Field& f, const Study& study) {
-  f.ExpectKeys({"engine",           "noise",
-                "candidates",       "max_effects",
-                "held_out",         "use_shapes",
-                "mesh_error",       "formulation_error",
-                "refine_mesh",      "bagging_copies",
-                "max_members",      "members_fitted",
-                "form_error",       "localise",
-                "solver",           "confidence",
-                "gap_confidence",   "evidence",
-                "evidence_samples", "priors",
-                "weights",          "form_step",
-                "form_fit",         "rotary_inertia",
-                "pair_places",      "model_uncertainty"});
+  f.ExpectKeys({"engine",
+                "noise",
+                "candidates",
+                "max_effects",
+                "held_out",
+                "use_shapes",
+                "mesh_error",
+                "formulation_error",
+                "refine_mesh",
+                "bagging_copies",
+                "max_members",
+                "members_fitted",
+                "form_error",
+                "localise",
+                "solver",
+                "confidence",
+                "gap_confidence",
+                "evidence",
+                "evidence_samples",
+                "priors",
+                "weights",
+                "form_step",
+                "form_fit",
+                "rotary_inertia",
+                "pair_places",
+                "model_uncertainty",
+                "frequency_temperature"});
   DiagnosisSpec d;
   if (f.Has("engine")) {
     d.engine = f["engine"].Str();
@@ -327,6 +341,19 @@ DiagnosisSpec ReadDiagnosis(const Field& f, const Study& study) {
       f["gap_confidence"].Fail(
           "the probability a gap must reach to be named: expected 0 (the most probable "
           "family) up to, not including, 1");
+  }
+  if (f.Has("frequency_temperature")) {
+    const std::string t = f["frequency_temperature"].Str();
+    if (d.EngineFor(study.cantilever.has_value()) == "cantilever") {
+      f["frequency_temperature"].Fail(
+          "the cantilever's own pipeline has its own noise temperature; engine: "
+          "model_effects reads this key");
+    }
+    const auto named = FrequencyTemperatureNamed(t);
+    if (!named)
+      f["frequency_temperature"].Fail("expected auto, threshold or marginal, found '" +
+                                      t + "'");
+    d.frequency_temperature = *named;
   }
   if (f.Has("evidence")) {
     d.evidence = f["evidence"].Str();

@@ -58,6 +58,7 @@
 // its own pipeline, diagnose_study.h, until it moves here).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -149,6 +150,27 @@ struct EffectRankingOptions {
   // user's choice. 0 (the default): the most probable family, whatever its
   // probability. In [0, 1).
   double gap_confidence = 0;
+  // How the frequencies' noise temperature (a model form error of unknown
+  // shape: each mode's frequency off by about the same number of noise units,
+  // its signs uneven) enters the evidence.
+  // kThreshold: one temperature for every class, the best fit's chi2 per
+  // degree of freedom, applied only where that fit fails at p < 0.01.
+  // kMarginal: each class's evidence integrated over the temperature T =
+  // 1 + d^2 (d: the discrepancy of each mode in noise units), half the prior
+  // on d = 0 and half log-uniform in T up to kMaxFrequencyTemperature, so a
+  // class that needs no discrepancy is not charged for one, and one that
+  // explains a misfit only as well as a discrepancy would is not preferred.
+  // kAuto (the default): kMarginal where no form variant of the structure's
+  // own (Structure::form_variants) is allowed for, kThreshold where one is.
+  // A chain or an imported matrix has no description of its form error, and
+  // one of unknown shape is all that can be assumed: on the blind shear
+  // buildings kMarginal halved the false alarms (11 to 5 of 43 on both floor
+  // kinds) with top-1 as good or better. A plane frame's shear deformation
+  // and finer mesh are allowed for as their own changes, and there kMarginal
+  // lost 3 of 50 verdicts and gained none (docs/diagnosis.md, "A marginal
+  // frequency temperature").
+  enum class FrequencyTemperature { kAuto, kThreshold, kMarginal };
+  FrequencyTemperature frequency_temperature = FrequencyTemperature::kAuto;
   // 1: single effects. 2: also pairs of effects acting at once
   // (model_effect_pair.h): for every two families tried, the place of each
   // that fitted best alone, and for every family, each two of its
@@ -173,6 +195,11 @@ struct EffectRankingOptions {
   Invalid Validate() const;
 };
 
+// "auto", "threshold" or "marginal", and back (nullopt for any other name).
+std::string ToString(EffectRankingOptions::FrequencyTemperature t);
+std::optional<EffectRankingOptions::FrequencyTemperature> FrequencyTemperatureNamed(
+    const std::string& name);
+
 struct RankedClass {
   std::string kind;    // "none" or a family
   std::string region;  // the instance's region ("" for none)
@@ -183,6 +210,10 @@ struct RankedClass {
   double log_prior = 0;
   double probability = 0;          // bagged (above), or Laplace where bagging is off
   double laplace_probability = 0;  // from the Laplace evidences alone
+  // The frequencies' noise temperature the class's evidence was taken at (the
+  // ranking's, or with FrequencyTemperature::kMarginal the class's posterior
+  // harmonic mean).
+  double frequency_temperature = 1;
   bool converged = true;
   // False for a member left out of the fits by the screen
   // (EffectRankingOptions::members_fitted): theta, chi2 and the evidence are
@@ -216,7 +247,12 @@ struct EffectRanking {
   // rule changed nothing.
   double gap_probability = 0;
   bool gap_below_confidence = false;
-  double temperature = 1;        // of the frequencies' noise
+  // Of the frequencies' noise: the one every class was judged at, or with a
+  // marginal temperature the verdict's own (RankedClass::frequency_temperature).
+  double temperature = 1;
+  // How it was used: kThreshold or kMarginal (kAuto resolved).
+  EffectRankingOptions::FrequencyTemperature frequency_temperature =
+      EffectRankingOptions::FrequencyTemperature::kThreshold;
   double shape_temperature = 1;  // of the shapes' noise
   double best_chi2_p_value = 1;
   int bagging_copies = 0;  // the probabilities' bootstrap copies (0: Laplace)

@@ -23,6 +23,7 @@
 #include "femup/problems/noise.h"
 #include "femup/solvers/linear_solver.h"
 #include "femup/solvers/nonlinear_solver.h"
+#include "femup/studies/effect_ranking.h"
 #include "femup/studies/identify_study.h"
 
 namespace femup {
@@ -222,6 +223,11 @@ struct DiagnosisSpec {
   // reaches this; 0 (the default): the most probable family, whatever its
   // probability. EffectRankingOptions::gap_confidence.
   double gap_confidence = 0;
+  // How the frequencies' noise temperature enters the evidence
+  // (EffectRankingOptions::frequency_temperature): "auto" (the default),
+  // "threshold" or "marginal".
+  EffectRankingOptions::FrequencyTemperature frequency_temperature =
+      EffectRankingOptions::FrequencyTemperature::kAuto;
   // Each class's evidence: "laplace" (Laplace's approximation at the best fit)
   // or "sampled" (importance sampling over its prior, sampled_evidence.h, where
   // its standard error is small; Laplace's elsewhere). docs/diagnosis.md has the
