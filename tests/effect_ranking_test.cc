@@ -904,6 +904,20 @@ TEST(StructureDiagnosis, PortalFrameSensorsBetweenNodesExample) {
   EXPECT_NEAR(r.ranking.classes[0].magnitudes[0].value, 2000.0, 200.0);
 }
 
+// A four-element cantilever's and a three-storey chain's study text, without
+// their diagnosis: the study readers' tests add one.
+std::string SmallCantileverStudy() {
+  return "name: x\nmodel: {type: cantilever, length: 2.0, elements: 4,\n"
+         "  section: {E: 2.1e11, A: 9.0e-4, I: 1.6875e-8, rho: 7850}}\n"
+         "measurements:\n  - {state: a, frequencies_hz: [3.1]}\n";
+}
+
+std::string SmallChainStudy() {
+  return "name: x\nmodel: {type: chain, masses: [1e5, 1e5, 1e5], springs: [2e8, 2e8, "
+         "2e8]}\n"
+         "measurements:\n  - {state: air, frequencies_hz: [3.48, 9.6, 13.9]}\n";
+}
+
 // diagnosis.engine: a cantilever's own pipeline by default, the one engine
 // (effects as changes of the model) where the study says so and on every other
 // model; a bad value, or the cantilever's pipeline on another model, is the
@@ -911,10 +925,7 @@ TEST(StructureDiagnosis, PortalFrameSensorsBetweenNodesExample) {
 TEST(StructureDiagnosis, TheStudyChoosesTheEngine) {
   EXPECT_EQ(DiagnosisSpec().EngineFor(true), "cantilever");
   EXPECT_EQ(DiagnosisSpec().EngineFor(false), "model_effects");
-  const std::string cantilever =
-      "name: x\nmodel: {type: cantilever, length: 2.0, elements: 4,\n"
-      "  section: {E: 2.1e11, A: 9.0e-4, I: 1.6875e-8, rho: 7850}}\n"
-      "measurements:\n  - {state: a, frequencies_hz: [3.1]}\n";
+  const std::string cantilever = SmallCantileverStudy();
   const Study chosen =
       ParseStudy(cantilever + "diagnosis: {engine: model_effects}\n", "x.yaml");
   EXPECT_EQ(chosen.diagnosis->EngineFor(true), "model_effects");
@@ -965,9 +976,7 @@ TEST(StructureDiagnosis, TheStudyChoosesTheEngine) {
 // form errors allowed for; out of range, an unknown key, or on the
 // cantilever's own pipeline, the field is named before any fit.
 TEST(StructureDiagnosis, ReadsAStatedModelUncertainty) {
-  const std::string chain =
-      "name: x\nmodel: {type: chain, masses: [1e5, 1e5, 1e5], springs: [2e8, 2e8, 2e8]}\n"
-      "measurements:\n  - {state: air, frequencies_hz: [3.48, 9.6, 13.9]}\n";
+  const std::string chain = SmallChainStudy();
   const Study study = ParseStudy(
       chain + "diagnosis: {model_uncertainty: {stiffness: 0.02, mass: 0.01}}\n",
       "x.yaml");
@@ -996,10 +1005,7 @@ TEST(StructureDiagnosis, ReadsAStatedModelUncertainty) {
         ParseStudy(chain + "diagnosis: {model_uncertainty: {damping: 0.1}}\n", "x.yaml");
       },
       {"damping"});
-  const std::string cantilever =
-      "name: x\nmodel: {type: cantilever, length: 2.0, elements: 4,\n"
-      "  section: {E: 2.1e11, A: 9.0e-4, I: 1.6875e-8, rho: 7850}}\n"
-      "measurements:\n  - {state: a, frequencies_hz: [3.1]}\n";
+  const std::string cantilever = SmallCantileverStudy();
   testing::ExpectInputError(
       [&] {
         ParseStudy(cantilever + "diagnosis: {model_uncertainty: {stiffness: 0.02}}\n",
@@ -1017,9 +1023,7 @@ TEST(StructureDiagnosis, ReadsAStatedModelUncertainty) {
 // diagnosis.frequency_temperature chooses how the frequencies' noise
 // temperature enters the evidence; the report and diagnosis.json say which.
 TEST(StructureDiagnosis, ReadsTheFrequencyTemperature) {
-  const std::string chain =
-      "name: x\nmodel: {type: chain, masses: [1e5, 1e5, 1e5], springs: [2e8, 2e8, 2e8]}\n"
-      "measurements:\n  - {state: air, frequencies_hz: [3.48, 9.6, 13.9]}\n";
+  const std::string chain = SmallChainStudy();
   const Study study =
       ParseStudy(chain + "diagnosis: {frequency_temperature: marginal}\n", "x.yaml");
   EXPECT_EQ(study.diagnosis->frequency_temperature,
@@ -1036,10 +1040,7 @@ TEST(StructureDiagnosis, ReadsTheFrequencyTemperature) {
   testing::ExpectInputError(
       [&] { ParseStudy(chain + "diagnosis: {frequency_temperature: Auto}\n", "x.yaml"); },
       {"diagnosis.frequency_temperature", "auto, threshold or marginal", "Auto"});
-  const std::string cantilever =
-      "name: x\nmodel: {type: cantilever, length: 2.0, elements: 4,\n"
-      "  section: {E: 2.1e11, A: 9.0e-4, I: 1.6875e-8, rho: 7850}}\n"
-      "measurements:\n  - {state: a, frequencies_hz: [3.1]}\n";
+  const std::string cantilever = SmallCantileverStudy();
   testing::ExpectInputError(
       [&] {
         ParseStudy(cantilever + "diagnosis: {frequency_temperature: marginal}\n",
