@@ -69,6 +69,7 @@ void BindSpecs(py::module_& m) {
             }
             d.frequency_temperature = *t;
           },
+          "\"auto\" (marginal unless the model's own form variants are allowed for), "
           "\"threshold\" (the best fit's temperature where it fails) or \"marginal\" "
           "(each class's evidence integrated over it)")
       .def_readwrite("rotary_inertia", &femup::DiagnosisSpec::rotary_inertia)

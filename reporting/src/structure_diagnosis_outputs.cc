@@ -153,9 +153,8 @@ std::string StructureDiagnosisReport(const StructureDiagnosisResult& r) {
   const bool marginal =
       k.frequency_temperature == EffectRankingOptions::FrequencyTemperature::kMarginal;
   if (marginal) {
-    o << "frequencies' noise temperature: integrated over for each class (a discrepancy "
-         "of "
-         "each mode of unknown size); the verdict's at T "
+    o << "frequencies' noise temperature: integrated over for each class (a "
+         "discrepancy of each mode of unknown size); the verdict's at T "
       << std::fixed << std::setprecision(2) << k.temperature
       << " (standard deviations scaled by " << std::sqrt(k.temperature) << ")";
     if (k.shape_temperature > 1)

@@ -217,10 +217,6 @@ double PlacesApart(const std::vector<std::shared_ptr<const ModelEffect>>& effect
   return apart;
 }
 
-}  // namespace
-
-namespace {
-
 // A class's evidence integrated over the frequencies' noise temperature
 // (EffectRankingOptions::FrequencyTemperature::kMarginal): T = exp(u) on a
 // grid of u in [0, log kMaxFrequencyTemperature], half the prior at T = 1 and
@@ -238,15 +234,14 @@ struct MarginalTemperature {
 constexpr double kMaxFrequencyTemperature = 1e4;  // 100 noise units a mode
 constexpr int kTemperatureGrid = 41;
 
-MarginalTemperature MarginalFrequencyTemperature(const Eigen::VectorXd& residual,
-                                                 const Eigen::MatrixXd& jacobian,
-                                                 const std::vector<char>& is_frequency,
-                                                 double shape_temperature,
-                                                 const Eigen::VectorXd& theta,
-                                                 const ClassPriors& priors) {
+MarginalTemperature MarginalFrequencyTemperature(
+    const Eigen::VectorXd& residual, const Eigen::MatrixXd& jacobian,
+    const std::vector<char>& is_frequency, int num_frequencies, double shape_temperature,
+    const Eigen::VectorXd& theta, const ClassPriors& priors) {
   const Eigen::Index n = residual.size();
-  int num_frequencies = 0;
-  for (Eigen::Index r = 0; r < n; ++r) num_frequencies += is_frequency[r] ? 1 : 0;
+  double chi2_f = 0, chi2_s = 0;  // at the stated noise
+  for (Eigen::Index r = 0; r < n; ++r)
+    (is_frequency[r] ? chi2_f : chi2_s) += residual[r] * residual[r];
   const double span = std::log(kMaxFrequencyTemperature);
   const double du = span / (kTemperatureGrid - 1);
   std::vector<double> log_term(kTemperatureGrid), precision(kTemperatureGrid);
@@ -256,7 +251,7 @@ MarginalTemperature MarginalFrequencyTemperature(const Eigen::VectorXd& residual
     const double t = std::exp(g * du);
     for (Eigen::Index r = 0; r < n; ++r)
       scale[r] = 1.0 / std::sqrt(is_frequency[r] ? t : shape_temperature);
-    const double chi2 = residual.cwiseProduct(scale).squaredNorm();
+    const double chi2 = chi2_f / t + chi2_s / shape_temperature;
     const Eigen::MatrixXd jac = scale.asDiagonal() * jacobian;
     evidences[g] = LaplaceEvidence(chi2, jac, theta, priors.lower, priors.upper, 1.0,
                                    priors.mean, priors.sigma);
@@ -804,7 +799,8 @@ EffectRanking RankModelEffects(const Structure& structure_in,
       prior[i] = std::exp(classes[i].log_prior);
       if (marginal) {
         const MarginalTemperature m = MarginalFrequencyTemperature(
-            residuals[i], jacobians[i], is_frequency, t_s, classes[i].theta, priors[i]);
+            residuals[i], jacobians[i], is_frequency, num_frequencies, t_s,
+            classes[i].theta, priors[i]);
         classes[i].evidence = m.evidence;
         classes[i].frequency_temperature = m.temperature;
         log_evidence[i] = m.log_evidence;

@@ -157,7 +157,7 @@ struct EffectRankingOptions {
   // degree of freedom, applied only where that fit fails at p < 0.01.
   // kMarginal: each class's evidence integrated over the temperature T =
   // 1 + d^2 (d: the discrepancy of each mode in noise units), half the prior
-  // on d = 0 and half log-uniform in T up to kMaxFrequencyTemperature, so a
+  // on d = 0 and half log-uniform in T up to 10^4 (d = 100), so a
   // class that needs no discrepancy is not charged for one, and one that
   // explains a misfit only as well as a discrepancy would is not preferred.
   // kAuto (the default): kMarginal where no form variant of the structure's
