@@ -370,6 +370,36 @@ TEST(ModelEffects, AddedMassBelowALevelAtANodeIsTheExactIntervalIntegral) {
             1e-12 * Eigen::MatrixXd(exact).cwiseAbs().maxCoeff());
 }
 
+// A water level exactly at a node (every start of the fit is one on a uniform
+// mesh) has a kink there; its derivative is the mean of the two sides', which is
+// what central differences give, and not zero: with zero the fit never moved the
+// level from its start.
+TEST(ModelEffects, AddedMassLevelAtANodeHasTheCentralDifferenceDerivative) {
+  CantileverSpec spec = fixtures::PaperCantilever(UniformHeights(2.0, 20));
+  spec.added_mass_basis = AddedMassBasis::kTransverse;
+  const Structure s = BuildCantilever(spec);
+  auto water = One("added_mass", s);
+  ASSERT_TRUE(water);
+  std::vector<double> levels;
+  for (const Eigen::VectorXd& start : water->Starts()) levels.push_back(start[1]);
+  levels.push_back(1.5);  // 15 elements of 0.1 m
+  levels.push_back(2.0);  // the top
+  for (const double level : levels) {
+    const Eigen::VectorXd theta = Theta({std::log(0.3), level});
+    const double h = 1e-7;
+    const Eigen::MatrixXd fd =
+        (Eigen::MatrixXd(
+             water->Change(Theta({std::log(0.3), level + h}), Immersion::kWet).mass) -
+         Eigen::MatrixXd(
+             water->Change(Theta({std::log(0.3), level - h}), Immersion::kWet).mass)) /
+        (2 * h);
+    const Eigen::MatrixXd d =
+        Eigen::MatrixXd(water->Derivative(theta, 1, Immersion::kWet).mass);
+    ASSERT_GT(fd.cwiseAbs().maxCoeff(), 0.0) << level;
+    EXPECT_LT((d - fd).cwiseAbs().maxCoeff(), 1e-6 * fd.cwiseAbs().maxCoeff()) << level;
+  }
+}
+
 TEST(ModelEffects, AddedMassActsInWetStatesOnlyWhenAsked) {
   const Structure s =
       BuildSpringMassChain({{50, 50, 50}, {2e7, 2e7, 2e7}, {true, true, false}});

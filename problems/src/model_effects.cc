@@ -583,11 +583,19 @@ class AddedMass : public Base {
                          Immersion immersion) const override {
     if (wet_only_ && immersion != Immersion::kWet) return {};
     if (i == 0) return {{}, std::exp(t[0]) * Basis(t)};
-    // d/d level: each element partly below the level gains basis / height.
+    // d/d level: the element the level cuts gains basis / height. At a node
+    // the basis has a kink: there the mean of the two sides (what central
+    // differences give), never zero, or a fit started at a node (every start
+    // is one on a uniform mesh) would never move the level.
     SparseMatrix d = Zero(n());
     for (int e : region_.elements) {
       const ElementMatrices& el = s_.elements[e];
-      if (t[1] > el.x0 && t[1] < el.x1) d += el.added_mass_basis / (el.x1 - el.x0);
+      const double h = el.x1 - el.x0, tol = 1e-9 * h;
+      if (t[1] > el.x0 + tol && t[1] < el.x1 - tol) {
+        d += el.added_mass_basis / h;
+      } else if (std::abs(t[1] - el.x0) <= tol || std::abs(t[1] - el.x1) <= tol) {
+        d += 0.5 * el.added_mass_basis / h;
+      }
     }
     return {{}, std::exp(t[0]) * d};
   }
