@@ -81,6 +81,25 @@ TEST(EffectRanking, NamesTheDamagedStorey) {
   // A dry chain: added mass does not apply, and the result says why.
   ASSERT_EQ(r.skipped.size(), 1u);
   EXPECT_NE(r.skipped[0].find("added_mass"), std::string::npos);
+  // Mode by mode: none predicts the nominal chain's frequencies, the verdict
+  // the truth's (its storey's loss fitted: within the 0.2 % noise), both with
+  // shapes that match (MAC at every floor).
+  const Modes nominal_modes = SolveModes(nominal.stiffness, nominal.mass);
+  const Structure damaged = BuildSpringMassChain(truth);
+  const Modes truth_modes = SolveModes(damaged.stiffness, damaged.mass);
+  const auto none = std::find_if(r.classes.begin(), r.classes.end(),
+                                 [](const RankedClass& c) { return c.kind == "none"; });
+  ASSERT_NE(none, r.classes.end());
+  ASSERT_EQ(none->modes.size(), 4u);
+  ASSERT_EQ(r.classes[0].modes.size(), 4u);
+  for (int j = 0; j < 4; ++j) {
+    const PairedModeMisfit& a = none->modes[static_cast<std::size_t>(j)];
+    const PairedModeMisfit& b = r.classes[0].modes[static_cast<std::size_t>(j)];
+    EXPECT_EQ(a.mode, j);
+    EXPECT_NEAR(a.model_hz / nominal_modes.FrequenciesHz()[j], 1.0, 1e-9) << j;
+    EXPECT_NEAR(b.model_hz / truth_modes.FrequenciesHz()[j], 1.0, 0.006) << j;
+    EXPECT_GT(b.mac, 0.99) << j;
+  }
 }
 
 // Two damaged storeys (20 % and 25 % of their springs lost), with pairs: the

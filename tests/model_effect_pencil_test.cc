@@ -124,6 +124,60 @@ TEST(ModelEffectFit, JacobianMatchesCentralDifferences) {
   }
 }
 
+// What a fit predicts, mode by mode, read back from its residuals
+// (PairedModeMisfits), against a direct solve of the changed chain: the paired
+// frequencies and the MAC of each model shape with the measured one at the
+// sensors; a state without shapes has frequencies alone. With the "entry"
+// shape noise and the "unit" scaling as well.
+TEST(ModelEffectFit, PairedModeMisfitsMatchADirectSolve) {
+  auto nominal = std::make_shared<const Structure>(BuildSpringMassChain(ShearBuilding()));
+  ChainSpec other = ShearBuilding();
+  other.masses[4] += 3e4;
+  other.springs[1] *= 0.8;
+  const Structure truth = BuildSpringMassChain(other);
+  const std::vector<int> sensors = {0, 2, 3, 5};
+  ModalData frequencies_only = Measure(truth, 2, sensors, Immersion::kDry, "b");
+  frequencies_only.sensor_dofs.clear();
+  frequencies_only.shapes.resize(0, 0);
+  const std::vector<ModalData> measured = {
+      Measure(truth, 3, sensors, Immersion::kDry, "a"), frequencies_only};
+  const auto effect = Instance("stiffness_loss", *nominal, "element 2");
+  ModelEffectPencil pencil(nominal, {effect});
+  const Eigen::VectorXd x = Eigen::VectorXd::Constant(1, std::log(0.15));
+  SparseMatrix k, m;
+  pencil.Assemble(x, false, &k, &m);
+  const Modes direct = SolveModes(k, m);
+  for (const std::string noise : {"max", "entry"}) {
+    EigenSensitivityOptions options;
+    options.shape_noise = noise;
+    options.shape_scaling = noise == "max" ? "fit" : "unit";
+    NonlinearProblem problem =
+        BuildModelEffectFitProblem(nominal, {effect}, measured, options);
+    Eigen::VectorXd r;
+    std::string why;
+    ASSERT_TRUE(problem.evaluate(x, &r, nullptr, &why)) << why;
+    const std::vector<PairedModeMisfit> got = PairedModeMisfits(measured, options, r);
+    ASSERT_EQ(got.size(), 5u);
+    for (const PairedModeMisfit& p : got) {
+      const ModalData& d = measured[static_cast<std::size_t>(p.state)];
+      EXPECT_EQ(p.measured_hz, d.frequencies_hz[p.mode]);
+      EXPECT_NEAR(p.model_hz / direct.FrequenciesHz()[p.mode], 1.0, 1e-12) << noise;
+      if (!d.HasShapes()) {
+        EXPECT_TRUE(std::isnan(p.mac));
+        continue;
+      }
+      const Eigen::VectorXd s = direct.shapes.col(p.mode)(sensors);
+      const Eigen::VectorXd t = d.shapes.col(p.mode);
+      const double mac = std::pow(s.dot(t), 2) / (s.squaredNorm() * t.squaredNorm());
+      EXPECT_NEAR(p.mac, mac, 1e-10) << noise << " mode " << p.mode;
+      EXPECT_LT(p.mac, 1.0);
+    }
+  }
+  EXPECT_THROW(
+      PairedModeMisfits(measured, EigenSensitivityOptions{}, Eigen::VectorXd::Zero(4)),
+      InputError);
+}
+
 TEST(ModelEffectFit, RefusesNoEffectAndAWrongSize) {
   auto nominal = std::make_shared<const Structure>(BuildSpringMassChain(ShearBuilding()));
   EXPECT_THROW(ModelEffectPencil(nominal, {}), InputError);

@@ -334,6 +334,40 @@ bool Evaluate(const Context& c, const Eigen::VectorXd& x, Eigen::VectorXd* r,
   return true;
 }
 
+// The measured shapes as the shape residuals compare them (psi / max |psi|
+// for "fit", psi / ||psi|| for "unit", psi for "mass") and each entry's weight,
+// 1 / its standard deviation in that scale. A mode that is zero at every
+// sensor is an error where its shape is a residual; otherwise its weights are
+// zero (its frequency alone pairs it).
+void ShapeTargets(const ModalData& data, const EigenSensitivityOptions& options,
+                  bool shape_residuals, const std::string& where,
+                  Eigen::MatrixXd* targets, Eigen::MatrixXd* weights) {
+  *targets = data.shapes;
+  weights->resize(data.shapes.rows(), data.num_modes());
+  for (int j = 0; j < data.num_modes(); ++j) {
+    double peak = data.shapes.col(j).cwiseAbs().maxCoeff();
+    if (!(peak > 0) && !shape_residuals) {
+      weights->col(j).setZero();
+      continue;
+    }
+    if (!(peak > 0)) {
+      throw InputError(where + ".shapes",
+                       "mode " + std::to_string(j + 1) + " is zero at every sensor");
+    }
+    if (options.shape_scaling == "fit") targets->col(j) /= peak;
+    if (options.shape_scaling == "unit") targets->col(j).normalize();
+    // The noise is relative to the shape in the residual's scale.
+    peak = targets->col(j).cwiseAbs().maxCoeff();
+    for (Eigen::Index k = 0; k < targets->rows(); ++k) {
+      const double scale =
+          options.shape_noise == "entry"
+              ? std::max(std::abs((*targets)(k, j)), options.entry_floor * peak)
+              : peak;
+      (*weights)(k, j) = 1.0 / (options.shape_sigma * scale);
+    }
+  }
+}
+
 bool HasPrior(double sigma) { return sigma > 0 && std::isfinite(sigma); }
 
 }  // namespace
@@ -469,30 +503,8 @@ NonlinearProblem BuildOutputErrorProblem(std::shared_ptr<const ParametrisedPenci
     // modes but are not residuals.
     if (data.HasShapes()) {
       st.scaling = options.shape_scaling;
-      st.targets = data.shapes;
-      st.shape_weights.resize(data.shapes.rows(), data.num_modes());
-      for (int j = 0; j < data.num_modes(); ++j) {
-        double peak = data.shapes.col(j).cwiseAbs().maxCoeff();
-        if (!(peak > 0) && !st.shape_residuals) {
-          st.shape_weights.col(j).setZero();  // the frequency alone pairs it
-          continue;
-        }
-        if (!(peak > 0)) {
-          throw InputError(where + ".shapes",
-                           "mode " + std::to_string(j + 1) + " is zero at every sensor");
-        }
-        if (st.scaling == "fit") st.targets.col(j) /= peak;
-        if (st.scaling == "unit") st.targets.col(j).normalize();
-        // The noise is relative to the shape in the residual's scale.
-        peak = st.targets.col(j).cwiseAbs().maxCoeff();
-        for (Eigen::Index k = 0; k < st.targets.rows(); ++k) {
-          const double scale =
-              options.shape_noise == "entry"
-                  ? std::max(std::abs(st.targets(k, j)), options.entry_floor * peak)
-                  : peak;
-          st.shape_weights(k, j) = 1.0 / (options.shape_sigma * scale);
-        }
-      }
+      ShapeTargets(data, options, st.shape_residuals, where, &st.targets,
+                   &st.shape_weights);
     }
     for (int j = 0; j < data.num_modes(); ++j) {
       const std::string mode = st.name + " mode " + std::to_string(j + 1);
@@ -545,6 +557,47 @@ NonlinearProblem BuildOutputErrorProblem(std::shared_ptr<const ParametrisedPenci
     return Evaluate(*shared, x, residuals, jacobian, why);
   };
   return problem;
+}
+
+std::vector<PairedModeMisfit> PairedModeMisfits(const std::vector<ModalData>& states,
+                                                const EigenSensitivityOptions& options,
+                                                const Eigen::VectorXd& residual) {
+  std::vector<PairedModeMisfit> out;
+  Eigen::Index row = 0;
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    const ModalData& data = states[i];
+    const bool shape_residuals = options.use_shapes && data.HasShapes();
+    Eigen::MatrixXd targets, weights;
+    if (shape_residuals) {
+      ShapeTargets(data, options, true, "states." + std::to_string(i + 1), &targets,
+                   &weights);
+    }
+    const Eigen::Index sensors = shape_residuals ? targets.rows() : 0;
+    const Eigen::VectorXd lambdas = data.Eigenvalues();
+    for (int j = 0; j < data.num_modes(); ++j) {
+      if (row + 1 + sensors > residual.size()) {
+        throw InputError("residual", std::to_string(residual.size()) +
+                                         " rows: fewer than the states' modes need");
+      }
+      PairedModeMisfit m;
+      m.state = static_cast<int>(i);
+      m.mode = j;
+      m.measured_hz = data.frequencies_hz[j];
+      const double lambda = lambdas[j] * (1.0 + options.frequency_sigma * residual[row]);
+      m.model_hz = std::sqrt(std::max(lambda, 0.0)) / (2.0 * 3.14159265358979323846);
+      if (shape_residuals) {
+        // r = w (c s - t): the model shape, up to its scale c, is t + r / w.
+        const Eigen::VectorXd t = targets.col(j);
+        const Eigen::VectorXd s =
+            t + residual.segment(row + 1, sensors).cwiseQuotient(weights.col(j));
+        const double st = s.dot(t);
+        m.mac = st * st / (s.squaredNorm() * t.squaredNorm());
+      }
+      out.push_back(m);
+      row += 1 + sensors;
+    }
+  }
+  return out;
 }
 
 }  // namespace femup

@@ -393,6 +393,16 @@ void BindDiagnosis(py::module_& m) {
         "The cantilever's diagnosis (InputError for other models: use "
         "run_structure_diagnosis, or diagnose for either).");
 
+  py::class_<femup::PairedModeMisfit>(
+      m, "PairedModeMisfit",
+      "What a fit predicts for one measured mode: the paired model frequency and "
+      "the MAC at the sensors (NaN where shapes were not compared).")
+      .def_readonly("state", &femup::PairedModeMisfit::state)
+      .def_readonly("mode", &femup::PairedModeMisfit::mode)
+      .def_readonly("measured_hz", &femup::PairedModeMisfit::measured_hz)
+      .def_readonly("model_hz", &femup::PairedModeMisfit::model_hz)
+      .def_readonly("mac", &femup::PairedModeMisfit::mac);
+
   py::class_<femup::RankedClass>(m, "RankedClass",
                                  "One class of the ranking on any structure.")
       .def_readonly("kind", &femup::RankedClass::kind)
@@ -411,6 +421,9 @@ void BindDiagnosis(py::module_& m) {
       .def_readonly("fitted", &femup::RankedClass::fitted)
       .def_readonly("location", &femup::RankedClass::location)
       .def_readonly("magnitudes", &femup::RankedClass::magnitudes)
+      .def_readonly("modes", &femup::RankedClass::modes,
+                    "Each measured mode at the class's fit (for none: the nominal "
+                    "model's), state by state.")
       .def("__repr__", [](const femup::RankedClass& c) {
         return "<femup.RankedClass " + c.kind +
                (c.region.empty() ? "" : " at " + c.region) + ": " +

@@ -143,6 +143,17 @@ def test_structure_diagnosis_matches_diagnosis_json(run_cli):
     assert result.ranking.gap_below_confidence is False
     assert expected["verdict"]["gap_below_confidence"] is False
     assert expected["gap_confidence"] == 0
+    # How far the gap shrinks: the nominal model's and the verdict's predictions
+    # of each measured mode, as diagnosis.json's gap states them.
+    none = next(c for c in classes if c.kind == "none")
+    assert expected["gap"]["class"] == "stiffness_loss at element 3"
+    assert len(none.modes) == len(classes[0].modes) == len(expected["gap"]["modes"]) == 4
+    for a, b, e in zip(none.modes, classes[0].modes, expected["gap"]["modes"]):
+        assert (a.mode + 1, b.mode + 1) == (e["mode"], e["mode"])
+        close(a.measured_hz, e["measured_hz"], rel=1e-12)
+        close(a.model_hz, e["nominal_hz"], rel=1e-9)
+        close(b.model_hz, e["updated_hz"], rel=1e-9)
+        close(b.mac, e["updated_mac"], rel=1e-9)
 
 
 def test_frame_diagnosis_states_the_form_error_it_allowed_for(run_cli):

@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -15,6 +16,8 @@ namespace femup {
 
 namespace {
 
+using json_util::Number;
+
 std::string Label(const RankedClass& c) {
   return c.region.empty() ? c.kind : c.kind + " at " + c.region;
 }
@@ -25,6 +28,57 @@ double KindProbability(const EffectRanking& k, const std::string& kind) {
   for (const auto& [name, p] : k.kind_probabilities)
     if (name == kind) return p;
   return 0;
+}
+
+// The class the gap is shown with: the verdict, or where the verdict is
+// "none" the most probable class of another family (what the most probable
+// effect would close); null where there is none.
+const RankedClass* GapClass(const EffectRanking& k) {
+  for (const RankedClass& c : k.classes)
+    if (c.kind != "none")
+      return k.classes.front().kind == "none" ? &c : &k.classes.front();
+  return nullptr;
+}
+
+const RankedClass* NoneClass(const EffectRanking& k) {
+  for (const RankedClass& c : k.classes)
+    if (c.kind == "none") return &c;
+  return nullptr;
+}
+
+// Root mean square of model / measured - 1 over the measured frequencies.
+double RmsFrequencyError(const RankedClass& c) {
+  if (c.modes.empty()) return std::numeric_limits<double>::quiet_NaN();
+  double sum = 0;
+  for (const PairedModeMisfit& m : c.modes)
+    sum += std::pow(m.model_hz / m.measured_hz - 1, 2);
+  return std::sqrt(sum / static_cast<double>(c.modes.size()));
+}
+
+// The mean MAC over the modes whose shapes were compared (NaN: none were).
+double MeanMac(const RankedClass& c) {
+  double sum = 0;
+  int n = 0;
+  for (const PairedModeMisfit& m : c.modes) {
+    if (std::isnan(m.mac)) continue;
+    sum += m.mac;
+    ++n;
+  }
+  return n > 0 ? sum / n : std::numeric_limits<double>::quiet_NaN();
+}
+
+std::string ModeName(const StructureDiagnosisResult& r, const PairedModeMisfit& m) {
+  const std::size_t s = static_cast<std::size_t>(m.state);
+  const std::string state = s < r.measured.size() && !r.measured[s].state.empty()
+                                ? r.measured[s].state
+                                : "state " + std::to_string(m.state + 1);
+  return state + " " + std::to_string(m.mode + 1);
+}
+
+// Both classes' predictions of the same measured modes, or false.
+bool SameModes(const RankedClass* a, const RankedClass* b) {
+  return a != nullptr && b != nullptr && !a->modes.empty() &&
+         a->modes.size() == b->modes.size();
 }
 
 }  // namespace
@@ -80,7 +134,8 @@ void WriteStructureDiagnosisOutputs(const StructureDiagnosisResult& r, bool plot
                          {"converged", c.converged},
                          {"fitted", c.fitted},
                          {"equivalent", c.equivalent},
-                         {"group_probability", c.group_probability}};
+                         {"group_probability", c.group_probability},
+                         {"rms_frequency_error", Number(RmsFrequencyError(c))}};
     cj["parameters"] = nlohmann::json::array();
     for (std::size_t i = 0; i < c.names.size(); ++i)
       cj["parameters"].push_back({{"name", c.names[i]}, {"value", c.theta[i]}});
@@ -89,6 +144,31 @@ void WriteStructureDiagnosisOutputs(const StructureDiagnosisResult& r, bool plot
       cj["magnitudes"].push_back(
           {{"name", m.name}, {"unit", m.unit}, {"value", m.value}});
     j["classes"].push_back(cj);
+  }
+  // How far the gap shrinks, mode by mode: the nominal model, then with the
+  // verdict (or the most probable effect where the verdict is none).
+  const RankedClass* none = NoneClass(k);
+  const RankedClass* with = GapClass(k);
+  if (SameModes(none, with)) {
+    nlohmann::json modes = nlohmann::json::array();
+    for (std::size_t i = 0; i < none->modes.size(); ++i) {
+      const PairedModeMisfit& a = none->modes[i];
+      const PairedModeMisfit& b = with->modes[i];
+      modes.push_back({{"state", r.measured.at(static_cast<std::size_t>(a.state)).state},
+                       {"mode", a.mode + 1},
+                       {"measured_hz", a.measured_hz},
+                       {"nominal_hz", a.model_hz},
+                       {"updated_hz", b.model_hz},
+                       {"nominal_error", a.model_hz / a.measured_hz - 1},
+                       {"updated_error", b.model_hz / b.measured_hz - 1},
+                       {"nominal_mac", Number(a.mac)},
+                       {"updated_mac", Number(b.mac)}});
+    }
+    j["gap"] = {{"class", Label(*with)},
+                {"class_is_verdict", with == &top},
+                {"rms_nominal_error", Number(RmsFrequencyError(*none))},
+                {"rms_updated_error", Number(RmsFrequencyError(*with))},
+                {"modes", modes}};
   }
   j["not_applicable"] = k.skipped;
   j["notes"] = k.notes;
@@ -109,6 +189,28 @@ void WriteStructureDiagnosisOutputs(const StructureDiagnosisResult& r, bool plot
   p.series.push_back(bars);
   f.panels.push_back(p);
   RenderStaged(f, "effects", out, warnings);
+  if (SameModes(none, with)) {
+    Plot g;
+    g.title = "Frequency error before and after " + Label(*with);
+    g.y_label = "|f_model / f_measured - 1| (%)";
+    g.log_y = true;
+    PlotSeries b{"nominal model", PlotSeries::Style::kLinesPoints, {}, {}, {}, {}};
+    PlotSeries a{"with " + Label(*with), PlotSeries::Style::kLinesPoints, {}, {}, {}, {}};
+    for (std::size_t i = 0; i < none->modes.size(); ++i) {
+      const PairedModeMisfit& m = none->modes[i];
+      b.x.push_back(static_cast<double>(i + 1));
+      a.x.push_back(static_cast<double>(i + 1));
+      // Floored at 1e-4 % so that an exact fit still has a place on the log axis.
+      b.y.push_back(std::max(1e-4, 100 * std::abs(m.model_hz / m.measured_hz - 1)));
+      a.y.push_back(
+          std::max(1e-4, 100 * std::abs(with->modes[i].model_hz / m.measured_hz - 1)));
+      g.x_tick_labels.push_back(ModeName(r, m));
+    }
+    g.series = {b, a};
+    Figure gf;
+    gf.panels = {g};
+    RenderStaged(gf, "gap", out, warnings);
+  }
   if (!r.map.empty()) {
     RenderStaged(DiagnosisMapFigure(r.map, k, "Where: " + r.study_name), "diagnosis_map",
                  out, warnings);
@@ -197,6 +299,40 @@ std::string StructureDiagnosisReport(const StructureDiagnosisResult& r) {
       o << " together P " << std::setprecision(3) << std::fixed << c.group_probability
         << ")";
     }
+    o << "\n";
+  }
+  const RankedClass* none = NoneClass(k);
+  const RankedClass* with = GapClass(k);
+  if (SameModes(none, with)) {
+    o << "the gap, mode by mode: the nominal model, then "
+      << (with == &top ? "with " : "with the most probable effect, ") << Label(*with)
+      << ":\n";
+    o << "  mode            measured Hz  nominal Hz  error %    MAC  |  with: Hz  error %"
+         "    MAC\n";
+    auto mac = [](double v) {
+      std::ostringstream m;
+      if (std::isnan(v)) {
+        m << "      -";
+      } else {
+        m << std::fixed << std::setprecision(3) << std::setw(7) << v;
+      }
+      return m.str();
+    };
+    for (std::size_t i = 0; i < none->modes.size(); ++i) {
+      const PairedModeMisfit& a = none->modes[i];
+      const PairedModeMisfit& b = with->modes[i];
+      o << "  " << std::left << std::setw(14) << ModeName(r, a) << std::right
+        << std::fixed << std::setprecision(4) << std::setw(13) << a.measured_hz
+        << std::setw(12) << a.model_hz << std::setprecision(3) << std::setw(9)
+        << 100 * (a.model_hz / a.measured_hz - 1) << mac(a.mac) << "  |"
+        << std::setprecision(4) << std::setw(10) << b.model_hz << std::setprecision(3)
+        << std::setw(9) << 100 * (b.model_hz / b.measured_hz - 1) << mac(b.mac) << "\n";
+    }
+    o << "  rms frequency error " << std::fixed << std::setprecision(3)
+      << 100 * RmsFrequencyError(*none) << " % -> " << 100 * RmsFrequencyError(*with)
+      << " %";
+    if (!std::isnan(MeanMac(*none)))
+      o << "; mean MAC " << MeanMac(*none) << " -> " << MeanMac(*with);
     o << "\n";
   }
   for (const std::string& s : k.skipped) o << "not applicable: " << s << "\n";

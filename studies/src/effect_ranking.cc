@@ -646,6 +646,9 @@ EffectRanking RankModelEffects(const Structure& structure_in,
   std::vector<RankedClass> classes;
   std::vector<Eigen::MatrixXd> jacobians, raw_jacobians;
   std::vector<Eigen::VectorXd> residuals;
+  // Each class's data residuals at the fit it is reported at, unwhitened: what
+  // it predicts, mode by mode (RankedClass::modes).
+  std::vector<Eigen::VectorXd> raw_residuals;
   std::map<std::string, double> by_kind;
   Eigen::VectorXd row_scale;  // 1 / sqrt(noise temperature) per residual
   for (int round = 0;; ++round) {
@@ -688,6 +691,7 @@ EffectRanking RankModelEffects(const Structure& structure_in,
       class_effect.push_back(e);
     }
     raw_jacobians = jacobians;
+    raw_residuals = residuals;
     if (whitened) {
       // The fitted classes' whitened fits, in parallel, where not yet done
       // from the same raw fit.
@@ -723,6 +727,7 @@ EffectRanking RankModelEffects(const Structure& structure_in,
           const std::optional<WhitenedModeFit>& moved = in_form[class_effect[i]];
           if (!moved || !moved->ok) continue;
           residuals[i] = moved->residual;
+          raw_residuals[i] = moved->raw_residual;
           jacobians[i] = moved->jacobian;
           raw_jacobians[i] = moved->raw_jacobian;
           c.chi2 = moved->raw_residual.squaredNorm();
@@ -741,7 +746,8 @@ EffectRanking RankModelEffects(const Structure& structure_in,
         if (!to) continue;
         const Eigen::VectorXd d = *to - c.theta;
         residuals[i] = residuals[i] + j * d;
-        c.chi2 = (raw + raw_jacobians[i] * d).squaredNorm();
+        raw_residuals[i] = raw + raw_jacobians[i] * d;
+        c.chi2 = raw_residuals[i].squaredNorm();
         c.theta = *to;
         c.location = effect.Location(c.theta);
         c.magnitudes = effect.Magnitudes(c.theta);
@@ -888,6 +894,8 @@ EffectRanking RankModelEffects(const Structure& structure_in,
   // change the data only as the model's own form error does (equivalent to
   // none).
   NameEquivalentClasses(residuals, jacobians, &classes);
+  for (std::size_t i = 0; i < classes.size(); ++i)
+    classes[i].modes = PairedModeMisfits(states, fit, raw_residuals[i]);
   if (whitened) {
     const std::string note =
         NameFormErrorAlikeAsNone(form, residuals, raw_jacobians, row_scale, &classes);

@@ -275,6 +275,29 @@ refused "added mass on a dry chain" chain.yaml "diagnosis.candidates" "added_mas
 [ "$(json shear/diagnosis.json "abs(j['classes'][0]['magnitudes'][0]['value'] - 0.25) < 0.03")" \
   = True ] || fail "shear loss: $(json shear/diagnosis.json "j['classes'][0]['magnitudes']")"
 grep -q "verdict: stiffness_loss at element 3" shear.txt || fail "shear report: $(cat shear.txt)"
+# How far the gap shrinks, mode by mode: the nominal chain's frequencies against
+# the closed form of a uniform fixed-free chain (n = 6 floors of m = 100 t,
+# storeys of k = 2e8 N/m): omega_r^2 = 4 k / m sin^2((2r - 1) pi / (2 (2n + 1))),
+# and the verdict's rms error well below the nominal model's.
+python3 - shear/diagnosis.json <<'PY' || fail "shear gap: $(json shear/diagnosis.json "j.get('gap')")"
+import json, math, sys
+m, k, n = 1.0e5, 2.0e8, 6
+nominal = [math.sqrt(4 * k / m) * math.sin((2 * r - 1) * math.pi / (2 * (2 * n + 1)))
+           / (2 * math.pi) for r in range(1, n + 1)]
+gap = json.load(open(sys.argv[1]))["gap"]
+assert gap["class"] == "stiffness_loss at element 3" and gap["class_is_verdict"], gap
+for i, mode in enumerate(gap["modes"]):
+    assert mode["mode"] == i + 1 and mode["state"] == "test", mode
+    assert abs(mode["nominal_hz"] / nominal[i] - 1) < 1e-9, (mode, nominal[i])
+    assert abs(mode["nominal_error"] - (mode["nominal_hz"] / mode["measured_hz"] - 1)) < 1e-12
+    assert 0.9 < mode["updated_mac"] <= 1.0, mode
+assert gap["rms_updated_error"] < gap["rms_nominal_error"] / 5, gap
+PY
+grep -q "the gap, mode by mode: the nominal model, then with stiffness_loss at element 3" \
+  shear.txt || fail "shear gap on the terminal: $(cat shear.txt)"
+grep -q "rms frequency error .* % -> .* %; mean MAC" shear.txt \
+  || fail "shear gap's rms line: $(cat shear.txt)"
+[ -s shear/gap.png ] || fail "shear: no gap.png"
 # On a chain the ground spring and the first storey are one spring: their fits
 # are the same change, named as such in the JSON and on the terminal.
 [ "$(json shear/diagnosis.json "[c['equivalent'] for c in j['classes'] if c['kind'] == 'support_flexibility']")" \

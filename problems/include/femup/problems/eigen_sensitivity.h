@@ -38,6 +38,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -134,5 +135,26 @@ NonlinearProblem BuildOutputErrorProblem(std::shared_ptr<const ParametrisedPenci
                                          const std::vector<ModalData>& states,
                                          const EigenSensitivityOptions& options,
                                          const Eigen::VectorXd& start = {});
+
+// A measured mode's misfit read back from the output-error residuals above
+// (BuildOutputErrorProblem's data rows, in its order, as evaluated with
+// `options` on `states`): the paired model mode's frequency, lambda = lambda_meas
+// (1 + frequency_sigma r), and where the state's shapes are residuals, the MAC
+// at the sensors of that mode's shape with the measured one (the model shape
+// up to its scale is t + r / w, t the target and w the weight of each entry).
+// What a fit predicts, mode by mode, without solving the model again.
+struct PairedModeMisfit {
+  int state = 0;  // index into states
+  int mode = 0;   // the measured mode's index in its state (0: the first)
+  double measured_hz = 0;
+  double model_hz = 0;
+  double mac = std::numeric_limits<double>::quiet_NaN();  // NaN: shapes not compared
+};
+
+// Throws InputError("residual", ...) where the residual has fewer rows than the
+// states' modes need, and as BuildOutputErrorProblem does for a zero shape.
+std::vector<PairedModeMisfit> PairedModeMisfits(const std::vector<ModalData>& states,
+                                                const EigenSensitivityOptions& options,
+                                                const Eigen::VectorXd& residual);
 
 }  // namespace femup

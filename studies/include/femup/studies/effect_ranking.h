@@ -66,6 +66,7 @@
 #include "femup/core/invalid.h"
 #include "femup/core/sysid/measurement.h"
 #include "femup/problems/effect_priors.h"
+#include "femup/problems/eigen_sensitivity.h"
 #include "femup/problems/model_effects.h"
 #include "femup/solvers/model_evidence.h"
 
@@ -225,6 +226,11 @@ struct RankedClass {
   double group_probability = 0;
   EffectLocation location;
   std::vector<EffectMagnitude> magnitudes;
+  // What the class predicts at its fit, mode by mode in the measured order
+  // (state by state): the paired model frequency and, where shapes were
+  // compared, the MAC (eigen_sensitivity.h). For "none" the nominal model's:
+  // how far the gap shrinks once the class is added.
+  std::vector<PairedModeMisfit> modes;
 };
 
 // A form variant's size on these data (see above).
