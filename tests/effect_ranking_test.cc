@@ -1068,6 +1068,53 @@ TEST(StructureDiagnosis, ReadsTheFrequencyTemperature) {
       {"diagnosis.frequency_temperature", "engine: model_effects"});
 }
 
+// The verdict checked on a mode it was not fitted to (diagnosis.held_out): on the
+// bundled shear building (storey 3 lost 25 %), "auto" holds out the highest of
+// its four modes; the damaged storey fitted on the other three predicts it
+// better than the nominal model does, with its loss still near 0.25. "none"
+// makes no check; a named mode that is not measured, or every mode, is refused
+// naming the field.
+TEST(StructureDiagnosis, ChecksTheVerdictOnAHeldOutMode) {
+  Study study =
+      LoadStudy(std::string(FEMUP_EXAMPLES_DIR) + "/diagnosis/shear_building.yaml");
+  ASSERT_TRUE(study.diagnosis.has_value());
+  study.diagnosis->candidates = {"stiffness_loss", "material_scaling"};
+  const StructureDiagnosisResult r = RunStructureDiagnosis(study);
+  ASSERT_TRUE(r.ranking.held_out.has_value());
+  const HeldOutCheck& h = *r.ranking.held_out;
+  ASSERT_TRUE(h.ok) << h.why;
+  EXPECT_EQ(h.kind, "stiffness_loss");
+  EXPECT_EQ(h.region, "element 3");
+  ASSERT_EQ(h.nominal.size(), 1u);
+  ASSERT_EQ(h.refit.size(), 1u);
+  EXPECT_EQ(h.refit[0].mode, 3);
+  const double nominal_error =
+      std::abs(h.nominal[0].model_hz / h.nominal[0].measured_hz - 1);
+  const double refit_error = std::abs(h.refit[0].model_hz / h.refit[0].measured_hz - 1);
+  EXPECT_LT(refit_error, nominal_error / 2);
+  EXPECT_NEAR(std::exp(h.theta[0]), 0.25, 0.04);
+  const std::string report = StructureDiagnosisReport(r);
+  EXPECT_NE(report.find("held-out check: stiffness_loss at element 3"), std::string::npos)
+      << report;
+
+  study.diagnosis->held_out = "none";
+  EXPECT_FALSE(RunStructureDiagnosis(study).ranking.held_out.has_value());
+  study.diagnosis->held_out = "list";
+  study.diagnosis->held_out_modes = {{"test", 5}};
+  testing::ExpectInputError([&] { RunStructureDiagnosis(study); },
+                            {"diagnosis.held_out", "modes 1..4", "5"});
+  study.diagnosis->held_out_modes = {{"water", 1}};
+  testing::ExpectInputError([&] { RunStructureDiagnosis(study); },
+                            {"diagnosis.held_out", "water"});
+  study.diagnosis->held_out_modes = {{"test", 1}, {"test", 2}, {"test", 3}, {"test", 4}};
+  testing::ExpectInputError([&] { RunStructureDiagnosis(study); },
+                            {"diagnosis.held_out", "every measured mode"});
+  EffectRankingOptions o;
+  o.held_out = {{1, 0}};
+  testing::ExpectInputError([&] { RankModelEffects(study.structure, r.measured, o); },
+                            {"diagnosis.held_out", "state 2 mode 1", "not measured"});
+}
+
 // The bundled cantilever whose real base has springs (1.0e5 N/m, 3.5e4 N m/rad;
 // its data made by a 60-element truth) on the one engine: the clamped model's
 // base released as a rigid support, the springs found within 2 %.

@@ -403,6 +403,18 @@ void BindDiagnosis(py::module_& m) {
       .def_readonly("model_hz", &femup::PairedModeMisfit::model_hz)
       .def_readonly("mac", &femup::PairedModeMisfit::mac);
 
+  py::class_<femup::HeldOutCheck>(
+      m, "HeldOutCheck",
+      "The verdict fitted again without the held-out modes, and its and the nominal "
+      "model's predictions of them.")
+      .def_readonly("kind", &femup::HeldOutCheck::kind)
+      .def_readonly("region", &femup::HeldOutCheck::region)
+      .def_readonly("theta", &femup::HeldOutCheck::theta)
+      .def_readonly("nominal", &femup::HeldOutCheck::nominal)
+      .def_readonly("refit", &femup::HeldOutCheck::refit)
+      .def_readonly("ok", &femup::HeldOutCheck::ok)
+      .def_readonly("why", &femup::HeldOutCheck::why);
+
   py::class_<femup::RankedClass>(m, "RankedClass",
                                  "One class of the ranking on any structure.")
       .def_readonly("kind", &femup::RankedClass::kind)
@@ -441,6 +453,8 @@ void BindDiagnosis(py::module_& m) {
           "family_presence",
           [](const femup::EffectRanking& r) { return femup::FamilyPresence(r); },
           "Each family's probability alone or in a pair (femup::FamilyPresence).")
+      .def_readonly("held_out", &femup::EffectRanking::held_out,
+                    "The held-out check (diagnosis.held_out), or None.")
       .def_readonly("gap_probability", &femup::EffectRanking::gap_probability)
       .def_readonly("gap_below_confidence", &femup::EffectRanking::gap_below_confidence)
       .def_readonly("temperature", &femup::EffectRanking::temperature)

@@ -154,6 +154,14 @@ def test_structure_diagnosis_matches_diagnosis_json(run_cli):
         close(a.model_hz, e["nominal_hz"], rel=1e-9)
         close(b.model_hz, e["updated_hz"], rel=1e-9)
         close(b.mac, e["updated_mac"], rel=1e-9)
+    # The verdict fitted again without the highest mode predicts it.
+    held = result.ranking.held_out
+    assert held is not None and held.ok
+    assert (held.kind, held.region) == ("stiffness_loss", "element 3")
+    assert [(m.state, m.mode) for m in held.refit] == [(0, 3)]
+    (e,) = expected["held_out"]["modes"]
+    close(held.refit[0].model_hz, e["refit_hz"], rel=1e-9)
+    close(held.nominal[0].model_hz, e["nominal_hz"], rel=1e-9)
 
 
 def test_frame_diagnosis_states_the_form_error_it_allowed_for(run_cli):

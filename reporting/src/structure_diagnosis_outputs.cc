@@ -170,6 +170,29 @@ void WriteStructureDiagnosisOutputs(const StructureDiagnosisResult& r, bool plot
                 {"rms_updated_error", Number(RmsFrequencyError(*with))},
                 {"modes", modes}};
   }
+  if (k.held_out) {
+    const HeldOutCheck& h = *k.held_out;
+    nlohmann::json hj = {
+        {"class", h.region.empty() ? h.kind : h.kind + " at " + h.region},
+        {"ok", h.ok},
+        {"why", h.why}};
+    hj["modes"] = nlohmann::json::array();
+    for (std::size_t i = 0; i < h.nominal.size() && i < h.refit.size(); ++i) {
+      const PairedModeMisfit& a = h.nominal[i];
+      const PairedModeMisfit& b = h.refit[i];
+      hj["modes"].push_back(
+          {{"state", r.measured.at(static_cast<std::size_t>(a.state)).state},
+           {"mode", a.mode + 1},
+           {"measured_hz", a.measured_hz},
+           {"nominal_hz", a.model_hz},
+           {"refit_hz", b.model_hz},
+           {"nominal_error", a.model_hz / a.measured_hz - 1},
+           {"refit_error", b.model_hz / b.measured_hz - 1},
+           {"nominal_mac", Number(a.mac)},
+           {"refit_mac", Number(b.mac)}});
+    }
+    j["held_out"] = hj;
+  }
   j["not_applicable"] = k.skipped;
   j["notes"] = k.notes;
   j["stated_priors"] = StatedPriorsJson(r.priors);
@@ -334,6 +357,27 @@ std::string StructureDiagnosisReport(const StructureDiagnosisResult& r) {
     if (!std::isnan(MeanMac(*none)))
       o << "; mean MAC " << MeanMac(*none) << " -> " << MeanMac(*with);
     o << "\n";
+  }
+  if (k.held_out && !k.held_out->ok) {
+    o << "held-out check of " << k.held_out->kind << ": not made (" << k.held_out->why
+      << ")\n";
+  } else if (k.held_out) {
+    const HeldOutCheck& h = *k.held_out;
+    o << "held-out check: " << (h.region.empty() ? h.kind : h.kind + " at " + h.region)
+      << " fitted again without these modes predicts them (the ranking used every "
+         "mode):\n";
+    for (std::size_t i = 0; i < h.nominal.size() && i < h.refit.size(); ++i) {
+      const PairedModeMisfit& a = h.nominal[i];
+      const PairedModeMisfit& b = h.refit[i];
+      o << "  " << std::left << std::setw(14) << ModeName(r, a) << std::right
+        << std::fixed << std::setprecision(4) << " measured " << a.measured_hz
+        << " Hz; nominal " << a.model_hz << " Hz (" << std::setprecision(3)
+        << 100 * (a.model_hz / a.measured_hz - 1) << " %); refitted "
+        << std::setprecision(4) << b.model_hz << " Hz (" << std::setprecision(3)
+        << 100 * (b.model_hz / b.measured_hz - 1) << " %)";
+      if (!std::isnan(b.mac)) o << "; MAC " << a.mac << " -> " << b.mac;
+      o << "\n";
+    }
   }
   for (const std::string& s : k.skipped) o << "not applicable: " << s << "\n";
   for (const std::string& s : k.notes) o << "note: " << s << "\n";

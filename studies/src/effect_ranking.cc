@@ -278,6 +278,72 @@ MarginalTemperature MarginalFrequencyTemperature(
   return m;
 }
 
+// The verdict (or, where it is none, the most probable effect) fitted again
+// without the held-out modes (held[state][mode] != 0), and both that fit's and
+// the nominal model's predictions of them (EffectRankingOptions::held_out).
+HeldOutCheck CheckOnHeldOutModes(
+    const EffectRanking& ranking, const std::shared_ptr<const Structure>& structure,
+    const std::vector<std::shared_ptr<const ModelEffect>>& effects,
+    const std::vector<ModalData>& states, const std::vector<std::vector<char>>& held,
+    const EigenSensitivityOptions& fit, const NonlinearSolver& solver, bool ritz) {
+  HeldOutCheck check;
+  const RankedClass* target = nullptr;
+  for (const RankedClass& c : ranking.classes) {
+    if (c.kind != "none") {
+      target = ranking.classes.front().kind == "none" ? &c : &ranking.classes.front();
+      break;
+    }
+  }
+  const auto none = std::find_if(ranking.classes.begin(), ranking.classes.end(),
+                                 [](const RankedClass& c) { return c.kind == "none"; });
+  if (target == nullptr || none == ranking.classes.end()) {
+    check.why = "no effect to check";
+    return check;
+  }
+  check.kind = target->kind;
+  check.region = target->region;
+  const auto effect = std::find_if(effects.begin(), effects.end(), [&](const auto& e) {
+    return e->kind() == target->kind && e->region().name == target->region;
+  });
+  if (effect == effects.end()) {
+    check.why = "the class's place is not among those fitted";
+    return check;
+  }
+  auto is_held = [&](const PairedModeMisfit& m) {
+    return held[static_cast<std::size_t>(m.state)][static_cast<std::size_t>(m.mode)] != 0;
+  };
+  for (const PairedModeMisfit& m : none->modes)
+    if (is_held(m)) check.nominal.push_back(m);
+  // The states without the held-out modes (a state left without a mode is
+  // dropped).
+  std::vector<ModalData> kept;
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    std::vector<int> keep;
+    for (int j = 0; j < states[i].num_modes(); ++j)
+      if (!held[i][static_cast<std::size_t>(j)]) keep.push_back(j);
+    if (keep.empty()) continue;
+    ModalData d = states[i];
+    d.frequencies_hz = states[i].frequencies_hz(keep);
+    if (d.HasShapes()) d.shapes = states[i].shapes(Eigen::all, keep);
+    kept.push_back(std::move(d));
+  }
+  const Fit f = FitInstance(structure, *effect, kept, fit, solver, ritz);
+  if (!f.ok) {
+    check.why = "the fit without the held-out modes failed";
+    return check;
+  }
+  check.theta = f.theta;
+  // Its predictions of every measured mode, paired as the ranking's fits are.
+  const NonlinearProblem all =
+      BuildModelEffectFitProblem(structure, {*effect}, states, fit, f.theta);
+  Eigen::VectorXd r;
+  if (!all.evaluate(f.theta, &r, nullptr, &check.why)) return check;
+  for (const PairedModeMisfit& m : PairedModeMisfits(states, fit, r))
+    if (is_held(m)) check.refit.push_back(m);
+  check.ok = true;
+  return check;
+}
+
 }  // namespace
 
 std::string ToString(EffectRankingOptions::FrequencyTemperature t) {
@@ -333,6 +399,25 @@ EffectRanking RankModelEffects(const Structure& structure_in,
                                const std::vector<ModalData>& states,
                                const EffectRankingOptions& options) {
   ThrowIfInvalid(options.Validate(), "diagnosis");
+  // The held-out modes must be measured, and leave a mode to fit.
+  std::vector<std::vector<char>> held(states.size());
+  for (std::size_t i = 0; i < states.size(); ++i)
+    held[i].assign(static_cast<std::size_t>(states[i].num_modes()), 0);
+  for (const auto& [state, mode] : options.held_out) {
+    if (state < 0 || state >= static_cast<int>(states.size()) || mode < 0 ||
+        mode >= states[static_cast<std::size_t>(state)].num_modes()) {
+      throw InputError("diagnosis.held_out", "state " + std::to_string(state + 1) +
+                                                 " mode " + std::to_string(mode + 1) +
+                                                 " is not measured");
+    }
+    held[static_cast<std::size_t>(state)][static_cast<std::size_t>(mode)] = 1;
+  }
+  if (!options.held_out.empty() &&
+      std::all_of(held.begin(), held.end(), [](const std::vector<char>& h) {
+        return std::all_of(h.begin(), h.end(), [](char c) { return c != 0; });
+      })) {
+    throw InputError("diagnosis.held_out", "every measured mode is held out; none left");
+  }
   auto structure = std::make_shared<const Structure>(structure_in);
   const bool any_wet = std::any_of(states.begin(), states.end(), [](const ModalData& d) {
     return d.immersion == Immersion::kWet;
@@ -950,6 +1035,9 @@ EffectRanking RankModelEffects(const Structure& structure_in,
   out.kind_probabilities.assign(by_kind.begin(), by_kind.end());
   std::stable_sort(out.kind_probabilities.begin(), out.kind_probabilities.end(),
                    [](const auto& a, const auto& b) { return a.second > b.second; });
+  if (!options.held_out.empty())
+    out.held_out =
+        CheckOnHeldOutModes(out, structure, effects, states, held, fit, *solver, ritz);
   return out;
 }
 

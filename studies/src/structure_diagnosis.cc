@@ -76,6 +76,36 @@ const FormVariant* MeshToDiagnoseOn(const Structure& model,
   return nullptr;
 }
 
+// The modes the verdict is checked on (DiagnosisSpec::held_out), as (state,
+// mode) indexes: "auto" the highest of each state with three or more, "none"
+// nothing, a list the named ones (each must be measured; InputError naming
+// the study file and diagnosis.held_out otherwise).
+std::vector<std::pair<int, int>> HeldOutModes(const DiagnosisSpec& spec,
+                                              const std::vector<ModalData>& measured,
+                                              const std::string& path) {
+  std::vector<std::pair<int, int>> out;
+  if (spec.held_out == "auto") {
+    for (std::size_t i = 0; i < measured.size(); ++i)
+      if (measured[i].num_modes() >= 3)
+        out.emplace_back(static_cast<int>(i), measured[i].num_modes() - 1);
+  } else if (spec.held_out == "list") {
+    for (const auto& [state, mode] : spec.held_out_modes) {
+      const auto it = std::find_if(measured.begin(), measured.end(),
+                                   [&](const ModalData& d) { return d.state == state; });
+      if (it == measured.end()) {
+        throw InputError(path, "diagnosis.held_out: no measured state '" + state + "'");
+      }
+      if (mode < 1 || mode > it->num_modes()) {
+        throw InputError(path, "diagnosis.held_out: state " + state + " has modes 1.." +
+                                   std::to_string(it->num_modes()) + ", not " +
+                                   std::to_string(mode));
+      }
+      out.emplace_back(static_cast<int>(it - measured.begin()), mode - 1);
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 StructureDiagnosisResult RunStructureDiagnosis(const Study& study) {
@@ -147,6 +177,7 @@ StructureDiagnosisResult RunStructureDiagnosis(const Study& study) {
   }
   for (const PreparedState& p : PrepareMeasurements(study))
     r.measured.push_back(p.at_sensors);
+  options.held_out = HeldOutModes(spec, r.measured, study.path);
   std::string refined_note;
   const FormVariant* refined =
       MeshToDiagnoseOn(study.structure, r.measured, spec, &refined_note);

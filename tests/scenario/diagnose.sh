@@ -292,11 +292,18 @@ for i, mode in enumerate(gap["modes"]):
     assert abs(mode["nominal_error"] - (mode["nominal_hz"] / mode["measured_hz"] - 1)) < 1e-12
     assert 0.9 < mode["updated_mac"] <= 1.0, mode
 assert gap["rms_updated_error"] < gap["rms_nominal_error"] / 5, gap
+# The verdict fitted again without its highest mode (held_out: auto) predicts it.
+held = json.load(open(sys.argv[1]))["held_out"]
+assert held["ok"] and held["class"] == "stiffness_loss at element 3", held
+assert [(m["state"], m["mode"]) for m in held["modes"]] == [("test", 4)], held
+assert abs(held["modes"][0]["refit_error"]) < abs(held["modes"][0]["nominal_error"]), held
 PY
 grep -q "the gap, mode by mode: the nominal model, then with stiffness_loss at element 3" \
   shear.txt || fail "shear gap on the terminal: $(cat shear.txt)"
 grep -q "rms frequency error .* % -> .* %; mean MAC" shear.txt \
   || fail "shear gap's rms line: $(cat shear.txt)"
+grep -q "held-out check: stiffness_loss at element 3 fitted again without" shear.txt \
+  || fail "shear held-out check on the terminal: $(cat shear.txt)"
 [ -s shear/gap.png ] || fail "shear: no gap.png"
 # On a chain the ground spring and the first storey are one spring: their fits
 # are the same change, named as such in the JSON and on the terminal.

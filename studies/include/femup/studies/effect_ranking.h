@@ -192,6 +192,12 @@ struct EffectRankingOptions {
   // (docs/diagnosis.md) the true pair was named in 21, 35, 49 and 57 cases of
   // 100 with 3, 6, 10 and every place, for 29, 34, 55 and 77 s.
   int pair_places = 10;
+  // Modes the verdict is checked on, as (state index in the states given,
+  // measured mode index from 0): its place is fitted again without them, and
+  // what that fit predicts for them is reported beside the nominal model's
+  // (EffectRanking::held_out). The ranking itself uses every mode. Where the
+  // verdict is none, the most probable effect is checked. Empty: no check.
+  std::vector<std::pair<int, int>> held_out;
   // Ok when valid, else the field and what is wrong.
   Invalid Validate() const;
 };
@@ -240,6 +246,19 @@ struct FormErrorAllowance {
   double noise_units = 0;           // norm of its change of the frequency residuals
 };
 
+// The verdict checked on modes it was not fitted to (EffectRankingOptions::
+// held_out): its place fitted again without them, and both that fit's and the
+// nominal model's predictions of them.
+struct HeldOutCheck {
+  std::string kind;
+  std::string region;
+  Eigen::VectorXd theta;  // the fit without the held-out modes
+  std::vector<PairedModeMisfit> nominal;
+  std::vector<PairedModeMisfit> refit;
+  bool ok = false;  // false: the refit failed (why says how)
+  std::string why;
+};
+
 struct EffectRanking {
   // By family, the most probable family first (but "none" first where the
   // gap's probability is below EffectRankingOptions::gap_confidence), then by
@@ -266,9 +285,11 @@ struct EffectRanking {
   std::vector<std::string> skipped;  // "<kind>: why it does not apply"
   std::vector<std::string> notes;    // what was left untried, and how to try it
   std::vector<FormErrorAllowance> form_errors;  // allowed for, one per variant
+  std::optional<HeldOutCheck> held_out;         // where options.held_out names modes
 };
 
-// Throws InputError for invalid options, an unknown family, a named family that
+// Throws InputError for invalid options, held-out modes that are not measured
+// (or every mode), an unknown family, a named family that
 // does not apply to the structure, a stated prior that does not fit the
 // structure's families (a quantity they lack, a region that names none of their
 // places; "diagnosis.priors.<kind>...", before any fit), or states the engine
