@@ -89,7 +89,10 @@ std::vector<std::pair<int, int>> HeldOutModes(const DiagnosisSpec& spec,
       if (measured[i].num_modes() >= 3)
         out.emplace_back(static_cast<int>(i), measured[i].num_modes() - 1);
   } else if (spec.held_out == "list") {
-    for (const auto& [state, mode] : spec.held_out_modes) {
+    for (const auto& named : spec.held_out_modes) {
+      // Not a structured binding: a lambda below reads the state (C++17).
+      const std::string& state = named.first;
+      const int mode = named.second;
       const auto it = std::find_if(measured.begin(), measured.end(),
                                    [&](const ModalData& d) { return d.state == state; });
       if (it == measured.end()) {
