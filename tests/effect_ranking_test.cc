@@ -106,6 +106,33 @@ TEST(EffectRanking, NamesTheDamagedStorey) {
 // two storeys named together (not the storey that fits best alone, the first,
 // beside the next best), each loss within 0.03; without pairs one storey alone
 // is named, with a misfit more than ten times the pair's.
+// The gap is shown with the verdict, or where the verdict is none with the
+// most probable class of another family; no other class, no gap class.
+TEST(EffectRanking, ShowsTheGapWithTheVerdictOrTheMostProbableEffect) {
+  auto ranked = [](std::vector<std::string> kinds) {
+    EffectRanking r;
+    for (const std::string& k : kinds) {
+      RankedClass c;
+      c.kind = k;
+      r.classes.push_back(c);
+    }
+    return r;
+  };
+  const EffectRanking named = ranked({"attached_mass", "none", "stiffness_loss"});
+  EXPECT_EQ(GapClass(named), &named.classes[0]);
+  EXPECT_EQ(NoneClass(named), &named.classes[1]);
+  const EffectRanking nothing = ranked({"none", "stiffness_loss", "attached_mass"});
+  EXPECT_EQ(GapClass(nothing), &nothing.classes[1]);
+  EXPECT_EQ(NoneClass(nothing), &nothing.classes[0]);
+  const EffectRanking alone = ranked({"none"});
+  EXPECT_EQ(GapClass(alone), nullptr);
+  EXPECT_EQ(NoneClass(alone), &alone.classes[0]);
+  const EffectRanking no_none = ranked({"material_scaling"});
+  EXPECT_EQ(GapClass(no_none), &no_none.classes[0]);
+  EXPECT_EQ(NoneClass(no_none), nullptr);
+  EXPECT_EQ(GapClass(EffectRanking{}), nullptr);
+}
+
 TEST(EffectRanking, NamesTwoDamagedStoreysTogether) {
   ChainSpec truth = ShearBuilding();
   truth.springs[1] *= 0.8;
@@ -1907,10 +1934,11 @@ TEST(StructureDiagnosis, SpaceFrameBaseSpringsFromAStudyFile) {
   EXPECT_EQ(study.structure.supports[0].stiffness, 2e9);
   EXPECT_EQ(study.model.dof_labels(), study.structure.dof_labels);
   EXPECT_EQ(study.model.dof_labels().back(), "b4:ry");
-  for (const auto& [bad, field] : {std::pair<std::string, std::string>{
-                                       "  base: {rocking: -1}\n", "model.base.rocking"},
-                                   {"  base: {}\n", "model.base"},
-                                   {"  base: {rotation: 1}\n", "rotation"}}) {
+  for (const auto& [base, field] : {std::pair<std::string, std::string>{
+                                        "  base: {rocking: -1}\n", "model.base.rocking"},
+                                    {"  base: {}\n", "model.base"},
+                                    {"  base: {rotation: 1}\n", "rotation"}}) {
+    const std::string bad = base;  // a lambda may not read a structured binding (C++17)
     femup::testing::ExpectError([&] { ParseStudyModel(frame + bad, "jacket.yaml"); },
                                 {field});
   }

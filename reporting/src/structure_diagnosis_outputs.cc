@@ -30,22 +30,6 @@ double KindProbability(const EffectRanking& k, const std::string& kind) {
   return 0;
 }
 
-// The class the gap is shown with: the verdict, or where the verdict is
-// "none" the most probable class of another family (what the most probable
-// effect would close); null where there is none.
-const RankedClass* GapClass(const EffectRanking& k) {
-  for (const RankedClass& c : k.classes)
-    if (c.kind != "none")
-      return k.classes.front().kind == "none" ? &c : &k.classes.front();
-  return nullptr;
-}
-
-const RankedClass* NoneClass(const EffectRanking& k) {
-  for (const RankedClass& c : k.classes)
-    if (c.kind == "none") return &c;
-  return nullptr;
-}
-
 // Root mean square of model / measured - 1 over the measured frequencies.
 double RmsFrequencyError(const RankedClass& c) {
   if (c.modes.empty()) return std::numeric_limits<double>::quiet_NaN();
@@ -79,6 +63,23 @@ std::string ModeName(const StructureDiagnosisResult& r, const PairedModeMisfit& 
 bool SameModes(const RankedClass* a, const RankedClass* b) {
   return a != nullptr && b != nullptr && !a->modes.empty() &&
          a->modes.size() == b->modes.size();
+}
+
+// One measured mode and two models' predictions of it: the nominal model's and
+// "<other>"'s (updated: the class the gap is shown with; refit: the held-out
+// check's fit).
+nlohmann::json PairedModesJson(const StructureDiagnosisResult& r,
+                               const PairedModeMisfit& a, const PairedModeMisfit& b,
+                               const std::string& other) {
+  return {{"state", r.measured.at(static_cast<std::size_t>(a.state)).state},
+          {"mode", a.mode + 1},
+          {"measured_hz", a.measured_hz},
+          {"nominal_hz", a.model_hz},
+          {other + "_hz", b.model_hz},
+          {"nominal_error", a.model_hz / a.measured_hz - 1},
+          {other + "_error", b.model_hz / b.measured_hz - 1},
+          {"nominal_mac", Number(a.mac)},
+          {other + "_mac", Number(b.mac)}};
 }
 
 }  // namespace
@@ -151,19 +152,8 @@ void WriteStructureDiagnosisOutputs(const StructureDiagnosisResult& r, bool plot
   const RankedClass* with = GapClass(k);
   if (SameModes(none, with)) {
     nlohmann::json modes = nlohmann::json::array();
-    for (std::size_t i = 0; i < none->modes.size(); ++i) {
-      const PairedModeMisfit& a = none->modes[i];
-      const PairedModeMisfit& b = with->modes[i];
-      modes.push_back({{"state", r.measured.at(static_cast<std::size_t>(a.state)).state},
-                       {"mode", a.mode + 1},
-                       {"measured_hz", a.measured_hz},
-                       {"nominal_hz", a.model_hz},
-                       {"updated_hz", b.model_hz},
-                       {"nominal_error", a.model_hz / a.measured_hz - 1},
-                       {"updated_error", b.model_hz / b.measured_hz - 1},
-                       {"nominal_mac", Number(a.mac)},
-                       {"updated_mac", Number(b.mac)}});
-    }
+    for (std::size_t i = 0; i < none->modes.size(); ++i)
+      modes.push_back(PairedModesJson(r, none->modes[i], with->modes[i], "updated"));
     j["gap"] = {{"class", Label(*with)},
                 {"class_is_verdict", with == &top},
                 {"rms_nominal_error", Number(RmsFrequencyError(*none))},
@@ -177,20 +167,8 @@ void WriteStructureDiagnosisOutputs(const StructureDiagnosisResult& r, bool plot
         {"ok", h.ok},
         {"why", h.why}};
     hj["modes"] = nlohmann::json::array();
-    for (std::size_t i = 0; i < h.nominal.size() && i < h.refit.size(); ++i) {
-      const PairedModeMisfit& a = h.nominal[i];
-      const PairedModeMisfit& b = h.refit[i];
-      hj["modes"].push_back(
-          {{"state", r.measured.at(static_cast<std::size_t>(a.state)).state},
-           {"mode", a.mode + 1},
-           {"measured_hz", a.measured_hz},
-           {"nominal_hz", a.model_hz},
-           {"refit_hz", b.model_hz},
-           {"nominal_error", a.model_hz / a.measured_hz - 1},
-           {"refit_error", b.model_hz / b.measured_hz - 1},
-           {"nominal_mac", Number(a.mac)},
-           {"refit_mac", Number(b.mac)}});
-    }
+    for (std::size_t i = 0; i < h.nominal.size() && i < h.refit.size(); ++i)
+      hj["modes"].push_back(PairedModesJson(r, h.nominal[i], h.refit[i], "refit"));
     j["held_out"] = hj;
   }
   j["not_applicable"] = k.skipped;

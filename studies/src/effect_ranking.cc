@@ -287,16 +287,9 @@ HeldOutCheck CheckOnHeldOutModes(
     const std::vector<ModalData>& states, const std::vector<std::vector<char>>& held,
     const EigenSensitivityOptions& fit, const NonlinearSolver& solver, bool ritz) {
   HeldOutCheck check;
-  const RankedClass* target = nullptr;
-  for (const RankedClass& c : ranking.classes) {
-    if (c.kind != "none") {
-      target = ranking.classes.front().kind == "none" ? &c : &ranking.classes.front();
-      break;
-    }
-  }
-  const auto none = std::find_if(ranking.classes.begin(), ranking.classes.end(),
-                                 [](const RankedClass& c) { return c.kind == "none"; });
-  if (target == nullptr || none == ranking.classes.end()) {
+  const RankedClass* target = GapClass(ranking);
+  const RankedClass* none = NoneClass(ranking);
+  if (target == nullptr || none == nullptr) {
     check.why = "no effect to check";
     return check;
   }
@@ -1039,6 +1032,19 @@ EffectRanking RankModelEffects(const Structure& structure_in,
     out.held_out =
         CheckOnHeldOutModes(out, structure, effects, states, held, fit, *solver, ritz);
   return out;
+}
+
+const RankedClass* GapClass(const EffectRanking& ranking) {
+  for (const RankedClass& c : ranking.classes)
+    if (c.kind != "none")
+      return ranking.classes.front().kind == "none" ? &c : &ranking.classes.front();
+  return nullptr;
+}
+
+const RankedClass* NoneClass(const EffectRanking& ranking) {
+  for (const RankedClass& c : ranking.classes)
+    if (c.kind == "none") return &c;
+  return nullptr;
 }
 
 std::vector<std::string> FamiliesOf(const std::string& kind) {

@@ -288,6 +288,13 @@ struct EffectRanking {
   std::optional<HeldOutCheck> held_out;         // where options.held_out names modes
 };
 
+// The class the gap is shown with and the verdict is checked on: the verdict,
+// or where the verdict is "none" the most probable class of another family
+// (what the most probable effect would close); null where there is none.
+const RankedClass* GapClass(const EffectRanking& ranking);
+// The "none" class (the nominal model), null where it was not ranked.
+const RankedClass* NoneClass(const EffectRanking& ranking);
+
 // Throws InputError for invalid options, held-out modes that are not measured
 // (or every mode), an unknown family, a named family that
 // does not apply to the structure, a stated prior that does not fit the
