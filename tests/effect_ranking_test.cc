@@ -691,6 +691,74 @@ TEST(EffectRanking, NamesAGapOnlyAtTheGapConfidence) {
   EXPECT_THROW(RankModelEffects(nominal, data, o), InputError);
 }
 
+// A gap no family explains is not named after the family that nibbles at it
+// most: a chain whose storeys are alternately stiffer and softer than its model
+// (a form error no single place, uniform scaling or support can make) is
+// diagnosed "none", with the class that explained too little listed next and
+// every probability as with gap_explained 0, which names it. A damaged storey
+// is explained in full and still named. The report says why none was named.
+TEST(EffectRanking, NamesNoEffectThatExplainsTooLittleOfTheGap) {
+  EXPECT_EQ(EffectRankingOptions().gap_explained, 0.5);
+  EXPECT_EQ(DiagnosisSpec().gap_explained, 0.5);
+  const Structure nominal = BuildSpringMassChain(ShearBuilding());
+  ChainSpec uneven = ShearBuilding();
+  for (std::size_t i = 0; i < uneven.springs.size(); ++i)
+    uneven.springs[i] *= i % 2 == 0 ? 1.1 : 0.9;
+  const std::vector<ModalData> data = {Measured(uneven, 21)};
+  EffectRankingOptions o = Options();
+  const EffectRanking r = RankModelEffects(nominal, data, o);
+  o.gap_explained = 0;
+  const EffectRanking any = RankModelEffects(nominal, data, o);
+  ASSERT_GE(any.classes.size(), 2u);
+  ASSERT_EQ(any.classes[0].kind, "stiffness_loss");  // what gap_explained 0 names
+  EXPECT_FALSE(any.gap_unexplained);
+  EXPECT_GT(any.gap_probability, 0.5);
+  EXPECT_LT(any.classes[0].explained, 0.5);
+  ASSERT_EQ(r.classes.size(), any.classes.size());
+  EXPECT_EQ(r.classes[0].kind, "none");
+  EXPECT_TRUE(r.gap_unexplained);
+  EXPECT_EQ(r.classes[1].kind + r.classes[1].region,
+            any.classes[0].kind + any.classes[0].region);
+  EXPECT_EQ(r.kind_probabilities, any.kind_probabilities);
+  EXPECT_DOUBLE_EQ(r.gap_probability, any.gap_probability);
+  for (const RankedClass& c : r.classes) {
+    EXPECT_GE(c.explained, 0.0);
+    EXPECT_LE(c.explained, 1.0);
+    if (c.kind == "none") {
+      EXPECT_EQ(c.explained, 0.0);
+      continue;
+    }
+    // The definition, from the class's chi2 and none's: 4 frequencies and 4
+    // shapes of 6 entries, each shape scaled to fit.
+    ASSERT_EQ(r.num_residuals, 28);
+    const double gap = r.classes[0].chi2 - (28 - 4);
+    const double left = c.chi2 - (28 - 4 - static_cast<double>(c.theta.size()));
+    EXPECT_NEAR(c.explained, std::clamp(1 - std::max(0.0, left) / gap, 0.0, 1.0), 1e-12);
+  }
+  StructureDiagnosisResult report;
+  report.study_name = "s";
+  report.model_type = "chain";
+  report.ranking = r;
+  EXPECT_NE(
+      StructureDiagnosisReport(report).find(
+          "verdict: no effect explains the gap: the most probable, stiffness_loss at"),
+      std::string::npos)
+      << StructureDiagnosisReport(report);
+
+  // A damaged storey: explained (to the noise) and named.
+  ChainSpec damaged = ShearBuilding();
+  damaged.springs[2] *= 0.8;
+  const EffectRanking d = RankModelEffects(nominal, {Measured(damaged, 21)}, Options());
+  EXPECT_EQ(d.classes[0].kind, "stiffness_loss");
+  EXPECT_FALSE(d.gap_unexplained);
+  EXPECT_GT(d.classes[0].explained, 0.95);
+
+  o.gap_explained = 1;
+  EXPECT_EQ(o.Validate().field, "gap_explained");
+  o.gap_explained = -0.1;
+  EXPECT_THROW(RankModelEffects(nominal, data, o), InputError);
+}
+
 // Without bagging the probabilities are the Laplace posterior's; with it both
 // are reported, each summing to 1, and the same fits (chi2, evidence) serve
 // both.
@@ -1058,6 +1126,9 @@ TEST(StructureDiagnosis, ReadsAStatedModelUncertainty) {
                    "x.yaml");
       },
       {"diagnosis.model_uncertainty", "engine: model_effects"});
+  testing::ExpectInputError(
+      [&] { ParseStudy(cantilever + "diagnosis: {gap_explained: 0.3}\n", "x.yaml"); },
+      {"diagnosis.gap_explained", "engine: model_effects"});
   EXPECT_EQ(
       ParseStudy(cantilever + "diagnosis: {engine: model_effects, model_uncertainty: "
                               "{stiffness: 0.02}}\n",

@@ -556,6 +556,23 @@ TEST(Study, GapConfidenceIsReadAndChecked) {
               {"diagnosis.gap_confidence"});
 }
 
+// diagnosis.gap_explained: the share of the nominal misfit beyond the noise an
+// effect must remove to be named (effect_ranking.h), 0.5 unless stated, in
+// [0, 1), refused on the cantilever's own pipeline.
+TEST(Study, GapExplainedIsReadAndChecked) {
+  EXPECT_EQ(LoadStudy(Write("ge_default.yaml", kShear)).diagnosis->gap_explained, 0.5);
+  EXPECT_EQ(
+      LoadStudy(Write("ge_stated.yaml", kShear + std::string("  gap_explained: 0\n")))
+          .diagnosis->gap_explained,
+      0.0);
+  ExpectError("ge_one.yaml", kShear + std::string("  gap_explained: 1\n"),
+              {"diagnosis.gap_explained", "up to, not including, 1"});
+  ExpectError("ge_negative.yaml", kShear + std::string("  gap_explained: -0.2\n"),
+              {"diagnosis.gap_explained"});
+  ExpectError("ge_text.yaml", kShear + std::string("  gap_explained: most\n"),
+              {"diagnosis.gap_explained"});
+}
+
 // The cantilever's effects are placed by a fitted height: regions are refused
 // (x_m states where), and the sampled evidence takes uniform priors only.
 TEST(Study, CantileverPriorsUseHeights) {

@@ -426,6 +426,8 @@ void BindDiagnosis(py::module_& m) {
       .def_readonly("names", &femup::RankedClass::names)
       .def_readonly("theta", &femup::RankedClass::theta)
       .def_readonly("chi2", &femup::RankedClass::chi2)
+      .def_readonly("explained", &femup::RankedClass::explained,
+                    "the share of the nominal misfit beyond the noise the class removes")
       .def_readonly("frequency_temperature", &femup::RankedClass::frequency_temperature)
       .def_readonly("evidence", &femup::RankedClass::evidence)
       .def_readonly("log_prior", &femup::RankedClass::log_prior)
@@ -457,6 +459,7 @@ void BindDiagnosis(py::module_& m) {
                     "The held-out check (diagnosis.held_out), or None.")
       .def_readonly("gap_probability", &femup::EffectRanking::gap_probability)
       .def_readonly("gap_below_confidence", &femup::EffectRanking::gap_below_confidence)
+      .def_readonly("gap_unexplained", &femup::EffectRanking::gap_unexplained)
       .def_readonly("temperature", &femup::EffectRanking::temperature)
       .def_readonly("shape_temperature", &femup::EffectRanking::shape_temperature)
       .def_property_readonly("frequency_temperature",

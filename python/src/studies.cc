@@ -55,6 +55,7 @@ void BindSpecs(py::module_& m) {
                      &femup::DiagnosisSpec::stiffness_uncertainty)
       .def_readwrite("mass_uncertainty", &femup::DiagnosisSpec::mass_uncertainty)
       .def_readwrite("gap_confidence", &femup::DiagnosisSpec::gap_confidence)
+      .def_readwrite("gap_explained", &femup::DiagnosisSpec::gap_explained)
       .def_property(
           "frequency_temperature",
           [](const femup::DiagnosisSpec& d) {

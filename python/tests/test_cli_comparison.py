@@ -128,6 +128,8 @@ def test_structure_diagnosis_matches_diagnosis_json(run_cli):
         close(c.evidence.log_evidence, e["log_evidence"], rel=1e-9)
         assert c.equivalent == e["equivalent"]
         assert c.fitted == e["fitted"]
+        close(c.explained, e["explained"], rel=1e-9, abs_=1e-12)
+        assert 0 <= c.explained <= 1
         for m, em in zip(c.magnitudes, e["magnitudes"]):
             assert m.name == em["name"] and m.unit == em["unit"]
             close(m.value, em["value"], rel=1e-9)
@@ -143,6 +145,11 @@ def test_structure_diagnosis_matches_diagnosis_json(run_cli):
     assert result.ranking.gap_below_confidence is False
     assert expected["verdict"]["gap_below_confidence"] is False
     assert expected["gap_confidence"] == 0
+    # The verdict explains the gap (a damaged storey): named, as the CLI did.
+    assert result.ranking.gap_unexplained is False
+    assert expected["verdict"]["gap_unexplained"] is False
+    assert expected["gap_explained"] == 0.5
+    assert classes[0].explained >= 0.5
     # How far the gap shrinks: the nominal model's and the verdict's predictions
     # of each measured mode, as diagnosis.json's gap states them.
     none = next(c for c in classes if c.kind == "none")

@@ -97,11 +97,13 @@ void WriteStructureDiagnosisOutputs(const StructureDiagnosisResult& r, bool plot
                   {"kind_probability", KindProbability(k, top.kind)},
                   {"gap_probability", k.gap_probability},
                   {"gap_below_confidence", k.gap_below_confidence},
+                  {"gap_unexplained", k.gap_unexplained},
                   {"separated", top.probability >= r.confidence},
                   {"equivalent", top.equivalent},
                   {"group_probability", top.group_probability}};
   j["confidence"] = r.confidence;
   j["gap_confidence"] = r.gap_confidence;
+  j["gap_explained"] = r.gap_explained;
   j["temperature"] = k.temperature;
   j["frequency_temperature"] = ToString(k.frequency_temperature);
   j["shape_temperature"] = k.shape_temperature;
@@ -128,6 +130,7 @@ void WriteStructureDiagnosisOutputs(const StructureDiagnosisResult& r, bool plot
                          {"probability", c.probability},
                          {"laplace_probability", c.laplace_probability},
                          {"chi2", c.chi2},
+                         {"explained", c.explained},
                          {"log_evidence", c.evidence.log_evidence},
                          {"log_occam", c.evidence.log_occam},
                          {"log_prior", c.log_prior},
@@ -231,6 +234,15 @@ std::string StructureDiagnosisReport(const StructureDiagnosisResult& r) {
       << r.gap_confidence << " (none P " << top.probability;
     if (family != "none") o << "; the most probable family " << family << " P " << p;
     o << ")\n";
+  } else if (top.kind == "none" && k.gap_unexplained && k.classes.size() > 1) {
+    const RankedClass& best = k.classes[1];
+    o << "verdict: no effect explains the gap: the most probable, " << Label(best)
+      << " (P " << std::fixed << std::setprecision(2) << best.probability
+      << "; a gap of any kind P " << k.gap_probability << "), removes "
+      << std::setprecision(1) << 100 * std::max(0.0, best.explained)
+      << " % of the nominal model's misfit beyond the noise, less than gap_explained "
+      << std::setprecision(2) << r.gap_explained
+      << " (the rest is a form error of the model, or an effect of no family tried)\n";
   } else if (top.kind == "none") {
     o << "verdict: no significant gap (P " << std::fixed << std::setprecision(2)
       << top.probability << ")\n";
@@ -287,6 +299,9 @@ std::string StructureDiagnosisReport(const StructureDiagnosisResult& r) {
     o << "  " << std::left << std::setw(40) << Label(c) << std::right << " P "
       << std::fixed << std::setprecision(3) << c.probability << "  chi2 "
       << std::setprecision(1) << c.chi2;
+    if (c.kind != "none")
+      o << "  explains " << std::setprecision(0) << 100 * std::max(0.0, c.explained)
+        << " %";
     if (marginal && c.frequency_temperature > 1.05)
       o << "  T " << std::setprecision(1) << c.frequency_temperature;
     if (!c.fitted) o << "  (screened, not fitted)";

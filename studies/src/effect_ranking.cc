@@ -382,6 +382,10 @@ Invalid EffectRankingOptions::Validate() const {
             "a relative standard deviation: expected 0 <= value < 0.5"};
   if (!(gap_confidence >= 0 && gap_confidence < 1))
     return {"gap_confidence", "must be in [0, 1) (0: the most probable family)"};
+  if (!(gap_explained >= 0 && gap_explained < 1))
+    return {
+        "gap_explained",
+        "must be in [0, 1) (0: the most probable family, however little it explains)"};
   const auto names = AvailableNonlinearSolvers();
   if (std::find(names.begin(), names.end(), solver) == names.end())
     return {"solver", "unknown nonlinear solver '" + solver + "'"};
@@ -972,8 +976,20 @@ EffectRanking RankModelEffects(const Structure& structure_in,
   // change the data only as the model's own form error does (equivalent to
   // none).
   NameEquivalentClasses(residuals, jacobians, &classes);
-  for (std::size_t i = 0; i < classes.size(); ++i)
+  // How much of the nominal misfit beyond the noise each class removes, at the
+  // stated noise, in the misfit the classes were ranked in: the raw one, or
+  // where the model's form error is allowed for the whitened one (the form
+  // error is not part of the gap to explain).
+  const double noise_chi2 = static_cast<double>(out.num_residuals - shape_modes);
+  const double gap_chi2 = residuals.front().squaredNorm() - noise_chi2;  // none's
+  for (std::size_t i = 0; i < classes.size(); ++i) {
     classes[i].modes = PairedModeMisfits(states, fit, raw_residuals[i]);
+    if (i == 0) continue;  // none explains nothing
+    const double left = residuals[i].squaredNorm() -
+                        (noise_chi2 - static_cast<double>(classes[i].theta.size()));
+    classes[i].explained =
+        gap_chi2 > 0 ? std::clamp(1 - std::max(0.0, left) / gap_chi2, 0.0, 1.0) : 1.0;
+  }
   if (whitened) {
     const std::string note =
         NameFormErrorAlikeAsNone(form, residuals, raw_jacobians, row_scale, &classes);
@@ -1020,6 +1036,15 @@ EffectRanking RankModelEffects(const Structure& structure_in,
                      if (a.fitted != b.fitted) return a.fitted;
                      return a.probability > b.probability;
                    });
+  // No effect is named the gap's cause unless it explains enough of it.
+  if (classes.front().kind != "none" &&
+      classes.front().explained < options.gap_explained) {
+    out.gap_unexplained = true;
+    std::stable_sort(classes.begin(), classes.end(),
+                     [](const RankedClass& a, const RankedClass& b) {
+                       return a.kind == "none" && b.kind != "none";
+                     });
+  }
   out.classes = std::move(classes);
   if (out.frequency_temperature ==
           EffectRankingOptions::FrequencyTemperature::kMarginal &&

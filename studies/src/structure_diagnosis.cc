@@ -137,6 +137,7 @@ StructureDiagnosisResult RunStructureDiagnosis(const Study& study) {
   r.dof_labels = study.model.dof_labels();
   r.confidence = spec.confidence;
   r.gap_confidence = spec.gap_confidence;
+  r.gap_explained = spec.gap_explained;
   r.map = MapGeometry(study.structure);
 
   EffectRankingOptions options;
@@ -154,6 +155,7 @@ StructureDiagnosisResult RunStructureDiagnosis(const Study& study) {
   options.rotary_inertia = spec.rotary_inertia;
   options.members_fitted = spec.members_fitted;
   options.gap_confidence = spec.gap_confidence;
+  options.gap_explained = spec.gap_explained;
   options.frequency_temperature = spec.frequency_temperature;
   options.max_effects = spec.MaxEffectsFor(/*own_pipeline=*/false);
   options.pair_places = spec.pair_places;

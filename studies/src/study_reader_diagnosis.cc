@@ -195,6 +195,7 @@ DiagnosisSpec ReadDiagnosis(const Field& f, const Study& study) {
                 "solver",
                 "confidence",
                 "gap_confidence",
+                "gap_explained",
                 "evidence",
                 "evidence_samples",
                 "priors",
@@ -341,6 +342,17 @@ DiagnosisSpec ReadDiagnosis(const Field& f, const Study& study) {
       f["gap_confidence"].Fail(
           "the probability a gap must reach to be named: expected 0 (the most probable "
           "family) up to, not including, 1");
+  }
+  if (f.Has("gap_explained")) {
+    d.gap_explained = f["gap_explained"].Num();
+    if (d.EngineFor(study.cantilever.has_value()) == "cantilever") {
+      f["gap_explained"].Fail(
+          "the cantilever's own pipeline does not read it; engine: model_effects does");
+    }
+    if (!(d.gap_explained >= 0 && d.gap_explained < 1))
+      f["gap_explained"].Fail(
+          "the share of the nominal misfit beyond the noise an effect must remove to be "
+          "named: expected 0 (the most probable family) up to, not including, 1");
   }
   if (f.Has("frequency_temperature")) {
     const std::string t = f["frequency_temperature"].Str();

@@ -151,6 +151,16 @@ struct EffectRankingOptions {
   // user's choice. 0 (the default): the most probable family, whatever its
   // probability. In [0, 1).
   double gap_confidence = 0;
+  // An effect is named the gap's cause only where it removes at least this
+  // share of the nominal model's misfit beyond the noise (RankedClass::
+  // explained); otherwise the verdict is "none" (no effect explains the gap),
+  // first among the classes, with every probability as it is. A chain fitted
+  // to a frame, or any model with a form error, leaves a misfit of many noise
+  // units that the families can only nibble at: a place that removes 1 % of it,
+  // shifting the misfit from the shapes to the frequencies, can still be the
+  // most probable class, and naming it the gap's cause misleads. 0: the most
+  // probable family, however little it explains. In [0, 1).
+  double gap_explained = 0.5;
   // How the frequencies' noise temperature (a model form error of unknown
   // shape: each mode's frequency off by about the same number of noise units,
   // its signs uneven) enters the evidence.
@@ -237,6 +247,13 @@ struct RankedClass {
   // compared, the MAC (eigen_sensitivity.h). For "none" the nominal model's:
   // how far the gap shrinks once the class is added.
   std::vector<PairedModeMisfit> modes;
+  // The share of the nominal model's misfit beyond the noise that the class
+  // removes, in [0, 1]: 1 - max(0, chi2 - (n - s - k)) / (chi2_none - (n - s)), with n
+  // residuals, s modes whose shapes are scaled to fit and k parameters (1
+  // where the nominal misfit is within the noise; 0 for none); chi2 at the
+  // stated noise, whitened where the model's form error is allowed for
+  // (form_errors: that error is not part of the gap).
+  double explained = 0;
 };
 
 // A form variant's size on these data (see above).
@@ -261,7 +278,8 @@ struct HeldOutCheck {
 
 struct EffectRanking {
   // By family, the most probable family first (but "none" first where the
-  // gap's probability is below EffectRankingOptions::gap_confidence), then by
+  // gap's probability is below EffectRankingOptions::gap_confidence, or the
+  // effect explains too little of it: gap_explained), then by
   // class within it: the first is the verdict (the most probable class of the
   // most probable family).
   std::vector<RankedClass> classes;
@@ -272,6 +290,10 @@ struct EffectRanking {
   // rule changed nothing.
   double gap_probability = 0;
   bool gap_below_confidence = false;
+  // Whether the most probable family's best class explained less than
+  // EffectRankingOptions::gap_explained of the gap, so that "none" is the
+  // verdict (the class that did not explain enough is the first of the rest).
+  bool gap_unexplained = false;
   // Of the frequencies' noise: the one every class was judged at, or with a
   // marginal temperature the verdict's own (RankedClass::frequency_temperature).
   double temperature = 1;

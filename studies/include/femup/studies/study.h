@@ -223,6 +223,11 @@ struct DiagnosisSpec {
   // reaches this; 0 (the default): the most probable family, whatever its
   // probability. EffectRankingOptions::gap_confidence.
   double gap_confidence = 0;
+  // Other models: an effect is named the gap's cause only where it removes at
+  // least this share of the nominal misfit beyond the noise; 0: the most
+  // probable family however little it explains. EffectRankingOptions::
+  // gap_explained.
+  double gap_explained = 0.5;
   // How the frequencies' noise temperature enters the evidence
   // (EffectRankingOptions::frequency_temperature): "auto" (the default),
   // "threshold" or "marginal".
