@@ -21,11 +21,16 @@ mean of the reweighted copies, so for it the rescoring is an approximation
 
 A gap threshold g instead keeps the prior and names a gap only where its
 probability, 1 - P(none), is at least g (as femup does with the study's
-diagnosis.gap_confidence; --gap-threshold 0 decides as femup does by default).
+diagnosis.gap_confidence; --gap-threshold 0 decides as femup did before it).
+Either way, as femup does, an effect that explains less than the run's
+diagnosis.gap_explained of the nominal misfit beyond the noise (its class's
+"explained" in diagnosis.json; runs before session 57 have neither and are
+decided without it) is not named: the verdict is none (--gap-explained E
+decides with E instead).
 
 Usage:
   python3 validation/blind_structures/rescore.py OUT [--none-share S | --gap-threshold G]
-      [--partial] [--check]
+      [--gap-explained E] [--partial] [--check]
 """
 import argparse
 import glob
@@ -38,13 +43,16 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import run_suite  # noqa: E402
 
 
-def reweighted(d, share, gap_threshold=None):
+def reweighted(d, share, gap_threshold=None, gap_explained=None):
     """diagnosis.json d with none's prior share set to `share` (None: as run)
     and, with a gap threshold g, the verdict `none` unless the probability of
     any gap (1 - P(none)) is at least g (None: as run, the study's
-    gap_confidence; 0: the most probable family)."""
+    gap_confidence; 0: the most probable family); and `none` where the class
+    chosen explains less than gap_explained of the gap (None: as run)."""
     if gap_threshold is None:
         gap_threshold = d.get("gap_confidence", 0)
+    if gap_explained is None:
+        gap_explained = d.get("gap_explained", 0)
     kinds = sorted({c["kind"] for c in d["classes"] if c["kind"] != "none"})
     f = 1.0 if share is None else share / (1.0 - share) * max(1, len(kinds))
     e = json.loads(json.dumps(d))
@@ -65,6 +73,10 @@ def reweighted(d, share, gap_threshold=None):
     members = [c for c in e["classes"] if c["kind"] == top_kind]
     fitted = [c for c in members if c.get("fitted", True)] or members
     top = max(fitted, key=lambda c: c["probability"])
+    if top["kind"] != "none" and top.get("explained", 1.0) < gap_explained:
+        nones = [c for c in e["classes"] if c["kind"] == "none"]
+        if nones:
+            top_kind, top = "none", nones[0]
     v = e["verdict"]
     if (top["kind"], top["region"]) != (v["kind"], v["region"]):
         v.update(kind=top["kind"], region=top["region"], equivalent=top.get("equivalent", []),
@@ -74,7 +86,7 @@ def reweighted(d, share, gap_threshold=None):
     return e
 
 
-def rescore(out, share, gap_threshold=None, partial=False, seed=0):
+def rescore(out, share, gap_threshold=None, partial=False, seed=0, gap_explained=None):
     """(rows, summary) of the folder's cases rescored; partial: only the cases
     with a diagnosis, in a folder whose run was stopped (no summary.json: the
     suite's name from the cases', its seed as given, its other settings the
@@ -103,7 +115,7 @@ def rescore(out, share, gap_threshold=None, partial=False, seed=0):
             raise SystemExit("rescore: %s has no diagnosis (%s)" % (truth["name"], run))
         with open(run) as f:
             d = json.load(f)
-        rows.append(run_suite.score(truth, reweighted(d, share, gap_threshold)))
+        rows.append(run_suite.score(truth, reweighted(d, share, gap_threshold, gap_explained)))
     args = types.SimpleNamespace(
         suite=s["suite"], seed=s["seed"], noise_free=s["noise_free"], floors=s["floors"],
         foundation=s["foundation"], design=s["design"], jacket_water=s.get("jacket_water"),
@@ -122,6 +134,10 @@ def main():
                     "(1 - P(none)) is at least this, in [0, 1); else the verdict is none "
                     "(0: the most probable family, as femup decided before the gap's "
                     "confidence; default: as run)")
+    ap.add_argument("--gap-explained", type=float, default=None,
+                    help="name an effect only where it explains at least this share of "
+                    "the nominal misfit beyond the noise, in [0, 1) (0: however little; "
+                    "default: as run)")
     ap.add_argument("--partial", action="store_true",
                     help="score only the cases that have a diagnosis (a stopped run)")
     ap.add_argument("--seed", type=int, default=0,
@@ -133,6 +149,8 @@ def main():
         ap.error("--none-share must be in (0, 1)")
     if not os.path.isdir(os.path.join(args.out, "truth")):
         ap.error("%s: no truth folder (not a run_suite.py folder)" % args.out)
+    if args.gap_explained is not None and not (0 <= args.gap_explained < 1):
+        ap.error("--gap-explained must be in [0, 1)")
     if args.check and args.partial:
         ap.error("--check compares with results.jsonl, which a stopped run lacks")
     if args.check:
@@ -150,10 +168,15 @@ def main():
     if args.gap_threshold is not None:
         if not (0 <= args.gap_threshold < 1):
             ap.error("--gap-threshold must be in [0, 1)")
-        _, s = rescore(args.out, None, args.gap_threshold, args.partial, args.seed)
+        _, s = rescore(args.out, None, args.gap_threshold, args.partial, args.seed,
+                       args.gap_explained)
         how = "a gap named at P >= %g" % args.gap_threshold
+    elif args.gap_explained is not None and "--none-share" not in sys.argv:
+        _, s = rescore(args.out, None, None, args.partial, args.seed, args.gap_explained)
+        how = "an effect named where it explains >= %g of the gap" % args.gap_explained
     else:
-        _, s = rescore(args.out, args.none_share, 0, args.partial, args.seed)
+        _, s = rescore(args.out, args.none_share, 0, args.partial, args.seed,
+                       args.gap_explained)
         how = "none's prior share %g" % args.none_share
     s["diagnosis_keys"] = s["diagnosis_keys"] + ["(rescored: %s)" % how]
     print(run_suite.table(s), end="")

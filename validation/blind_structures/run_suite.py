@@ -129,6 +129,10 @@ def score(truth, d):
         by_kind[c["kind"]] = by_kind.get(c["kind"], 0.0) + lp(c)
     lap_kind = max(by_kind, key=by_kind.get)
     lap = max((c for c in d["classes"] if c["kind"] == lap_kind), key=lp)
+    # femup names no effect that explains less than gap_explained of the gap.
+    nones = [c for c in d["classes"] if c["kind"] == "none"]
+    if lap["kind"] != "none" and nones and lap.get("explained", 1.0) < d.get("gap_explained", 0):
+        lap_kind, lap = "none", nones[0]
     lap_p = lp(lap)
     lap_kind_p = by_kind[lap_kind]
     lap_class_right = (lap["kind"] == truth["kind"] and

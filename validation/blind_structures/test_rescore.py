@@ -49,6 +49,21 @@ class ReweightedTest(unittest.TestCase):
         self.assertEqual(rescore.reweighted(d, None)["verdict"]["kind"], "none")
         self.assertEqual(rescore.reweighted(d, None, 0)["verdict"]["kind"], "stiffness_loss")
 
+    def test_an_effect_that_explains_too_little_is_not_named(self):
+        d = diagnosis(CLASSES, ("none", ""))
+        d["classes"][1]["explained"] = 0.3
+        d["gap_explained"] = 0.5
+        e = rescore.reweighted(d, None)
+        self.assertEqual((e["verdict"]["kind"], e["verdict"]["region"]), ("none", ""))
+        self.assertAlmostEqual(e["verdict"]["probability"], 0.3)  # none's, as run
+        self.assertEqual(rescore.reweighted(d, None, None, 0)["verdict"]["kind"],
+                         "stiffness_loss")
+        self.assertEqual(rescore.reweighted(d, None, None, 0.25)["verdict"]["kind"],
+                         "stiffness_loss")
+        # A run before the rule (no gap_explained recorded) is decided without it.
+        del d["gap_explained"]
+        self.assertEqual(rescore.reweighted(d, None)["verdict"]["kind"], "stiffness_loss")
+
 
 if __name__ == "__main__":
     unittest.main()
