@@ -698,8 +698,8 @@ TEST(EffectRanking, NamesAGapOnlyAtTheGapConfidence) {
 // every probability as with gap_explained 0, which names it. A damaged storey
 // is explained in full and still named. The report says why none was named.
 TEST(EffectRanking, NamesNoEffectThatExplainsTooLittleOfTheGap) {
-  EXPECT_EQ(EffectRankingOptions().gap_explained, 0.5);
-  EXPECT_EQ(DiagnosisSpec().gap_explained, 0.5);
+  EXPECT_EQ(EffectRankingOptions().gap_explained, 1.0 / 3);
+  EXPECT_EQ(DiagnosisSpec().gap_explained, 1.0 / 3);
   const Structure nominal = BuildSpringMassChain(ShearBuilding());
   ChainSpec uneven = ShearBuilding();
   for (std::size_t i = 0; i < uneven.springs.size(); ++i)
@@ -713,7 +713,7 @@ TEST(EffectRanking, NamesNoEffectThatExplainsTooLittleOfTheGap) {
   ASSERT_EQ(any.classes[0].kind, "stiffness_loss");  // what gap_explained 0 names
   EXPECT_FALSE(any.gap_unexplained);
   EXPECT_GT(any.gap_probability, 0.5);
-  EXPECT_LT(any.classes[0].explained, 0.5);
+  EXPECT_LT(any.classes[0].explained, EffectRankingOptions().gap_explained);
   ASSERT_EQ(r.classes.size(), any.classes.size());
   EXPECT_EQ(r.classes[0].kind, "none");
   EXPECT_TRUE(r.gap_unexplained);

@@ -557,10 +557,11 @@ TEST(Study, GapConfidenceIsReadAndChecked) {
 }
 
 // diagnosis.gap_explained: the share of the nominal misfit beyond the noise an
-// effect must remove to be named (effect_ranking.h), 0.5 unless stated, in
+// effect must remove to be named (effect_ranking.h), a third unless stated, in
 // [0, 1), refused on the cantilever's own pipeline.
 TEST(Study, GapExplainedIsReadAndChecked) {
-  EXPECT_EQ(LoadStudy(Write("ge_default.yaml", kShear)).diagnosis->gap_explained, 0.5);
+  EXPECT_EQ(LoadStudy(Write("ge_default.yaml", kShear)).diagnosis->gap_explained,
+            1.0 / 3);
   EXPECT_EQ(
       LoadStudy(Write("ge_stated.yaml", kShear + std::string("  gap_explained: 0\n")))
           .diagnosis->gap_explained,

@@ -23,10 +23,10 @@ struct StructureDiagnosisResult {
   std::vector<std::string> dof_labels;
   EffectRanking ranking;
   double confidence = 0.9;
-  double gap_confidence = 0;   // DiagnosisSpec::gap_confidence
-  double gap_explained = 0.5;  // DiagnosisSpec::gap_explained
-  StatedPriors priors;         // as the study states them (diagnosis.priors, weights)
-  DiagnosisMap map;            // the model's geometry, for diagnosis_map.png
+  double gap_confidence = 0;       // DiagnosisSpec::gap_confidence
+  double gap_explained = 1.0 / 3;  // DiagnosisSpec::gap_explained
+  StatedPriors priors;             // as the study states them (diagnosis.priors, weights)
+  DiagnosisMap map;                // the model's geometry, for diagnosis_map.png
 };
 
 // Throws InputError (naming the study file and field) for a study without

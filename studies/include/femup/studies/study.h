@@ -227,7 +227,7 @@ struct DiagnosisSpec {
   // least this share of the nominal misfit beyond the noise; 0: the most
   // probable family however little it explains. EffectRankingOptions::
   // gap_explained.
-  double gap_explained = 0.5;
+  double gap_explained = 1.0 / 3;
   // How the frequencies' noise temperature enters the evidence
   // (EffectRankingOptions::frequency_temperature): "auto" (the default),
   // "threshold" or "marginal".
