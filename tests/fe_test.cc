@@ -301,6 +301,31 @@ TEST(Frame2dShear, CantileverTipDeflectionHasTheShearTerm) {
   }
 }
 
+// The section's rotary inertia: the kinetic energy of a slope field the cubic
+// reproduces, integral of rho I theta^2 along the element: a rigid rotation
+// (rho I L theta^2), a quadratic deflection v = x^2 / 2 (slope x: rho I L^3 /
+// 3); a rigid translation has none.
+TEST(Frame2dRotaryInertiaMass, IsTheSlopesKineticEnergy) {
+  const BeamSection s{210e9, 0.01, 2e-5, 7850};
+  for (const Segment& g : TestSegments()) {
+    const double l = Length(g), dx = g.x2 - g.x1, dy = g.y2 - g.y1;
+    const Matrix6 m = Frame2dRotaryInertiaMass(s, g.x1, g.y1, g.x2, g.y2);
+    EXPECT_LT((m - m.transpose()).norm(), 1e-12 * m.norm());
+    const double theta = 0.3;
+    Vector6 u;
+    u << 0, 0, theta, -theta * dy, theta * dx, theta;
+    EXPECT_NEAR(u.dot(m * u), s.rho * s.I * l * theta * theta, 1e-10 * s.rho * s.I * l);
+    // v = x^2 / 2 along the member's normal (-e_y, e_x), slope x.
+    const double ex = dx / l, ey = dy / l, v2 = 0.5 * l * l;
+    u << 0, 0, 0, -ey * v2, ex * v2, l;
+    EXPECT_NEAR(u.dot(m * u), s.rho * s.I * l * l * l / 3,
+                1e-10 * s.rho * s.I * l * l * l);
+    u << 0.7, -0.2, 0, 0.7, -0.2, 0;
+    EXPECT_NEAR(u.dot(m * u), 0.0, 1e-14 * m.norm());
+  }
+  EXPECT_THROW(Frame2dRotaryInertiaMass(BeamSection{}, 0, 0, 1, 0), InputError);
+}
+
 TEST(Frame2dShear, RefusesANegativeShearArea) {
   EXPECT_THROW(Frame2dStiffness(PaperSection(), BeamShear{-1.0, 0.3}, 0, 0, 1, 0),
                InputError);

@@ -253,6 +253,31 @@ measurements:
   EXPECT_EQ(s.model.ParameterNames(),
             (std::vector<std::string>{"stiffness[e1+e2]", "stiffness[e3+e4]",
                                       "added_mass[wet]"}));
+  // The shear form variant: A / 2 unless the section states its shear area.
+  ASSERT_EQ(s.structure.form_variants.size(), 1u);
+  EXPECT_NE(s.structure.form_variants[0].name.find("shear area 0.00044 m^2"),
+            std::string::npos)
+      << s.structure.form_variants[0].name;
+  const Study stated = LoadStudy(Write("beam_shear.yaml", R"(
+model:
+  type: cantilever
+  length: 1.9
+  elements: 4
+  section: {E: 206e9, A: 8.8e-4, I: 8.53e-8, rho: 7850, shear_area: 7.3e-4}
+measurements:
+  - {state: air, frequencies_hz: [6.5]}
+)"));
+  EXPECT_NE(stated.structure.form_variants.at(0).name.find("shear area 0.00073 m^2"),
+            std::string::npos);
+  ExpectError("beam_shear_bad.yaml", R"(
+model:
+  type: cantilever
+  length: 1.9
+  elements: 4
+  section: {E: 206e9, A: 8.8e-4, I: 8.53e-8, rho: 7850, shear_area: 9e-4}
+measurements: [{state: air, frequencies_hz: [6.5]}]
+)",
+              {"model.section.shear_area", "cannot exceed the area A"});
   ExpectError("beam_bad.yaml", R"(
 model:
   type: cantilever

@@ -234,12 +234,12 @@ std::string StructureDiagnosisReport(const StructureDiagnosisResult& r) {
       << r.gap_confidence << " (none P " << top.probability;
     if (family != "none") o << "; the most probable family " << family << " P " << p;
     o << ")\n";
-  } else if (top.kind == "none" && k.gap_unexplained && k.classes.size() > 1) {
-    const RankedClass& best = k.classes[1];
+  } else if (top.kind == "none" && k.gap_unexplained && GapClass(k) != nullptr) {
+    const RankedClass& best = *GapClass(k);
     o << "verdict: no effect explains the gap: the most probable, " << Label(best)
       << " (P " << std::fixed << std::setprecision(2) << best.probability
       << "; a gap of any kind P " << k.gap_probability << "), removes "
-      << std::setprecision(1) << 100 * std::max(0.0, best.explained)
+      << std::setprecision(1) << 100 * best.explained
       << " % of the nominal model's misfit beyond the noise, less than gap_explained "
       << std::setprecision(2) << r.gap_explained
       << " (the rest is a form error of the model, or an effect of no family tried)\n";
@@ -300,8 +300,7 @@ std::string StructureDiagnosisReport(const StructureDiagnosisResult& r) {
       << std::fixed << std::setprecision(3) << c.probability << "  chi2 "
       << std::setprecision(1) << c.chi2;
     if (c.kind != "none")
-      o << "  explains " << std::setprecision(0) << 100 * std::max(0.0, c.explained)
-        << " %";
+      o << "  explains " << std::setprecision(0) << 100 * c.explained << " %";
     if (marginal && c.frequency_temperature > 1.05)
       o << "  T " << std::setprecision(1) << c.frequency_temperature;
     if (!c.fitted) o << "  (screened, not fitted)";

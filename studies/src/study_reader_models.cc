@@ -99,9 +99,15 @@ Structure ReadCantilever(const Field& m, CantileverSpec* out) {
     spec.node_heights = UniformHeights(m["length"].Positive(), elements);
   }
   const Field s = m["section"];
-  s.ExpectKeys({"E", "A", "I", "rho"});
+  s.ExpectKeys({"E", "A", "I", "rho", "shear_area"});
   spec.section = {s["E"].Positive(), s["A"].Positive(), s["I"].Positive(),
                   s["rho"].Positive()};
+  if (s.Has("shear_area")) {
+    spec.shear_area = s["shear_area"].Positive();
+    if (spec.shear_area > spec.section.A)
+      s["shear_area"].Fail("kappa A cannot exceed the area A (" +
+                           std::to_string(spec.section.A) + " m^2)");
+  }
   if (m.Has("water_depth")) spec.water_depth = m["water_depth"].NonNegative();
   // N, tension positive (a riser's tension), compression negative (a pile's load).
   if (m.Has("axial_force")) spec.axial_force = m["axial_force"].Num();

@@ -202,6 +202,13 @@ Structure BuildCantilever(const CantileverSpec& spec) {
   if (!std::isfinite(spec.axial_force)) {
     throw InputError("model.axial_force", "must be finite (N, tension positive)");
   }
+  if (!(spec.shear_area >= 0) || !std::isfinite(spec.shear_area) ||
+      spec.shear_area > spec.section.A) {
+    std::ostringstream msg;
+    msg << "must be a shear area kappa A in (0, A = " << spec.section.A
+        << "] m^2 (0: A / 2), found " << spec.shear_area;
+    throw InputError("model.section.shear_area", msg.str());
+  }
 
   // Global DOF numbering: base DOFs only where a support spring frees them.
   static const char* kDofNames[3] = {"ux", "uy", "rz"};
@@ -222,6 +229,11 @@ Structure BuildCantilever(const CantileverSpec& spec) {
   }
   const int n = next;
   Triplets kt, mt;
+  // The shear variant's change of K and M, element by element (Timoshenko
+  // minus Euler-Bernoulli), where the elements' matrices are built.
+  Triplets shear_k, shear_m;
+  const BeamShear shear{spec.shear_area > 0 ? spec.shear_area : 0.5 * spec.section.A,
+                        0.3};
   const double mass_per_length = spec.section.rho * spec.section.A;
   // A clamped base (no support spring): a rigid support whose bending
   // directions (ux, rz) couple to the beam through its first element, so
@@ -267,6 +279,11 @@ Structure BuildCantilever(const CantileverSpec& spec) {
     Triplets tk, tm, tw;
     Scatter(ke, d, &tk);
     Scatter(me, d, &tm);
+    Scatter(Matrix6(Frame2dStiffness(spec.section, shear, 0, z[e], 0, z[e + 1]) - ke), d,
+            &shear_k);
+    Scatter(Matrix6(Frame2dConsistentMass(spec.section, shear, 0, z[e], 0, z[e + 1]) +
+                    Frame2dRotaryInertiaMass(spec.section, 0, z[e], 0, z[e + 1]) - me),
+            d, &shear_m);
     el.stiffness = FromTriplets(n, tk);
     el.mass = FromTriplets(n, tm);
     if (spec.added_mass_basis == AddedMassBasis::kElementMass) {
@@ -322,6 +339,16 @@ Structure BuildCantilever(const CantileverSpec& spec) {
   if (spec.axial_force != 0) s.stiffness += AxialForceStiffness(s, spec.axial_force);
   s.stiffness.makeCompressed();
   s.mass.makeCompressed();
+  if (spec.element_matrices) {
+    std::ostringstream what;
+    what << "shear deformation and rotary inertia (Timoshenko elements; shear area "
+         << shear.area << " m^2)";
+    SparseMatrix kv = s.stiffness + FromTriplets(n, shear_k);
+    SparseMatrix mv = s.mass + FromTriplets(n, shear_m);
+    kv.makeCompressed();
+    mv.makeCompressed();
+    s.form_variants.push_back({what.str(), std::move(kv), std::move(mv), {}, {}});
+  }
   std::ostringstream desc;
   desc << "2D frame cantilever, " << num_nodes - 1 << " elements over " << z.back()
        << " m, water depth " << spec.water_depth << " m, added-mass basis "

@@ -131,6 +131,24 @@ Matrix6 Frame2dStiffness(const BeamSection& s, double x1, double y1, double x2,
   return g.transform.transpose() * k * g.transform;
 }
 
+Matrix6 Frame2dRotaryInertiaMass(const BeamSection& s, double x1, double y1, double x2,
+                                 double y2) {
+  CheckSection(s);
+  const Geometry g = ElementGeometry(x1, y1, x2, y2);
+  const double l = g.length, r = s.rho * s.I / (30 * l);
+  Matrix6 local = Matrix6::Zero();
+  const int idx[4] = {1, 2, 4, 5};  // v1, theta1, v2, theta2
+  // clang-format off
+  const double m[4][4] = {{   36,   3 * l,   -36,   3 * l},
+                          {3 * l, 4 * l * l, -3 * l,  -l * l},
+                          {  -36,  -3 * l,    36,  -3 * l},
+                          {3 * l,  -l * l, -3 * l, 4 * l * l}};
+  // clang-format on
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) local(idx[i], idx[j]) = r * m[i][j];
+  return g.transform.transpose() * local * g.transform;
+}
+
 Matrix6 Frame2dConsistentMass(const BeamSection& s, double x1, double y1, double x2,
                               double y2) {
   CheckSection(s);

@@ -81,6 +81,13 @@ struct CantileverSpec {
   // only the global K and M, faster, for fits that rebuild the model often;
   // the elements then carry their ids and extents with empty matrices.
   bool element_matrices = true;
+  // The section's shear area kappa A (m^2, 0 < kappa A <= A; 0: A / 2, a
+  // thin-walled section's, as a plane frame's default) for the model's form
+  // variant (Structure::form_variants): the same beam with shear deformation
+  // (Frame2dStiffness and Frame2dConsistentMass with a BeamShear, nu 0.3), the
+  // supports, masses and modifications as they are, built with the element
+  // matrices only. The diagnosis allows for it as the model's own form error.
+  double shear_area = 0;
 };
 // `num_elements` equal elements over `length`.
 std::vector<double> UniformHeights(double length, int num_elements);

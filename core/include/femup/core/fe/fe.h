@@ -42,6 +42,13 @@ Matrix6 Frame2dStiffness(const BeamSection& s, const BeamShear& shear, double x1
                          double y1, double x2, double y2);
 Matrix6 Frame2dConsistentMass(const BeamSection& s, const BeamShear& shear, double x1,
                               double y1, double x2, double y2);
+// The rotary inertia of the section in bending, rho I per unit length, on the
+// slope of the element's cubic transverse field (the consistent matrix
+// rho I / (30 L) [36 3L -36 3L; 3L 4L^2 -3L -L^2; ...] on v1, theta1, v2,
+// theta2): what a Rayleigh or Timoshenko beam adds to the Euler-Bernoulli
+// mass. Throws InputError for a bad section.
+Matrix6 Frame2dRotaryInertiaMass(const BeamSection& s, double x1, double y1, double x2,
+                                 double y2);
 // The transverse part of the consistent mass only (no axial inertia): the
 // physically right basis for water added mass, which acts on motion normal to
 // the member. `mass_per_length` (kg/m) replaces rho*A.
