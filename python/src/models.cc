@@ -422,7 +422,9 @@ void BindBuilders(py::module_& m) {
       .def_readwrite("axial_force", &Spec::axial_force)
       .def_readwrite("distributed_masses", &Spec::distributed_masses)
       .def_readwrite("stiffness_changes", &Spec::stiffness_changes)
-      .def_readwrite("point_masses", &Spec::point_masses);
+      .def_readwrite("point_masses", &Spec::point_masses)
+      .def_readwrite("shear_area", &Spec::shear_area,
+                     "kappa A (m^2) of the model's Timoshenko form variant; 0: A / 2");
   m.def("uniform_heights", &femup::UniformHeights, py::arg("length"),
         py::arg("num_elements"));
   m.def("build_cantilever", &femup::BuildCantilever, py::arg("spec"));

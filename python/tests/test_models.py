@@ -98,6 +98,16 @@ def test_cantilever_against_euler_bernoulli():
     e, a, i, rho, length = 206e9, 8.8e-4, 8.53e-8, 7850, 1.9
     f1 = 1.875104 ** 2 / (2 * np.pi) * np.sqrt(e * i / (rho * a * length ** 4))
     assert modes.frequencies_hz[0] == pytest.approx(f1, rel=1e-4)
+    # Its form variant, the same beam of Timoshenko elements (kappa A = A / 2
+    # unless stated), which the diagnosis allows for as the model's form error.
+    assert s.form_variant_names == [
+        "shear deformation and rotary inertia (Timoshenko elements; shear area 0.00044 m^2)"]
+    spec.shear_area = 7.3e-4
+    assert "shear area 0.00073 m^2" in femup.build_cantilever(spec).form_variant_names[0]
+    spec.shear_area = 9e-4
+    with pytest.raises(femup.InputError, match="shear_area"):
+        femup.build_cantilever(spec)
+    spec.shear_area = 0.0
     spec.lumped_masses = [femup.LumpedMass(node=40, mass=0.5)]
     spec.point_masses = [femup.PointMass(height=1.0, mass=0.1)]
     spec.distributed_masses = [femup.DistributedMass(0.0, 1.0, 1.5)]
