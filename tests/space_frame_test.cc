@@ -20,7 +20,6 @@
 #include <vector>
 
 #include "femup/core/errors.h"
-#include "femup/core/fe/fe.h"
 #include "femup/core/fe/frame3d.h"
 #include "femup/core/linalg/modal.h"
 #include "structure_specs.h"
@@ -322,42 +321,6 @@ TEST(SpaceFrameElement, TransverseMassIgnoresMotionAlongTheMember) {
   EXPECT_NEAR(u_normal.dot(w * u_normal), mu * l, 1e-12 * mu * l);
   auto u_twist = RigidMotion(a, b, Vector3d::Zero(), axes.x, a);
   EXPECT_NEAR(u_twist.dot(w * u_twist), 0.0, 1e-12);
-}
-
-// The sections' rotary inertia in bending: a rigid rotation w about the
-// member's centre carries rho (Iy w_y^2 + Iz w_z^2) L (the slopes of both
-// planes constant), none about the member's axis and none in a translation;
-// in the x-y plane it is the 2D element's (fe.h).
-TEST(SpaceFrameElement, RotaryInertiaIsTheSlopesKineticEnergy) {
-  const FrameSection3d s = TestSection();
-  const Vector3d a(1, -2, 0.5), b(3.5, 1, 2.5), ref(0, 0, 1);
-  const double l = (b - a).norm();
-  const Axes axes = LocalAxes(b - a, ref);
-  const Vector3d c = 0.5 * (a + b);
-  const Matrix12 r = Frame3dRotaryInertiaMass(s, a, b, ref);
-  EXPECT_LT((r - r.transpose()).norm(), 1e-12 * r.norm());
-  const Vector3d ws[] = {axes.y, axes.z, axes.x, Vector3d(0.4, 0.1, -0.9)};
-  for (const Vector3d& w : ws) {
-    const auto u = RigidMotion(a, b, Vector3d::Zero(), w, c);
-    const double expected =
-        s.rho * l *
-        (s.Iy * std::pow(w.dot(axes.y), 2) + s.Iz * std::pow(w.dot(axes.z), 2));
-    EXPECT_NEAR(u.dot(r * u), expected, 1e-12 * s.rho * s.Iz * l);
-  }
-  const auto t = RigidMotion(a, b, Vector3d(0.3, -0.7, 1.1), Vector3d::Zero(), c);
-  EXPECT_NEAR(t.dot(r * t), 0.0, 1e-12 * r.norm());
-  // A member in the global x-y plane with its reference (local y) along
-  // global z bends in that plane about local y: the 2D element's matrix with
-  // Iy on (ux, uy, rz) of each end.
-  const Vector3d p(0.3, -0.2, 0), q(1.1, 0.4, 0);
-  const Matrix12 r3 = Frame3dRotaryInertiaMass(s, p, q, Vector3d(0, 0, 1));
-  const Matrix6 r2 = Frame2dRotaryInertiaMass(BeamSection{s.E, s.A, s.Iy, s.rho}, p.x(),
-                                              p.y(), q.x(), q.y());
-  const int in_plane[6] = {0, 1, 5, 6, 7, 11};
-  for (int i = 0; i < 6; ++i)
-    for (int j = 0; j < 6; ++j)
-      EXPECT_NEAR(r3(in_plane[i], in_plane[j]), r2(i, j), 1e-12 * r2.norm());
-  EXPECT_THROW(Frame3dRotaryInertiaMass(s, a, a, ref), InputError);
 }
 
 TEST(SpaceFrameElement, BadInputNamesTheProblem) {

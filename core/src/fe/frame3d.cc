@@ -240,32 +240,6 @@ Matrix12 Frame3dConsistentMass(const FrameSection3d& s, const Eigen::Vector3d& e
   return Rotate(t, Frame3dLocalConsistentMass(s, (end2 - end1).norm(), theory));
 }
 
-Matrix12 Frame3dRotaryInertiaMass(const FrameSection3d& s, const Eigen::Vector3d& end1,
-                                  const Eigen::Vector3d& end2,
-                                  const Eigen::Vector3d& reference) {
-  const double l = (end2 - end1).norm();
-  Check(s, l, BeamTheory::kEulerBernoulli);
-  Matrix12 m = Matrix12::Zero();
-  // Each plane: translation t, rotation r, r = s dw/dx (s = +1 for v and rz,
-  // -1 for w and ry), on the nodes' (t, r) pairs.
-  const auto plane = [&](int t, int r, double sign, double rho_i) {
-    const double c = rho_i / (30 * l);
-    const int d[4] = {t, r, t + 6, r + 6};
-    const double sg[4] = {1, sign, 1, sign};
-    // clang-format off
-    const double k[4][4] = {{   36,   3 * l,   -36,   3 * l},
-                            {3 * l, 4 * l * l, -3 * l,  -l * l},
-                            {  -36,  -3 * l,    36,  -3 * l},
-                            {3 * l,  -l * l, -3 * l, 4 * l * l}};
-    // clang-format on
-    for (int i = 0; i < 4; ++i)
-      for (int j = 0; j < 4; ++j) m(d[i], d[j]) += c * sg[i] * sg[j] * k[i][j];
-  };
-  plane(kV, kRz, +1, s.rho * s.Iz);
-  plane(kW, kRy, -1, s.rho * s.Iy);
-  return Rotate(Frame3dTransformation(end1, end2, reference), m);
-}
-
 Matrix12 Frame3dTransverseMass(double mass_per_length, const Eigen::Vector3d& end1,
                                const Eigen::Vector3d& end2,
                                const Eigen::Vector3d& reference) {

@@ -279,9 +279,8 @@ void AddFormVariants(const PlaneFrameSpec& spec, int factor,
   std::string shear_name;  // the shear variant's, on the mesh it is built on
   if (spec.theory != BeamTheory::kTimoshenko) {
     std::ostringstream what;
-    what << "shear deformation and rotary inertia (Timoshenko members; shear areas "
-         << column_shear.area << " m^2 in the columns, " << beam_shear.area
-         << " m^2 in the beams)";
+    what << "shear deformation (Timoshenko members; shear areas " << column_shear.area
+         << " m^2 in the columns, " << beam_shear.area << " m^2 in the beams)";
     if (factor == 0) {
       const int n = static_cast<int>(s->dof_labels.size());
       s->form_variants.push_back(
@@ -414,10 +413,8 @@ Structure BuildFrame(const PlaneFrameSpec& spec, bool variants) {
                              ? Frame2dStiffness(sec, model_shear, p.xa, p.ya, p.xb, p.yb)
                              : Frame2dStiffness(sec, p.xa, p.ya, p.xb, p.yb);
       const Matrix6 m6 =
-          timoshenko
-              ? Matrix6(Frame2dConsistentMass(sec, model_shear, p.xa, p.ya, p.xb, p.yb) +
-                        Frame2dRotaryInertiaMass(sec, p.xa, p.ya, p.xb, p.yb))
-              : Frame2dConsistentMass(sec, p.xa, p.ya, p.xb, p.yb);
+          timoshenko ? Frame2dConsistentMass(sec, model_shear, p.xa, p.ya, p.xb, p.yb)
+                     : Frame2dConsistentMass(sec, p.xa, p.ya, p.xb, p.yb);
       Scatter(k6, d, &ke);
       Scatter(m6, d, &me);
       const bool first = k == m * per_member, last = k + 1 == (m + 1) * per_member;
@@ -434,9 +431,7 @@ Structure BuildFrame(const PlaneFrameSpec& spec, bool variants) {
       if (!timoshenko) {
         if (own_mesh_shear) {
           Scatter(Frame2dStiffness(sec, sheared, p.xa, p.ya, p.xb, p.yb), d, &kv);
-          Scatter(Matrix6(Frame2dConsistentMass(sec, sheared, p.xa, p.ya, p.xb, p.yb) +
-                          Frame2dRotaryInertiaMass(sec, p.xa, p.ya, p.xb, p.yb)),
-                  d, &mv);
+          Scatter(Frame2dConsistentMass(sec, sheared, p.xa, p.ya, p.xb, p.yb), d, &mv);
         }
       }
       if (mb.column && mb.storey <= spec.wet_storeys) {

@@ -41,17 +41,6 @@ const FrameSection3d& SectionOf(const SpaceFrameSpec& spec, SpaceFrameMember m) 
   return spec.horizontals;
 }
 
-// An element's consistent mass in `theory`: a Timoshenko member's carries its
-// sections' rotary inertia in bending too.
-Matrix12 ElementMass(const SpaceFrameSpec& spec, const SpaceFrameElement& e,
-                     BeamTheory theory) {
-  const FrameSection3d& sec = SectionOf(spec, e.member);
-  Matrix12 m = Frame3dConsistentMass(sec, e.end1, e.end2, e.reference, theory);
-  if (theory == BeamTheory::kTimoshenko)
-    m += Frame3dRotaryInertiaMass(sec, e.end1, e.end2, e.reference);
-  return m;
-}
-
 // Stiffness / added-mass group of an element: level, then block, then member.
 int GroupOf(const SpaceFrameElement& e, int blocks) {
   return ((e.level - 1) * blocks + (e.block - 1)) * kMemberKinds +
@@ -491,8 +480,11 @@ ParametrisedModel BuildSpaceFrame(const SpaceFrameSpec& spec) {
       true, &k_groups);
   SparseMatrix m = AssembleGroups(
       n, elements, base, by_level,
-      [&](const SpaceFrameElement& e) { return ElementMass(spec, e, theory); }, true,
-      &m_levels);
+      [&](const SpaceFrameElement& e) {
+        return Frame3dConsistentMass(SectionOf(spec, e.member), e.end1, e.end2,
+                                     e.reference, theory);
+      },
+      true, &m_levels);
   AssembleGroups(
       n, elements, base, wet_by_group,
       [&](const SpaceFrameElement& e) {
@@ -571,8 +563,11 @@ Structure BuildSpaceFrameStructure(const SpaceFrameSpec& spec) {
   s.stiffness = WithBaseSprings(std::move(s.stiffness), base);
   s.mass = AssembleGroups(
       n, elements, base, by_group,
-      [&](const SpaceFrameElement& e) { return ElementMass(spec, e, theory); }, true,
-      &m_groups);
+      [&](const SpaceFrameElement& e) {
+        return Frame3dConsistentMass(SectionOf(spec, e.member), e.end1, e.end2,
+                                     e.reference, theory);
+      },
+      true, &m_groups);
   AssembleGroups(
       n, elements, base, wet_by_group,
       [&](const SpaceFrameElement& e) {
@@ -589,9 +584,7 @@ Structure BuildSpaceFrameStructure(const SpaceFrameSpec& spec) {
   if (theory == BeamTheory::kEulerBernoulli && shear_areas) {
     std::vector<BasisMatrix> unused;
     FormVariant v;
-    v.name =
-        "shear deformation and rotary inertia (Timoshenko members, the sections' shear "
-        "areas)";
+    v.name = "shear deformation (Timoshenko members, the sections' shear areas)";
     v.stiffness = AssembleGroups(
         n, elements, base, by_group,
         [&](const SpaceFrameElement& e) {
@@ -603,7 +596,8 @@ Structure BuildSpaceFrameStructure(const SpaceFrameSpec& spec) {
     v.mass = AssembleGroups(
         n, elements, base, by_group,
         [&](const SpaceFrameElement& e) {
-          return ElementMass(spec, e, BeamTheory::kTimoshenko);
+          return Frame3dConsistentMass(SectionOf(spec, e.member), e.end1, e.end2,
+                                       e.reference, BeamTheory::kTimoshenko);
         },
         true, &unused);
     s.form_variants.push_back(std::move(v));
@@ -663,7 +657,8 @@ Structure BuildSpaceFrameStructure(const SpaceFrameSpec& spec) {
       if (e.node1 >= 0 && e.node2 >= 0) continue;
       const Matrix12 k = Frame3dStiffness(SectionOf(spec, e.member), e.end1, e.end2,
                                           e.reference, theory);
-      const Matrix12 m = ElementMass(spec, e, theory);
+      const Matrix12 m = Frame3dConsistentMass(SectionOf(spec, e.member), e.end1, e.end2,
+                                               e.reference, theory);
       for (const bool first : {true, false}) {
         if ((first ? e.node1 : e.node2) >= 0) continue;
         std::array<int, 12> restrained;

@@ -35,8 +35,8 @@ Matrix6 Frame2dConsistentMass(const BeamSection& s, double x1, double y1, double
 // each end) of frame3d.h's element with the member in the x-y plane, bending
 // about z through I and `shear.area` (Timoshenko, after Przemieniecki; the
 // mass's translational inertia is phi-dependent, the sections' rotary inertia
-// is left out as in frame3d.h: Frame2dRotaryInertiaMass adds it, as the
-// builders' Timoshenko members do). With shear.area == 0 both equal the
+// is left out as in frame3d.h; Frame2dRotaryInertiaMass is that term, which
+// the cantilever's form variant adds). With shear.area == 0 both equal the
 // Euler-Bernoulli matrices above. Throws InputError for a bad section, a
 // negative shear area or nu outside (-1, 0.5].
 Matrix6 Frame2dStiffness(const BeamSection& s, const BeamShear& shear, double x1,

@@ -71,8 +71,7 @@ Matrix12 Frame3dLocalStiffness(const FrameSection3d& s, double length,
 // rho Ip L / 6 [2 1; 1 2], transverse translational inertia rho A of the
 // element's own interpolation (cubic Hermitian for Euler-Bernoulli, the
 // phi-dependent Przemieniecki matrix for Timoshenko). The rotary inertia of the
-// cross-section in bending is left out (Frame3dRotaryInertiaMass adds it).
-// Throws as Frame3dLocalStiffness.
+// cross-section in bending is left out. Throws as Frame3dLocalStiffness.
 Matrix12 Frame3dLocalConsistentMass(const FrameSection3d& s, double length,
                                     BeamTheory theory = BeamTheory::kEulerBernoulli);
 
@@ -104,13 +103,5 @@ Matrix12 Frame3dConsistentMass(const FrameSection3d& s, const Eigen::Vector3d& e
 Matrix12 Frame3dTransverseMass(double mass_per_length, const Eigen::Vector3d& end1,
                                const Eigen::Vector3d& end2,
                                const Eigen::Vector3d& reference);
-// The sections' rotary inertia in bending, rho Iz on the slope of the x-y
-// plane's cubic and rho Iy on the x-z plane's (the consistent matrix rho I /
-// (30 L) [36 3L -36 3L; 3L 4L^2 -3L -L^2; ...] per plane, fe.h's
-// Frame2dRotaryInertiaMass in each): what a Timoshenko member adds to the
-// translational mass. Throws as Frame3dConsistentMass.
-Matrix12 Frame3dRotaryInertiaMass(const FrameSection3d& s, const Eigen::Vector3d& end1,
-                                  const Eigen::Vector3d& end2,
-                                  const Eigen::Vector3d& reference);
 
 }  // namespace femup

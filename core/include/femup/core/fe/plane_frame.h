@@ -48,9 +48,8 @@ struct PlaneFrameSpec {
   BeamSection beam{210e9, 0.012, 2.5e-4, 7850};
   PlaneFrameBase base;  // BuildPlaneFrameStructure only; BuildPlaneFrame: rigid
   // BuildPlaneFrameStructure only: members without shear deformation
-  // (Euler-Bernoulli, the default) or with it and the sections' rotary inertia
-  // (Timoshenko: fe.h's BeamShear, Poisson's ratio 0.3, and
-  // Frame2dRotaryInertiaMass).
+  // (Euler-Bernoulli, the default) or with it (Timoshenko, fe.h's BeamShear,
+  // Poisson's ratio 0.3).
   BeamTheory theory = BeamTheory::kEulerBernoulli;
   // Shear areas kappa A (m^2) of the columns and the beams; 0: half the area, a
   // thin-walled section's (rolled I and H sections have 0.3-0.6 A, solid

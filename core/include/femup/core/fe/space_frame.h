@@ -11,10 +11,8 @@
 // every storey panel (`bracing`): one diagonal per panel (alternating direction
 // from panel to panel and storey to storey) or an X of two diagonals joined at
 // the panel centre by a joint. Every member is split into
-// `elements_per_member` 3D frame elements (frame3d.h, all of `theory`; a
-// Timoshenko member carries its sections' rotary inertia in bending too,
-// Frame3dRotaryInertiaMass, and so does an Euler-Bernoulli frame's form
-// variant); an X counts as four members (corner to centre).
+// `elements_per_member` 3D frame elements (frame3d.h, all of `theory`); an X
+// counts as four members (corner to centre).
 // Member axes: local y is the component of global Z normal to the member, for
 // the vertical legs global X.
 //
