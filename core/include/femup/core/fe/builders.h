@@ -83,10 +83,12 @@ struct CantileverSpec {
   bool element_matrices = true;
   // The section's shear area kappa A (m^2, 0 < kappa A <= A; 0: A / 2, a
   // thin-walled section's, as a plane frame's default) for the model's form
-  // variant (Structure::form_variants): the same beam with shear deformation
-  // (Frame2dStiffness and Frame2dConsistentMass with a BeamShear, nu 0.3), the
-  // supports, masses and modifications as they are, built with the element
-  // matrices only. The diagnosis allows for it as the model's own form error.
+  // variant (Structure::form_variants): the same beam of Timoshenko elements,
+  // shear deformation (Frame2dStiffness and Frame2dConsistentMass with a
+  // BeamShear, nu 0.3) and the sections' rotary inertia
+  // (Frame2dRotaryInertiaMass), the supports, masses and modifications as they
+  // are, built with the element matrices only. The diagnosis allows for it as
+  // the model's own form error.
   double shear_area = 0;
 };
 // `num_elements` equal elements over `length`.
