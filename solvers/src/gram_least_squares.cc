@@ -5,7 +5,7 @@
 #include <limits>
 
 #include "femup/core/linalg/dense_kernels.h"
-#include "symmetric_spectrum.h"
+#include "femup/core/linalg/symmetric_spectrum.h"
 
 namespace femup::internal {
 namespace {

@@ -1,7 +1,5 @@
 #include "femup/core/linalg/modal.h"
 
-#include <Eigen/Cholesky>
-#include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
@@ -10,6 +8,7 @@
 #include <vector>
 
 #include "femup/core/errors.h"
+#include "femup/core/linalg/symmetric_spectrum.h"
 #include "linalg/sparse_eigen.h"
 
 namespace femup {
@@ -23,26 +22,37 @@ void FixSigns(Eigen::MatrixXd* shapes) {
   }
 }
 
+// The lowest num_modes (-1: all) by LAPACK (symmetric_spectrum.h): only the
+// vectors asked for are computed.
 Modes SolveDense(const SparseMatrix& k, const SparseMatrix& m, int num_modes) {
-  const Eigen::MatrixXd kd(k), md(m);
-  Eigen::LLT<Eigen::MatrixXd> llt(md);
-  if (llt.info() != Eigen::Success) {
-    throw InputError(
-        "modal analysis",
-        "mass matrix is not positive definite (Cholesky factorisation failed)");
-  }
-  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(
-      kd, md, Eigen::ComputeEigenvectors | Eigen::Ax_lBx);
-  if (es.info() != Eigen::Success) {
-    throw NumericalError("modal analysis",
-                         "dense generalised eigensolver did not converge");
-  }
-  const int n = static_cast<int>(kd.rows());
+  const int n = static_cast<int>(k.rows());
   const int count = num_modes < 0 ? n : num_modes;
   Modes modes;
-  modes.eigenvalues = es.eigenvalues().head(count);
-  modes.shapes = es.eigenvectors().leftCols(count);
+  switch (SmallestPencilEigenpairs(Eigen::MatrixXd(k), Eigen::MatrixXd(m), count,
+                                   &modes.eigenvalues, &modes.shapes)) {
+    case PencilStatus::kOk:
+      break;
+    case PencilStatus::kMassNotPositiveDefinite:
+      throw InputError(
+          "modal analysis",
+          "mass matrix is not positive definite (Cholesky factorisation failed)");
+    case PencilStatus::kFailed:
+      throw NumericalError("modal analysis",
+                           "dense generalised eigensolver did not converge");
+  }
   MassNormalise(m, &modes.shapes);
+  // Each eigenvalue as its vector's Rayleigh quotient x' K x (x' M x = 1). A
+  // dense solver's eigenvalues are accurate to about eps times the largest,
+  // so where a model's axial or rotational DOFs are far stiffer than its
+  // lowest modes (a beam: lambda_max / lambda_1 ~ 1e8-1e9) its lowest
+  // eigenvalue comes out to only ~1e-8-1e-7 of itself; the quotient's error is
+  // second order in the vector's: 5.5e-13 on a 60-DOF bar, 7.7e-10 on a
+  // 300-DOF one (modal_test.cc, against long-double solutions). A fit on such
+  // a model otherwise sees its misfit jump by ~1e-8 of itself between nearby
+  // evaluations and goes on with rejected steps (half the evaluations of a
+  // cantilever's diagnosis, measured on examples/diagnosis/air_and_water.yaml).
+  for (int j = 0; j < count; ++j)
+    modes.eigenvalues[j] = modes.shapes.col(j).dot(k * modes.shapes.col(j));
   FixSigns(&modes.shapes);
   return modes;
 }

@@ -1,4 +1,4 @@
-#include "symmetric_spectrum.h"
+#include "femup/core/linalg/symmetric_spectrum.h"
 
 #include <cstddef>
 #include <vector>
@@ -6,6 +6,14 @@
 // LAPACK (Fortran): the hidden lengths of the character arguments are passed
 // after the others, as core/src/linalg/banded_eigen.cc explains.
 extern "C" {
+void dpotrf_(const char* uplo, const int* n, double* a, const int* lda, int* info,
+             std::size_t uplo_length);
+void dsygst_(const int* itype, const char* uplo, const int* n, double* a, const int* lda,
+             const double* b, const int* ldb, int* info, std::size_t uplo_length);
+void dtrsm_(const char* side, const char* uplo, const char* transa, const char* diag,
+            const int* m, const int* n, const double* alpha, const double* a,
+            const int* lda, double* b, const int* ldb, std::size_t side_length,
+            std::size_t uplo_length, std::size_t transa_length, std::size_t diag_length);
 void dsyevr_(const char* jobz, const char* range, const char* uplo, const int* n,
              double* a, const int* lda, const double* vl, const double* vu, const int* il,
              const int* iu, const double* abstol, int* m, double* w, double* z,
@@ -14,7 +22,7 @@ void dsyevr_(const char* jobz, const char* range, const char* uplo, const int* n
              std::size_t range_length, std::size_t uplo_length);
 }
 
-namespace femup::internal {
+namespace femup {
 namespace {
 
 // dsyevr on `a` (destroyed): jobz "N" or "V", range "A" (all) or "I" (the
@@ -70,4 +78,33 @@ bool SmallestEigenpairs(Eigen::MatrixXd lower, int count, Eigen::VectorXd* value
   return Dsyevr("V", "I", 1, count, &lower, values, vectors);
 }
 
-}  // namespace femup::internal
+PencilStatus SmallestPencilEigenpairs(Eigen::MatrixXd stiffness, Eigen::MatrixXd mass,
+                                      int count, Eigen::VectorXd* values,
+                                      Eigen::MatrixXd* vectors) {
+  const int n = static_cast<int>(stiffness.rows());
+  if (stiffness.cols() != n || mass.rows() != n || mass.cols() != n || count < 0 ||
+      count > n) {
+    return PencilStatus::kFailed;
+  }
+  if (count == 0) {
+    values->resize(0);
+    vectors->resize(n, 0);
+    return PencilStatus::kOk;
+  }
+  int info = 0;
+  dpotrf_("L", &n, mass.data(), &n, &info, 1);  // M = L L'
+  if (info > 0) return PencilStatus::kMassNotPositiveDefinite;
+  if (info < 0) return PencilStatus::kFailed;
+  const int itype = 1;  // K x = lambda M x -> (inv(L) K inv(L')) y = lambda y
+  dsygst_(&itype, "L", &n, stiffness.data(), &n, mass.data(), &n, &info, 1);
+  if (info != 0) return PencilStatus::kFailed;
+  if (!Dsyevr("V", "I", 1, count, &stiffness, values, vectors))
+    return PencilStatus::kFailed;
+  const double one = 1.0;  // x = inv(L') y
+  dtrsm_("L", "L", "T", "N", &n, &count, &one, mass.data(), &n, vectors->data(), &n, 1, 1,
+         1, 1);
+  return vectors->allFinite() && values->allFinite() ? PencilStatus::kOk
+                                                     : PencilStatus::kFailed;
+}
+
+}  // namespace femup
