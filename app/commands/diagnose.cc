@@ -1,7 +1,7 @@
 // femup diagnose: the sim-to-real gap of a study, located and explained by
-// unmodelled effects as changes of the model (every model type), or, on a
-// cantilever by default, by its own pipeline (effects on the paper's beam;
-// diagnosis.engine chooses).
+// unmodelled effects as changes of the model (every model type, the default),
+// or, on a cantilever whose diagnosis.engine is cantilever, by its own
+// pipeline (effects on the paper's beam).
 #include "commands.h"
 #include "femup/reporting/outputs.h"
 #include "femup/studies/diagnose_study.h"
@@ -21,7 +21,7 @@ Command DiagnoseCommand() {
             RequireMeasurements(study);
             const femup::DiagnosisSpec spec =
                 study.diagnosis.value_or(femup::DiagnosisSpec());
-            if (spec.EngineFor(study.cantilever.has_value()) == "model_effects") {
+            if (spec.Engine() == "model_effects") {
               const femup::StructureDiagnosisResult result =
                   femup::RunStructureDiagnosis(study);
               PublishStudy(invocation, "diagnose", study, *o, result,

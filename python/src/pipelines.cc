@@ -485,8 +485,8 @@ void BindDiagnosis(py::module_& m) {
       .def("report", &femup::StructureDiagnosisReport);
   m.def("run_structure_diagnosis", &femup::RunStructureDiagnosis, py::arg("study"),
         py::call_guard<py::gil_scoped_release>(),
-        "The diagnosis on any model (effects as changes of the model; a cantilever's "
-        "by default runs run_diagnosis).");
+        "The diagnosis on any model (effects as changes of the model), femup "
+        "diagnose's default engine.");
   m.def(
       "diagnose",
       [](const femup::Study& study) -> py::object {
@@ -495,7 +495,7 @@ void BindDiagnosis(py::module_& m) {
         }
         const femup::DiagnosisSpec spec =
             study.diagnosis.value_or(femup::DiagnosisSpec());
-        if (spec.EngineFor(study.cantilever.has_value()) == "model_effects") {
+        if (spec.Engine() == "model_effects") {
           femup::StructureDiagnosisResult r;
           {
             py::gil_scoped_release release;
@@ -512,8 +512,7 @@ void BindDiagnosis(py::module_& m) {
       },
       py::arg("study"),
       "`femup diagnose`: run_structure_diagnosis, or run_diagnosis for a cantilever "
-      "whose diagnosis.engine is cantilever (its default), as the command line "
-      "dispatches.");
+      "whose diagnosis.engine is cantilever, as the command line dispatches.");
 }
 
 void BindModesAndSimulate(py::module_& m) {

@@ -88,8 +88,16 @@ def test_modes_matches_modes_json(run_cli):
     close(result.nominal.shapes, shapes, rel=1e-9, abs_=1e-12)
 
 
-def test_cantilever_diagnosis_matches_diagnosis_json(run_cli):
-    path = EXAMPLES / "diagnosis" / "added_mass.yaml"
+def test_cantilever_diagnosis_matches_diagnosis_json(run_cli, tmp_path):
+    # The cantilever's own pipeline (diagnosis.engine: cantilever); by default a
+    # cantilever, as every model, runs on the one engine.
+    example = EXAMPLES / "diagnosis" / "added_mass.yaml"
+    assert isinstance(femup.diagnose(femup.load_study(str(example))),
+                      femup.StructureDiagnosisResult)
+    text = example.read_text()
+    assert text.rstrip().endswith("shape: 0.01}")  # the diagnosis section last
+    path = tmp_path / "added_mass_own.yaml"
+    path.write_text(text + "  engine: cantilever\n")
     expected = run_cli("diagnose", path, "diagnosis.json")
     result = femup.diagnose(femup.load_study(str(path)))
     assert isinstance(result, femup.DiagnosisResult)
@@ -222,14 +230,17 @@ def test_the_two_diagnosis_pipelines_directly_and_their_refusals():
     cantilever = femup.load_study(str(EXAMPLES / "diagnosis" / "added_mass.yaml"))
     building = femup.load_study(str(EXAMPLES / "diagnosis" / "shear_building.yaml"))
     direct = femup.run_diagnosis(cantilever)
+    # diagnosis.engine: cantilever dispatches to the cantilever's own pipeline.
+    cantilever.diagnosis.engine = "cantilever"
     assert direct.verdict == femup.diagnose(cantilever).verdict
     structure = femup.run_structure_diagnosis(building)
     assert (structure.classes[0].kind, structure.classes[0].region) == (
         "stiffness_loss", "element 3")
-    # diagnosis.engine: model_effects puts the cantilever on the one engine.
-    cantilever.diagnosis.engine = "model_effects"
+    # Unstated (the default) or model_effects: the cantilever on the one engine.
     cantilever.diagnosis.candidates = ["added_mass", "material_scaling"]
-    assert isinstance(femup.diagnose(cantilever), femup.StructureDiagnosisResult)
+    for engine in ("", "model_effects"):
+        cantilever.diagnosis.engine = engine
+        assert isinstance(femup.diagnose(cantilever), femup.StructureDiagnosisResult)
     # The cantilever's pipeline refuses a chain, naming the model; the other
     # refuses a study without measurements.
     with pytest.raises(femup.InputError, match="model"):

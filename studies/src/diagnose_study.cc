@@ -107,7 +107,7 @@ DiagnosisResult RunDiagnosis(const Study& study) {
   std::vector<std::vector<std::string>> classes{{}};
   for (const auto& k : kinds) classes.push_back({k});
   const std::size_t num_singles = kinds.size();
-  if (spec.MaxEffectsFor(/*own_pipeline=*/true) >= 2) {
+  if (spec.MaxEffectsFor(/*own_pipeline=*/true, /*measured_states=*/1) >= 2) {
     for (std::size_t a = 0; a < kinds.size(); ++a)
       for (std::size_t b = a + 1; b < kinds.size(); ++b)
         classes.push_back({kinds[a], kinds[b]});

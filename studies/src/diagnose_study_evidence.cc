@@ -212,7 +212,8 @@ void ScoreClasses(const DiagnosisSpec& spec, const std::vector<std::string>& kin
   Eigen::VectorXd scores(static_cast<Eigen::Index>(r.candidates.size()));
   Eigen::VectorXd prior(scores.size());
   const std::size_t pairs =
-      spec.MaxEffectsFor(/*own_pipeline=*/true) >= 2 ? num_pairs : 0;
+      spec.MaxEffectsFor(/*own_pipeline=*/true, /*measured_states=*/1) >= 2 ? num_pairs
+                                                                            : 0;
   for (std::size_t i = 0; i < r.candidates.size(); ++i) {
     const auto& c = r.candidates[i];
     scores[static_cast<Eigen::Index>(i)] = c.score;

@@ -259,7 +259,7 @@ DiagnosisSpec ReadDiagnosis(const Field& f, const Study& study) {
   }
   if (f.Has("model_uncertainty")) {
     const Field u = f["model_uncertainty"];
-    if (d.EngineFor(study.cantilever.has_value()) == "cantilever") {
+    if (d.Engine() == "cantilever") {
       u.Fail(
           "the cantilever's own pipeline does not allow for a stated model uncertainty; "
           "engine: model_effects does");
@@ -345,7 +345,7 @@ DiagnosisSpec ReadDiagnosis(const Field& f, const Study& study) {
   }
   if (f.Has("gap_explained")) {
     d.gap_explained = f["gap_explained"].Num();
-    if (d.EngineFor(study.cantilever.has_value()) == "cantilever") {
+    if (d.Engine() == "cantilever") {
       f["gap_explained"].Fail(
           "the cantilever's own pipeline does not read it; engine: model_effects does");
     }
@@ -356,7 +356,7 @@ DiagnosisSpec ReadDiagnosis(const Field& f, const Study& study) {
   }
   if (f.Has("frequency_temperature")) {
     const std::string t = f["frequency_temperature"].Str();
-    if (d.EngineFor(study.cantilever.has_value()) == "cantilever") {
+    if (d.Engine() == "cantilever") {
       f["frequency_temperature"].Fail(
           "the cantilever's own pipeline has its own noise temperature; engine: "
           "model_effects reads this key");

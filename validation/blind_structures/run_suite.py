@@ -26,8 +26,9 @@ naming either, for a truth of either, is right (and counted apart as such).
 Suites: shear_building, plane_frame, jacket (femup's space_frame in water; see
 jacket.py for how its truths are made; --foundation springs stands every jacket
 on springs under its legs and adds soft_foundation), cantilever (a bar; its
-study files run on the cantilever's own pipeline by default, and on the one
-engine with --diagnosis engine=model_effects: both are scored alike).
+study files run on the one engine by default since session 59, and on the
+cantilever's own pipeline with --diagnosis engine=cantilever: both are scored
+alike).
 
 Usage:
   python3 validation/blind_structures/run_suite.py --suite shear_building \
