@@ -1191,7 +1191,8 @@ TEST(StructureDiagnosis, RefusesFrequenciesOutOfOrder) {
   testing::ExpectInputError(
       [&] {
         RunStructureDiagnosis(ParseStudy(
-            chain + "measurements:\n  - {state: air, frequencies_hz: [3.48, 3.4417, 13.9]}\n",
+            chain +
+                "measurements:\n  - {state: air, frequencies_hz: [3.48, 3.4417, 13.9]}\n",
             "x.yaml"));
       },
       {"ascending", "mode 2 is 3.4417 Hz"});

@@ -200,8 +200,8 @@ StructureDiagnosisResult RunStructureDiagnosis(const Study& study) {
           << "): frequencies must be listed in ascending order (mode 1 the lowest; modes "
              "within "
           << kSwapSigmas << " standard deviations of the stated frequency noise of each "
-          << "other in either); mode " << j << " is " << f[j - 1] << " Hz and mode " << j + 1
-          << " is " << f[j] << " Hz";
+          << "other in either); mode " << j << " is " << f[j - 1] << " Hz and mode "
+          << j + 1 << " is " << f[j] << " Hz";
       throw InputError(study.path, msg.str());
     }
   }
