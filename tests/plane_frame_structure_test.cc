@@ -6,10 +6,15 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
+#include <memory>
+#include <string>
 #include <tuple>
+#include <vector>
 
 #include "femup/core/errors.h"
+#include "femup/core/fe/fe.h"
 #include "femup/core/fe/plane_frame.h"
 #include "femup/core/linalg/modal.h"
 #include "femup/problems/model_effect_pencil.h"
@@ -66,6 +71,90 @@ TEST(PlaneFrameStructure, MembersSumToTheWholeAndMatchTheFactorModel) {
   EXPECT_LT((Eigen::MatrixXd(big.mass() - m)).cwiseAbs().maxCoeff(),
             1e-9 * Eigen::MatrixXd(m).cwiseAbs().maxCoeff());
   EXPECT_EQ(s.nodes.size(), s.dof_labels.size() / 3);
+}
+
+// Each member of several finite elements carries them as its parts (what a
+// loss over part of its length acts on): they sum to the member, which is its
+// element; spans in fractions from its first joint (a column's foot, a beam's
+// left end), extents as the elements' heights.
+TEST(PlaneFrameStructure, MembersOfSeveralElementsCarryThemAsParts) {
+  const PlaneFrameSpec spec = fixtures::PlaneFrame(2, 2, 2, 3.0, 5.0);
+  const Structure s = BuildPlaneFrameStructure(spec);
+  ASSERT_EQ(s.members.size(), s.elements.size());
+  for (std::size_t i = 0; i < s.members.size(); ++i) {
+    const ElementMember& m = s.members[i];
+    const ElementMatrices& e = s.elements[static_cast<std::size_t>(m.element)];
+    EXPECT_EQ(m.element, static_cast<int>(i));
+    EXPECT_EQ(m.label, e.label);
+    EXPECT_EQ(m.x0, e.x0);
+    EXPECT_EQ(m.x1, e.x1);
+    ASSERT_EQ(m.parts.size(), 2u) << m.label;
+    EXPECT_EQ(m.parts[0].from, 0.0);
+    EXPECT_EQ(m.parts[0].to, 0.5);
+    EXPECT_EQ(m.parts[1].from, 0.5);
+    EXPECT_EQ(m.parts[1].to, 1.0);
+    const Eigen::MatrixXd whole(e.stiffness);
+    const Eigen::MatrixXd sum = Eigen::MatrixXd(m.parts[0].stiffness.ToSparse() +
+                                                m.parts[1].stiffness.ToSparse());
+    EXPECT_LT((sum - whole).cwiseAbs().maxCoeff(), 1e-9 * whole.cwiseAbs().maxCoeff());
+    EXPECT_LT((Eigen::MatrixXd(m.stiffness.ToSparse()) - whole).cwiseAbs().maxCoeff(),
+              1e-9 * whole.cwiseAbs().maxCoeff());
+  }
+  // Storey 1's first column: its lower half from 0 to 1.5 m, its upper half to 3 m.
+  EXPECT_EQ(s.members[0].label, "s1:col1");
+  EXPECT_DOUBLE_EQ(s.members[0].parts[0].x0, 0.0);
+  EXPECT_DOUBLE_EQ(s.members[0].parts[0].x1, 1.5);
+  EXPECT_DOUBLE_EQ(s.members[0].parts[1].x1, 3.0);
+  // One element per member: nothing to add.
+  EXPECT_TRUE(BuildPlaneFrameStructure(fixtures::PlaneFrame(2, 2, 1)).members.empty());
+}
+
+// A loss over half a beam: the beam's left element alone, its stiffness
+// that of a 2D frame element from the beam's left joint to its middle
+// (Frame2dStiffness on those coordinates, scattered by DOF label); the
+// member's own instance is its element's, not listed twice.
+TEST(PlaneFrameStructure, StiffnessLossOverHalfABeamIsItsLeftElement) {
+  const PlaneFrameSpec spec = fixtures::PlaneFrame(1, 1, 2, 3.0, 5.0);
+  const Structure s = BuildPlaneFrameStructure(spec);
+  std::vector<std::string> regions;
+  for (const auto& e : CreateModelEffects("stiffness_loss", s))
+    regions.push_back(e->region().name);
+  EXPECT_EQ(std::count(regions.begin(), regions.end(), "element s1:beam1"), 1);
+  EXPECT_EQ(std::count(regions.begin(), regions.end(), "member s1:beam1"), 0);
+  for (const char* part : {"member s1:beam1 (0.00-0.50)", "member s1:beam1 (0.50-1.00)",
+                           "member s1:col1 (0.00-0.50)", "member s1:col2 (0.50-1.00)"}) {
+    EXPECT_EQ(std::count(regions.begin(), regions.end(), part), 1) << part;
+  }
+  std::unique_ptr<ModelEffect> left;
+  for (auto& e : CreateModelEffects("stiffness_loss", s))
+    if (e->region().name == "member s1:beam1 (0.00-0.50)") left = std::move(e);
+  ASSERT_TRUE(left);
+  const double loss = 0.3;
+  Eigen::VectorXd theta(1);
+  theta << std::log(loss);
+  const Eigen::MatrixXd change(left->Change(theta, Immersion::kDry).stiffness);
+  // The beam's joints are the column tops; its middle node the one at (2.5, 3).
+  auto node_at = [&](double x, double y) {
+    for (const ModelNode& n : s.nodes)
+      if (std::abs(n.xyz.x() - x) < 1e-12 && std::abs(n.xyz.y() - y) < 1e-12)
+        return n.name;
+    ADD_FAILURE() << "no node at " << x << ", " << y;
+    return std::string();
+  };
+  const std::string a = node_at(0, 3), b = node_at(2.5, 3);
+  std::vector<int> dofs;
+  for (const std::string& node : {a, b})
+    for (const char* d : {":ux", ":uy", ":rz"}) {
+      const auto it = std::find(s.dof_labels.begin(), s.dof_labels.end(), node + d);
+      ASSERT_NE(it, s.dof_labels.end());
+      dofs.push_back(static_cast<int>(it - s.dof_labels.begin()));
+    }
+  const Matrix6 k6 = Frame2dStiffness(spec.beam, 0, 3, 2.5, 3);
+  Eigen::MatrixXd expected = Eigen::MatrixXd::Zero(change.rows(), change.cols());
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j) expected(dofs[i], dofs[j]) = -loss * k6(i, j);
+  EXPECT_LT((change - expected).cwiseAbs().maxCoeff(), 1e-9 * k6.cwiseAbs().maxCoeff());
+  EXPECT_DOUBLE_EQ(left->Location(theta).x0, 3.0);  // a beam: at its storey's height
 }
 
 TEST(PlaneFrameStructure, FindsAWeakerColumn) {

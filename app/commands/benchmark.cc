@@ -22,15 +22,19 @@ void AddOptions(CLI::App* cmd, BenchmarkCommandOptions* o) {
   cmd->add_option("--cases", b.cases, "number of cases (default 100)");
   cmd->add_option("--seed", b.seed, "random seed (default 20261121)");
   cmd->add_option("--threads", b.threads, "cases in parallel (default 2)");
+  cmd->add_option("--engine", b.engine,
+                  "the diagnosis engine: model_effects (diagnose's default, the one "
+                  "engine; the mixed suite's cases also try pairs) or cantilever (the "
+                  "cantilever's own pipeline)");
   cmd->add_option("--sizes", b.sizes,
                   "effect sizes: noise (largest frequency shift 1-50 x the case's "
                   "frequency noise, the default) or absolute (0.5-20 %)");
   cmd->add_option("--evidence", b.evidence,
                   "each class's evidence in the diagnosis: laplace (the default) or "
-                  "sampled (importance sampling)");
+                  "sampled (importance sampling; with --engine cantilever)");
   cmd->add_option("--form-error", b.form_error,
                   "the diagnosis's form error, a fraction of the nominal misfit "
-                  "(default: diagnose's, 0.05)");
+                  "(with --engine cantilever; default: diagnose's, 0.05)");
   cmd->add_option("--rotary-inertia", b.rotary_inertia,
                   "the diagnosis's attached masses carry a fitted rotary inertia: true "
                   "(the default) or false (translational point masses)");

@@ -22,6 +22,8 @@
 #include "femup/evaluation/benchmark_oracle.h"
 #include "femup/problems/effect_fit.h"
 #include "femup/studies/diagnose_study.h"
+#include "femup/studies/effect_ranking.h"
+#include "femup/studies/structure_diagnosis.h"
 #include "femup/studies/study.h"
 #include "json_util.h"
 
@@ -272,6 +274,10 @@ Generated GenerateCase(const BenchmarkOptions& opt, int index) {
     << "}\n  localise: false\n  evidence: " << opt.evidence << "\n";
   if (opt.form_error >= 0) y << "  form_error: " << Num(opt.form_error) << "\n";
   if (!opt.rotary_inertia) y << "  rotary_inertia: false\n";
+  if (opt.engine == "cantilever")
+    y << "  engine: cantilever\n";
+  else if (opt.suite == "mixed")
+    y << "  max_effects: 2\n";  // the suite's truths include pairs
   g.yaml = y.str();
 
   nlohmann::json tj;
@@ -326,6 +332,8 @@ Invalid BenchmarkOptions::Validate() const {
   if (threads < 1) return {"threads", "expected at least 1"};
   if (diagnosis_elements < 10) return {"diagnosis_elements", "expected at least 10"};
   if (refinement < 1) return {"refinement", "expected at least 1"};
+  if (engine != "model_effects" && engine != "cantilever")
+    return {"engine", "expected model_effects or cantilever, not '" + engine + "'"};
   if (sizes != "noise" && sizes != "absolute")
     return {"sizes", "expected noise or absolute, not '" + sizes + "'"};
   if (evidence != "sampled" && evidence != "laplace")
@@ -333,6 +341,15 @@ Invalid BenchmarkOptions::Validate() const {
   if (!(form_error < 1))  // NaN too
     return {"form_error",
             "expected a fraction below 1 (or negative for diagnose's default)"};
+  if (engine == "model_effects" && evidence != "laplace")
+    return {"evidence",
+            "the one engine (engine model_effects) has Laplace's evidence only; sampled "
+            "evidence needs engine cantilever"};
+  if (engine == "model_effects" && form_error >= 0)
+    return {"form_error",
+            "the one engine (engine model_effects) allows for the model's form error "
+            "from its variants, not from a stated fraction; a stated form error needs "
+            "engine cantilever"};
   if (oracle != "off" && oracle != "weak" && oracle != "all")
     return {"oracle", "expected off, weak or all, not '" + oracle + "'"};
   if (oracle != "off" && suite != "single")
@@ -361,6 +378,117 @@ std::vector<BenchmarkCase> GenerateBenchmark(const BenchmarkOptions& options,
   return out;
 }
 
+// The outcome of a case diagnosed by the cantilever's own pipeline.
+void FillFromOwnPipeline(const DiagnosisResult& d, BenchmarkCase* c) {
+  const DiagnosisCandidate& top = d.candidates.front();
+  c->top = top.label;
+  c->top_kinds = top.kinds;
+  if (d.candidates.size() > 1) c->second_kinds = d.candidates[1].kinds;
+  c->probability = top.probability;
+  c->separated = d.separated;
+  c->indistinguishable = d.indistinguishable;
+  c->temperature = d.temperature;
+  c->degrees_of_freedom = d.degrees_of_freedom;
+  for (const DiagnosisCandidate& k : d.candidates) {
+    c->classes.push_back({k.label, static_cast<int>(k.theta.size()), k.chi2,
+                          k.held_out_chi2, k.score, k.probability});
+  }
+  // Location error of each true effect the top class names.
+  for (const auto& e : c->effects) {
+    for (std::size_t k = 0; k < top.kinds.size(); ++k) {
+      if (top.kinds[k] != e.kind) continue;
+      nlohmann::json loc = nlohmann::json::object();
+      const EffectLocation& l = top.locations[k];
+      if (std::isfinite(l.depth)) loc["depth"] = l.depth;
+      if (std::isfinite(l.x)) loc["x"] = l.x;
+      const double err = LocationError(e, loc);
+      if (err >= 0) c->location_error = std::max(c->location_error, err);
+    }
+  }
+  auto rms = [](const EffectFitData& data, const std::vector<PredictedState>& p) {
+    double ss = 0;
+    int n = 0;
+    for (std::size_t s = 0; s < data.states.size(); ++s)
+      for (std::size_t k = 0; k < data.states[s].modes.size(); ++k) {
+        const double e =
+            p[s].modes[k].frequency_hz / data.states[s].modes[k].frequency_hz - 1;
+        ss += e * e;
+        ++n;
+      }
+    return n ? std::sqrt(ss / n) : -1.0;
+  };
+  c->gap_before = rms(d.fitted_data, d.nominal_fitted);
+  c->gap_after = rms(d.fitted_data, top.fitted);
+  if (!d.held_out_data.states.empty()) {
+    c->held_out_before = rms(d.held_out_data, d.nominal_held_out);
+    c->held_out_after = rms(d.held_out_data, top.held_out);
+  }
+}
+
+// The outcome of a case diagnosed by the one engine (RankModelEffects). Its
+// classes are places of a family; the benchmark scores families (kinds), so a
+// case's classes are here its kinds, each with its most probable place's fit
+// and the kind's probability, as the own pipeline's candidates are.
+void FillFromOneEngine(const StructureDiagnosisResult& d, BenchmarkCase* c) {
+  const EffectRanking& k = d.ranking;
+  const RankedClass& top = k.classes.front();
+  auto kinds_of = [](const std::string& kind) {
+    return kind == "none" ? std::vector<std::string>{} : FamiliesOf(kind);
+  };
+  auto kind_probability = [&k](const std::string& kind) {
+    for (const auto& [name, p] : k.kind_probabilities)
+      if (name == kind) return p;
+    return 0.0;
+  };
+  c->top = top.kind;
+  c->top_kinds = kinds_of(top.kind);
+  for (const auto& [kind, p] : k.kind_probabilities) {
+    if (kind == top.kind) continue;
+    c->second_kinds = kinds_of(kind);
+    break;
+  }
+  c->probability = kind_probability(top.kind);
+  c->separated = c->probability >= d.confidence;
+  c->indistinguishable = top.equivalent;
+  c->temperature = k.temperature;
+  c->degrees_of_freedom = k.num_residuals;
+  // The verdict's kind first (where the effect explains too little of the
+  // gap, "none" is the verdict whatever its share), then the others, most
+  // probable first.
+  std::vector<std::pair<std::string, double>> kinds = k.kind_probabilities;
+  std::stable_partition(kinds.begin(), kinds.end(),
+                        [&top](const auto& e) { return e.first == top.kind; });
+  for (const auto& [kind, p] : kinds) {
+    const auto best = std::find_if(k.classes.begin(), k.classes.end(),
+                                   [&](const RankedClass& r) { return r.kind == kind; });
+    if (best == k.classes.end()) continue;
+    c->classes.push_back({kind, static_cast<int>(best->theta.size()), best->chi2, 0,
+                          best->evidence.log_evidence + best->log_prior, p});
+  }
+  // Location error of the true effect where the top class names its kind
+  // alone (a pair's place is not one location).
+  if (c->top_kinds.size() == 1) {
+    for (const auto& e : c->effects) {
+      if (e.kind != c->top_kinds[0]) continue;
+      nlohmann::json loc = nlohmann::json::object();
+      if (std::isfinite(top.location.depth)) loc["depth"] = top.location.depth;
+      if (std::isfinite(top.location.x)) loc["x"] = top.location.x;
+      const double err = LocationError(e, loc);
+      if (err >= 0) c->location_error = std::max(c->location_error, err);
+    }
+  }
+  auto rms = [](const std::vector<PairedModeMisfit>& modes) {
+    double ss = 0;
+    for (const PairedModeMisfit& m : modes)
+      ss += std::pow(m.model_hz / m.measured_hz - 1, 2);
+    return modes.empty() ? -1.0 : std::sqrt(ss / static_cast<double>(modes.size()));
+  };
+  const auto none = std::find_if(k.classes.begin(), k.classes.end(),
+                                 [](const RankedClass& r) { return r.kind == "none"; });
+  if (none != k.classes.end()) c->gap_before = rms(none->modes);
+  c->gap_after = rms(top.modes);
+}
+
 BenchmarkResult RunBenchmark(const BenchmarkOptions& options, const std::string& out_dir,
                              const ProgressCallback& progress) {
   BenchmarkResult result;
@@ -373,50 +501,10 @@ BenchmarkResult RunBenchmark(const BenchmarkOptions& options, const std::string&
     std::optional<Study> study;  // read once, for the diagnosis and the oracle
     try {
       study = LoadStudy((fs::path(out_dir) / "cases" / (c.name + ".yaml")).string());
-      const DiagnosisResult d = RunDiagnosis(*study);
-      const DiagnosisCandidate& top = d.candidates.front();
-      c.top = top.label;
-      c.top_kinds = top.kinds;
-      if (d.candidates.size() > 1) c.second_kinds = d.candidates[1].kinds;
-      c.probability = top.probability;
-      c.separated = d.separated;
-      c.indistinguishable = d.indistinguishable;
-      c.temperature = d.temperature;
-      c.degrees_of_freedom = d.degrees_of_freedom;
-      for (const DiagnosisCandidate& k : d.candidates) {
-        c.classes.push_back({k.label, static_cast<int>(k.theta.size()), k.chi2,
-                             k.held_out_chi2, k.score, k.probability});
-      }
-      // Location error of each true effect the top class names.
-      for (const auto& e : c.effects) {
-        for (std::size_t k = 0; k < top.kinds.size(); ++k) {
-          if (top.kinds[k] != e.kind) continue;
-          nlohmann::json loc = nlohmann::json::object();
-          const EffectLocation& l = top.locations[k];
-          if (std::isfinite(l.depth)) loc["depth"] = l.depth;
-          if (std::isfinite(l.x)) loc["x"] = l.x;
-          const double err = LocationError(e, loc);
-          if (err >= 0) c.location_error = std::max(c.location_error, err);
-        }
-      }
-      auto rms = [](const EffectFitData& data, const std::vector<PredictedState>& p) {
-        double ss = 0;
-        int n = 0;
-        for (std::size_t s = 0; s < data.states.size(); ++s)
-          for (std::size_t k = 0; k < data.states[s].modes.size(); ++k) {
-            const double e =
-                p[s].modes[k].frequency_hz / data.states[s].modes[k].frequency_hz - 1;
-            ss += e * e;
-            ++n;
-          }
-        return n ? std::sqrt(ss / n) : -1.0;
-      };
-      c.gap_before = rms(d.fitted_data, d.nominal_fitted);
-      c.gap_after = rms(d.fitted_data, top.fitted);
-      if (!d.held_out_data.states.empty()) {
-        c.held_out_before = rms(d.held_out_data, d.nominal_held_out);
-        c.held_out_after = rms(d.held_out_data, top.held_out);
-      }
+      if (study->diagnosis && study->diagnosis->Engine() == "cantilever")
+        FillFromOwnPipeline(RunDiagnosis(*study), &c);
+      else
+        FillFromOneEngine(RunStructureDiagnosis(*study), &c);
     } catch (const std::exception& e) {
       c.failed = true;
       c.error = e.what();

@@ -187,6 +187,7 @@ void WriteBenchmarkOutputs(const BenchmarkResult& r, bool plots, OutputDir* out,
   j["cases"] = r.options.cases;
   j["seed"] = r.options.seed;
   j["sizes"] = r.options.sizes;
+  j["engine"] = r.options.engine;
   j["evidence"] = r.options.evidence;
   if (r.options.form_error >= 0) j["form_error"] = r.options.form_error;
   j["rotary_inertia"] = r.options.rotary_inertia;
@@ -347,7 +348,7 @@ std::string BenchmarkReport(const BenchmarkResult& r) {
             ? "absolute (largest frequency shift " + Num(100 * Ranges::kAbsoluteMin) +
                   "-" + Num(100 * Ranges::kAbsoluteMax) + " %)"
             : std::string("in noise units (1-50 sigma)"))
-    << ", " << r.options.evidence << " evidence"
+    << ", engine " << r.options.engine << ", " << r.options.evidence << " evidence"
     << (r.options.form_error >= 0 ? ", form error " + Num(r.options.form_error)
                                   : std::string())
     << (r.options.rotary_inertia

@@ -992,11 +992,16 @@ std::vector<std::unique_ptr<ModelEffect>> CreateModelEffects(
     // And each member of a group on its own, up to the stated number.
     const int num_members = static_cast<int>(s.members.size());
     if (options.max_members < 0 || num_members <= options.max_members) {
+      // How many members each element holds: a member that is its element's
+      // only one (a plane frame's) is that element's instance already.
+      std::map<int, int> per_element;
+      for (const ElementMember& m : s.members) ++per_element[m.element];
       for (const ElementMember& m : s.members) {
         const int index = static_cast<int>(&m - s.members.data());
         EffectRegion r{"member " + m.label, {}, {}, index};
         if (m.element >= 0) r.elements.push_back(m.element);
-        out.push_back(std::make_unique<StiffnessLoss>(s, r, m));
+        if (m.element < 0 || per_element[m.element] > 1)
+          out.push_back(std::make_unique<StiffnessLoss>(s, r, m));
         // And each of its finite elements: a loss over part of its length.
         for (const MemberPart& part : m.parts) {
           EffectRegion pr = r;

@@ -59,6 +59,7 @@ EXPECTED_KIND = {"none": "none", "joint_flexibility": "stiffness_loss",
                  "soft_foundation": "support_flexibility"}
 E_STEEL, G_STEEL, RHO_STEEL = 210e9, 81e9, 7850.0
 PARTS = 8  # truth elements per member (even: a node at each middle)
+MODEL_PARTS = 2  # the model's elements per member (the study's elements_per_member)
 
 
 def model_labels(S, B):
@@ -232,6 +233,15 @@ class Effect:
             # A beam's semi-rigid ends: its stiffness loss, or its connections'
             # (femup's instance "connections of <beam>").
             extra = ["connections of s%d:%s" % (s, m)] if self.kind == "joint_flexibility" else []
+            if self.kind == "member_damage":
+                # The model's elements of the member the damaged zone reaches
+                # (femup's instances "member <member> (from-to)", fractions from
+                # the column's foot or the beam's left end).
+                z0, z1 = self.detail["zone"]
+                extra = ["member s%d:%s (%.2f-%.2f)" % (s, m, k / MODEL_PARTS,
+                                                         (k + 1) / MODEL_PARTS)
+                         for k in range(MODEL_PARTS)
+                         if k / MODEL_PARTS < z1 and (k + 1) / MODEL_PARTS > z0]
             return ["element s%d:%s" % (s, m)] + extra
         if self.kind == "added_floor_mass":
             s, m = self.member
@@ -356,7 +366,7 @@ def study_yaml(s):
         "  bays: %d" % p["bays"],
         "  storey_height: %.10g" % p["storey_height"],
         "  bay_width: %.10g" % p["bay_width"],
-        "  elements_per_member: 2",
+        "  elements_per_member: %d" % MODEL_PARTS,
         "  column: {E: %.10g, A: %.10g, I: %.10g, rho: %.10g}" % (
             E_STEEL, p["column_A"], p["column_I"], RHO_STEEL),
         "  beam: {E: %.10g, A: %.10g, I: %.10g, rho: %.10g}" % (

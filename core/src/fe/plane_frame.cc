@@ -396,6 +396,9 @@ Structure BuildFrame(const PlaneFrameSpec& spec, bool variants) {
     // A beam's connections to the joints at its ends: its end elements.
     MemberConnections joints;
     joints.element = static_cast<int>(m);
+    // Its finite elements, where it has several: what damage over part of its
+    // length (a crack at one end, a dent) acts on (MemberPart).
+    std::vector<MemberPart> parts;
     for (std::size_t k = m * per_member; k < (m + 1) * per_member; ++k) {
       const FramePiece& p = layout.pieces[k];
       // A base end: the sprung DOFs of its column line's base node, if any.
@@ -418,6 +421,18 @@ Structure BuildFrame(const PlaneFrameSpec& spec, bool variants) {
       Scatter(k6, d, &ke);
       Scatter(m6, d, &me);
       const bool first = k == m * per_member, last = k + 1 == (m + 1) * per_member;
+      if (per_member > 1) {
+        Triplets kp;
+        Scatter(k6, d, &kp);
+        MemberPart part;
+        const double i = static_cast<double>(k - m * per_member);
+        part.from = i / per_member;
+        part.to = (i + 1) / per_member;
+        part.stiffness = BasisMatrix::FromTriplets(n, kp.cbegin(), kp.cend());
+        part.x0 = std::min(p.ya, p.yb);
+        part.x1 = std::max(p.ya, p.yb);
+        parts.push_back(std::move(part));
+      }
       if (!mb.column && (first || last)) {
         ConnectionEnd end{std::vector<int>(d.begin(), d.end()), k6, m6, {}};
         if (first) end.rotations.push_back(2);
@@ -452,6 +467,18 @@ Structure BuildFrame(const PlaneFrameSpec& spec, bool variants) {
     if (!joints.ends.empty()) {
       joints.label = el.label;
       s.connections.push_back(std::move(joints));
+    }
+    if (!parts.empty()) {
+      // The member is its element; its parts are what it adds (the member's
+      // own instance would be its element's: effects skip it).
+      ElementMember member;
+      member.label = el.label;
+      member.element = static_cast<int>(m);
+      member.stiffness = BasisMatrix::FromTriplets(n, ke.cbegin(), ke.cend());
+      member.x0 = el.x0;
+      member.x1 = el.x1;
+      member.parts = std::move(parts);
+      s.members.push_back(std::move(member));
     }
     kt.insert(kt.end(), ke.begin(), ke.end());
     mt.insert(mt.end(), me.begin(), me.end());

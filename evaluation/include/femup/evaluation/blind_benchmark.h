@@ -36,6 +36,12 @@ namespace femup {
 
 struct BenchmarkOptions {
   std::string suite = "mixed";  // "single" or "mixed"
+  // The diagnosis engine, written into every case's study file:
+  // "model_effects" (diagnose's default: the one engine, RankModelEffects;
+  // the mixed suite's files also say `max_effects: 2`, since its truths
+  // include pairs) or "cantilever" (the cantilever's own pipeline,
+  // RunDiagnosis, which tries pairs by default).
+  std::string engine = "model_effects";
   int cases = 100;
   unsigned long long seed = 20261121;
   int threads = 2;  // cases diagnosed in parallel

@@ -20,7 +20,11 @@
 //                       dK = -loss K_e. One instance per element, and where
 //                       the elements are groups of members (a space frame's
 //                       levels; Structure::members), one per member as well,
-//                       up to ModelEffectOptions::max_members of them. Where
+//                       up to ModelEffectOptions::max_members of them, and one
+//                       per finite element of a member that has several (a
+//                       space frame's, a plane frame's: a loss over part of
+//                       its length); a member that is its element's only one
+//                       (a plane frame's) is that element's instance. Where
 //                       the builder knows a member's end connections
 //                       (Structure::connections: a plane frame's beams), one
 //                       more per member, "connections of <member>": its

@@ -1,9 +1,9 @@
-// `femup diagnose` on models other than the cantilever (a chain or shear
-// building, a Matrix Market model with element matrices): which unmodelled
-// effect, where and how large, from the study's measured modes, by
+// `femup diagnose` on every model type (a chain or shear building, a cantilever,
+// a plane or space frame, a Matrix Market model with element matrices): which
+// unmodelled effect, where and how large, from the study's measured modes, by
 // RankModelEffects (effect_ranking.h) over the families that apply to the
-// model. The cantilever keeps its own pipeline (diagnose_study.h) until it
-// moves onto the same step.
+// model: the one engine, every study's default. A cantilever's study may
+// still choose its own pipeline (diagnose_study.h) with engine: cantilever.
 #pragma once
 
 #include <string>

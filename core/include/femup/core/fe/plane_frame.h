@@ -70,7 +70,11 @@ ParametrisedModel BuildPlaneFrame(const PlaneFrameSpec& spec);
 // mass and (columns of the lowest `wet_storeys` storeys) transverse added-mass
 // basis, so correction factors and unmodelled effects act per member. Members
 // are numbered storey by storey, columns left to right then beams left to right;
-// labels "s<storey>:col<line>" and "s<storey>:beam<bay>" (1-based). DOFs and
+// labels "s<storey>:col<line>" and "s<storey>:beam<bay>" (1-based). Where a
+// member has several elements, Structure::members lists it (its element's
+// index and label) with its elements as parts (MemberPart: spans in fractions
+// from its first joint, a column's foot or a beam's left end), what a
+// stiffness loss over part of a member acts on. DOFs and
 // node names as BuildPlaneFrame; Structure::nodes holds every free node's
 // coordinates (x along the bays, y up). With base springs, each column base is
 // a node "b<line>" (after the others) with a DOF per sprung direction, the
