@@ -229,10 +229,13 @@ TEST(EffectPriors, RegionsKeepTheNamedElementsAndNodes) {
   const Structure f = BuildPlaneFrameStructure(frame);
   kept = KeepStatedRegions(CreateModelEffects("stiffness_loss", f), f,
                            Prior("stiffness_loss", {}, {"s1:beam1"}));
-  // The beam's own stiffness loss, and its end connections'.
-  ASSERT_EQ(kept.size(), 2u);
+  // The beam's own stiffness loss, its end connections', and each of its two
+  // elements' (a loss over half of it).
+  ASSERT_EQ(kept.size(), 4u);
   EXPECT_EQ(kept[0]->region().name, "element s1:beam1");
   EXPECT_EQ(kept[1]->region().name, "connections of s1:beam1");
+  EXPECT_EQ(kept[2]->region().name, "member s1:beam1 (0.00-0.50)");
+  EXPECT_EQ(kept[3]->region().name, "member s1:beam1 (0.50-1.00)");
   kept = KeepStatedRegions(CreateModelEffects("attached_mass", f), f,
                            Prior("attached_mass", {}, {"n7"}));
   ASSERT_EQ(kept.size(), 1u);
