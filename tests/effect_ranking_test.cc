@@ -64,6 +64,26 @@ EffectRankingOptions Options() {
   return o;
 }
 
+// KindProbability reads a kind's share from kind_probabilities (0 for a kind
+// not ranked); RmsFrequencyError is the rms of model / measured - 1 over a
+// class's paired modes, NaN without any.
+TEST(EffectRanking, KindProbabilityAndRmsFrequencyErrorOfAClass) {
+  EffectRanking r;
+  r.kind_probabilities = {{"stiffness_loss", 0.7}, {"none", 0.2}, {"attached_mass", 0.1}};
+  EXPECT_EQ(KindProbability(r, "none"), 0.2);
+  EXPECT_EQ(KindProbability(r, "attached_mass"), 0.1);
+  EXPECT_EQ(KindProbability(r, "axial_load"), 0.0);
+  RankedClass c;
+  EXPECT_TRUE(std::isnan(RmsFrequencyError(c)));
+  PairedModeMisfit a, b;
+  a.measured_hz = 10;
+  a.model_hz = 10.3;  // +3 %
+  b.measured_hz = 20;
+  b.model_hz = 19.2;  // -4 %
+  c.modes = {a, b};
+  EXPECT_NEAR(RmsFrequencyError(c), std::sqrt((0.03 * 0.03 + 0.04 * 0.04) / 2), 1e-15);
+}
+
 TEST(EffectRanking, NamesTheDamagedStorey) {
   ChainSpec truth = ShearBuilding();
   truth.springs[2] *= 0.8;

@@ -435,11 +435,6 @@ void FillFromOneEngine(const StructureDiagnosisResult& d, BenchmarkCase* c) {
   auto kinds_of = [](const std::string& kind) {
     return kind == "none" ? std::vector<std::string>{} : FamiliesOf(kind);
   };
-  auto kind_probability = [&k](const std::string& kind) {
-    for (const auto& [name, p] : k.kind_probabilities)
-      if (name == kind) return p;
-    return 0.0;
-  };
   c->top = top.kind;
   c->top_kinds = kinds_of(top.kind);
   for (const auto& [kind, p] : k.kind_probabilities) {
@@ -447,7 +442,7 @@ void FillFromOneEngine(const StructureDiagnosisResult& d, BenchmarkCase* c) {
     c->second_kinds = kinds_of(kind);
     break;
   }
-  c->probability = kind_probability(top.kind);
+  c->probability = KindProbability(k, top.kind);
   c->separated = c->probability >= d.confidence;
   c->indistinguishable = top.equivalent;
   c->temperature = k.temperature;
@@ -477,16 +472,15 @@ void FillFromOneEngine(const StructureDiagnosisResult& d, BenchmarkCase* c) {
       if (err >= 0) c->location_error = std::max(c->location_error, err);
     }
   }
-  auto rms = [](const std::vector<PairedModeMisfit>& modes) {
-    double ss = 0;
-    for (const PairedModeMisfit& m : modes)
-      ss += std::pow(m.model_hz / m.measured_hz - 1, 2);
-    return modes.empty() ? -1.0 : std::sqrt(ss / static_cast<double>(modes.size()));
+  // -1: no modes (the own pipeline's convention).
+  auto rms = [](const RankedClass& r) {
+    const double e = RmsFrequencyError(r);
+    return std::isnan(e) ? -1.0 : e;
   };
   const auto none = std::find_if(k.classes.begin(), k.classes.end(),
                                  [](const RankedClass& r) { return r.kind == "none"; });
-  if (none != k.classes.end()) c->gap_before = rms(none->modes);
-  c->gap_after = rms(top.modes);
+  if (none != k.classes.end()) c->gap_before = rms(*none);
+  c->gap_after = rms(top);
 }
 
 BenchmarkResult RunBenchmark(const BenchmarkOptions& options, const std::string& out_dir,

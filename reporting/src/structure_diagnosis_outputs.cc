@@ -22,23 +22,6 @@ std::string Label(const RankedClass& c) {
   return c.region.empty() ? c.kind : c.kind + " at " + c.region;
 }
 
-// The family's summed probability (the verdict's family need not be the most
-// probable: EffectRankingOptions::gap_confidence).
-double KindProbability(const EffectRanking& k, const std::string& kind) {
-  for (const auto& [name, p] : k.kind_probabilities)
-    if (name == kind) return p;
-  return 0;
-}
-
-// Root mean square of model / measured - 1 over the measured frequencies.
-double RmsFrequencyError(const RankedClass& c) {
-  if (c.modes.empty()) return std::numeric_limits<double>::quiet_NaN();
-  double sum = 0;
-  for (const PairedModeMisfit& m : c.modes)
-    sum += std::pow(m.model_hz / m.measured_hz - 1, 2);
-  return std::sqrt(sum / static_cast<double>(c.modes.size()));
-}
-
 // The mean MAC over the modes whose shapes were compared (NaN: none were).
 double MeanMac(const RankedClass& c) {
   double sum = 0;

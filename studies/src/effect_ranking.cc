@@ -1095,4 +1095,18 @@ std::vector<std::pair<std::string, double>> FamilyPresence(const EffectRanking& 
   return presence;
 }
 
+double KindProbability(const EffectRanking& ranking, const std::string& kind) {
+  for (const auto& [name, p] : ranking.kind_probabilities)
+    if (name == kind) return p;
+  return 0;
+}
+
+double RmsFrequencyError(const RankedClass& c) {
+  if (c.modes.empty()) return std::numeric_limits<double>::quiet_NaN();
+  double sum = 0;
+  for (const PairedModeMisfit& m : c.modes)
+    sum += std::pow(m.model_hz / m.measured_hz - 1, 2);
+  return std::sqrt(sum / static_cast<double>(c.modes.size()));
+}
+
 }  // namespace femup

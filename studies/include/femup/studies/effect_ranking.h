@@ -339,4 +339,14 @@ std::vector<std::string> FamiliesOf(const std::string& kind);
 // are kind_probabilities). Most probable first.
 std::vector<std::pair<std::string, double>> FamilyPresence(const EffectRanking& ranking);
 
+// A kind's summed probability over its places (kind_probabilities; 0 for a kind
+// the ranking does not hold). The verdict's kind need not be the most probable
+// (EffectRankingOptions::gap_confidence, gap_explained).
+double KindProbability(const EffectRanking& ranking, const std::string& kind);
+
+// The root mean square of model / measured - 1 over a class's paired modes
+// (RankedClass::modes; for "none" the nominal model's gap); NaN where it has
+// none.
+double RmsFrequencyError(const RankedClass& c);
+
 }  // namespace femup
