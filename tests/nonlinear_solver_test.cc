@@ -240,6 +240,31 @@ TEST_P(NonlinearSolverTest, ActiveLowerBoundOnANonlinearModel) {
   EXPECT_NEAR(kkt.bound_multipliers[0], 0.2, 1e-7);
 }
 
+// r(x) = 2 + cos x on [0.5, 7]: the least misfit, 1/2, is at x = pi, inside,
+// where r' = 0, so the Gauss-Newton curvature r'^2 vanishes and the diagonal
+// step that picks the bounds to hold runs to one of them; the upper one is a
+// worse local minimum (its cost 3.8, the gradient pointing out of the box).
+// The answer stays at pi: a polish is kept only when it does not raise the
+// cost.
+TEST_P(NonlinearSolverTest, AnInteriorMinimumWhereTheJacobianVanishesIsKept) {
+  NonlinearProblem p;
+  p.num_residuals = 1;
+  p.initial = Eigen::VectorXd::Constant(1, 2.0);
+  p.lower = Eigen::VectorXd::Constant(1, 0.5);
+  p.upper = Eigen::VectorXd::Constant(1, 7.0);
+  p.evaluate = [](const Eigen::VectorXd& x, Eigen::VectorXd* r, Eigen::MatrixXd* j,
+                  std::string*) {
+    r->resize(1);
+    (*r)[0] = 2 + std::cos(x[0]);
+    if (j != nullptr) *j = Eigen::MatrixXd::Constant(1, 1, -std::sin(x[0]));
+    return true;
+  };
+  const NonlinearSolution s = Solver()->Solve(p);
+  EXPECT_NE(s.summary.status, SolverStatus::kFailed) << s.summary.message;
+  EXPECT_NEAR(s.x[0], M_PI, 1e-3) << s.summary.message;
+  EXPECT_NEAR(s.summary.cost, 0.5, 1e-6);
+}
+
 TEST_P(NonlinearSolverTest, FixedValueIsHeldAndHasNoVariance) {
   // x1 = 0.5: min over x2 of (x2 - 1)^2 + (x2 - 2.5)^2 gives x2 = 1.75.
   NonlinearProblem p = Linear(SmallA(), SmallB(), Eigen::Vector2d(0, 0));

@@ -118,6 +118,9 @@ namespace {
 // default), and how many times the polish may change the set of held bounds.
 constexpr double kActiveTolerance = 1e-9;
 constexpr int kMaxPolishRounds = 10;
+// A polish may raise the cost by this relative amount at most (rounding, and a
+// parameter moved the last fraction of the way onto its bound).
+constexpr double kPolishCostSlack = 1e-8;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 double Seconds(std::chrono::steady_clock::time_point start) {
@@ -448,10 +451,19 @@ NonlinearSolution Solve(const std::string& name, const NonlinearProblem& problem
     result.iterations += solution.summary.iterations;
     NonlinearSolution polished = Complete(problem, options, scale, result);
     // Keep a solved polish; otherwise only an improvement of an unsolved answer.
+    // Either way never a higher cost: the bounds to hold come from a diagonal
+    // Newton step, which on a nonlinear model can put a bound far from where
+    // x stopped, and snapping x there can raise the cost (an attached mass's
+    // radius of gyration sent to its upper bound raised one fit's misfit by
+    // 44 %).
+    const bool no_higher =
+        polished.summary.cost <= solution.summary.cost * (1 + kPolishCostSlack) +
+                                     kCostNoise * 0.5 * r0.squaredNorm();
     const bool better =
-        polished.summary.status == SolverStatus::kSolved ||
-        (!solution.summary.usable() && polished.summary.status != SolverStatus::kFailed &&
-         polished.summary.kkt_residual < solution.summary.kkt_residual);
+        no_higher && (polished.summary.status == SolverStatus::kSolved ||
+                      (!solution.summary.usable() &&
+                       polished.summary.status != SolverStatus::kFailed &&
+                       polished.summary.kkt_residual < solution.summary.kkt_residual));
     if (!better) break;
     solution = std::move(polished);
   }

@@ -51,22 +51,41 @@ Fit FitInstance(const std::shared_ptr<const Structure>& structure,
   Fit best;
   double best_misfit = 0;
   const std::vector<EffectParameter> params = effect->Parameters();
+  // A start at the lower bound of a parameter nested there (its effect then a
+  // simpler one: EffectParameter::nested_at_lower) is fitted with those held
+  // first, and the fit is freed from where that one ended.
   auto solve = [&](const Eigen::VectorXd& start, const EigenSensitivityOptions& o,
                    NonlinearSolution* sol) {
+    auto usable = [&](const NonlinearProblem& problem) {
+      return sol->residual.size() == problem.num_residuals && sol->residual.allFinite() &&
+             sol->jacobian.rows() == problem.num_residuals;
+    };
+    Eigen::VectorXd from = start;
+    NonlinearProblem nested = WithPriorResiduals(
+        BuildModelEffectFitProblem(structure, {effect}, states, o, start), params);
+    for (std::size_t i = 0; i < params.size(); ++i) {
+      const auto k = static_cast<Eigen::Index>(i);
+      if (params[i].nested_at_lower && k < start.size() && nested.lower.size() > k &&
+          start[k] <= nested.lower[k])
+        nested.fixed.emplace_back(static_cast<int>(i), nested.lower[k]);
+    }
+    if (!nested.fixed.empty()) {
+      *sol = solver.Solve(nested);
+      if (usable(nested)) from = sol->x;
+    }
+    // The whole fit, from where the nested one ended (or the start).
     const NonlinearProblem data =
-        BuildModelEffectFitProblem(structure, {effect}, states, o, start);
+        BuildModelEffectFitProblem(structure, {effect}, states, o, from);
     const NonlinearProblem problem = WithPriorResiduals(data, params);
     *sol = solver.Solve(problem);
-    return sol->residual.size() == problem.num_residuals && sol->residual.allFinite() &&
-                   sol->jacobian.rows() == problem.num_residuals
-               ? data.num_residuals
-               : -1;
+    return usable(problem) ? data.num_residuals : -1;
   };
   std::vector<Eigen::VectorXd> starts = effect->Starts();
   if (ritz) {
     // The searches, on the reduced models; a start whose basis cannot be built
     // (its pencil does not solve) is searched on the full model.
     std::vector<std::pair<double, Eigen::VectorXd>> ends;
+    std::vector<Eigen::VectorXd> unsearched;  // fitted on the full model as they are
     const ModelEffectPencil pencil(structure, {effect});
     // A search that ends where the reduced model no longer matches the full
     // one (their misfits differ by more than 1 + 1e-3 of it: the basis was
@@ -100,7 +119,11 @@ Fit FitInstance(const std::shared_ptr<const Structure>& structure,
         if (std::abs(r.squaredNorm() - misfit) <= 1 + 1e-3 * misfit) break;
         misfit = r.squaredNorm();
       }
-      ends.emplace_back(searched ? misfit : 0.0, from);
+      if (searched) {
+        ends.emplace_back(misfit, from);
+      } else {
+        unsearched.push_back(from);
+      }
     }
     std::sort(ends.begin(), ends.end(),
               [](const auto& a, const auto& b) { return a.first < b.first; });
@@ -112,6 +135,7 @@ Fit FitInstance(const std::shared_ptr<const Structure>& structure,
         same = same || (s - x).lpNorm<Eigen::Infinity>() <= 1e-3;
       if (!same) starts.push_back(x);
     }
+    starts.insert(starts.end(), unsearched.begin(), unsearched.end());
   }
   for (const Eigen::VectorXd& start : starts) {
     NonlinearSolution sol;

@@ -83,6 +83,11 @@ struct EffectParameter {
   // then only bounds the fit.
   double normal_mean = 0;
   double normal_sigma = 0;
+  // At its lower bound the effect is a simpler, nested one (a mass's radius of
+  // gyration there: no rotary inertia to speak of). A fit that starts there
+  // first fits the other parameters with this one held, then frees it, so it
+  // ends no worse than the simpler effect's fit from the same start.
+  bool nested_at_lower = false;
 };
 
 // `p` measuring the quantity `key` as q = scale exp(theta), q in (0, max].
