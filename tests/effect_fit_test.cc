@@ -119,7 +119,7 @@ std::map<std::string, Eigen::VectorXd> Truths() {
   return {
       {"added_mass", Vec({std::log(0.4), 0.63 * kLength, 0.25})},
       {"support_flexibility", Vec({std::log(0.05), std::log(0.02)})},
-      {"attached_mass", Vec({std::log(0.15), 0.57 * kLength, std::log(0.15)})},
+      {"attached_mass", Vec({std::log(0.15), 0.57 * kLength, std::log(0.07)})},
       {"stiffness_loss", Vec({std::log(0.35), 0.37 * kLength, std::log(0.1)})},
       {"material_scaling", Vec({0.23})},
       {"axial_load", Vec({1.5})},

@@ -347,7 +347,7 @@ EffectParameter LogQuantity(EffectParameter p, const std::string& key, double sc
 EffectParameter RadiusOfGyrationParameter(double extent) {
   EffectParameter p =
       LogQuantity({"ln_radius_ratio", "ln(radius of gyration / the structure's extent)",
-                   std::log(1e-3), std::log(0.3), false},
+                   std::log(1e-3), std::log(0.1), false},
                   "radius_of_gyration_m", extent);
   p.nested_at_lower = true;
   return p;

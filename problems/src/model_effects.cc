@@ -368,11 +368,11 @@ class AttachedMass : public Base {
   }
   std::vector<Eigen::VectorXd> Starts() const override {
     if (!Rotary()) return {VectorOf({std::log(0.003)}), VectorOf({std::log(0.1)})};
-    // Small and large masses of no inertia to speak of (the radius at its
-    // lower bound: fitted as point masses first, then freed), and a large one
-    // of a radius a tenth of the extent.
-    const double r0 = RadiusOfGyrationParameter(l_ref_).lower;
-    return {VectorOf({std::log(0.003), r0}), VectorOf({std::log(0.1), r0}),
+    // Small and large masses of negligible inertia, and a large one of a
+    // radius a tenth of the extent (and the point mass: FitInstance, from the
+    // first with the radius held at its lower bound).
+    return {VectorOf({std::log(0.003), std::log(0.01)}),
+            VectorOf({std::log(0.1), std::log(0.01)}),
             VectorOf({std::log(0.1), std::log(0.1)})};
   }
   ModelChange Change(const Eigen::VectorXd& t, Immersion) const override {
@@ -465,8 +465,8 @@ class SegmentMass : public Base {
   std::vector<Eigen::VectorXd> Starts() const override {
     if (!Rotary())
       return {VectorOf({std::log(0.003), 0.3}), VectorOf({std::log(0.1), 0.7})};
-    const double r0 = RadiusOfGyrationParameter(l_ref_).lower;  // as AttachedMass
-    return {VectorOf({std::log(0.003), 0.3, r0}), VectorOf({std::log(0.1), 0.7, r0}),
+    return {VectorOf({std::log(0.003), 0.3, std::log(0.01)}),
+            VectorOf({std::log(0.1), 0.7, std::log(0.01)}),
             VectorOf({std::log(0.1), 0.5, std::log(0.1)})};
   }
   ModelChange Change(const Eigen::VectorXd& t, Immersion) const override {

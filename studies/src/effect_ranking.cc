@@ -51,58 +51,66 @@ Fit FitInstance(const std::shared_ptr<const Structure>& structure,
   Fit best;
   double best_misfit = 0;
   const std::vector<EffectParameter> params = effect->Parameters();
-  // A start at the lower bound of a parameter nested there (its effect then a
-  // simpler one: EffectParameter::nested_at_lower) is fitted with those held
-  // first, and the fit is freed from where that one ended.
-  auto solve = [&](const Eigen::VectorXd& start, const EigenSensitivityOptions& o,
-                   NonlinearSolution* sol) {
-    auto usable = [&](const NonlinearProblem& problem) {
-      return sol->residual.size() == problem.num_residuals && sol->residual.allFinite() &&
-             sol->jacobian.rows() == problem.num_residuals;
-    };
-    Eigen::VectorXd from = start;
-    NonlinearProblem nested = WithPriorResiduals(
-        BuildModelEffectFitProblem(structure, {effect}, states, o, start), params);
-    for (std::size_t i = 0; i < params.size(); ++i) {
-      const auto k = static_cast<Eigen::Index>(i);
-      if (params[i].nested_at_lower && k < start.size() && nested.lower.size() > k &&
-          start[k] <= nested.lower[k])
-        nested.fixed.emplace_back(static_cast<int>(i), nested.lower[k]);
-    }
-    if (!nested.fixed.empty()) {
-      *sol = solver.Solve(nested);
-      if (usable(nested)) from = sol->x;
-    }
-    // The whole fit, from where the nested one ended (or the start).
-    const NonlinearProblem data =
-        BuildModelEffectFitProblem(structure, {effect}, states, o, from);
-    const NonlinearProblem problem = WithPriorResiduals(data, params);
-    *sol = solver.Solve(problem);
-    return usable(problem) ? data.num_residuals : -1;
+  // Besides the effect's starts, one from its first start with every
+  // parameter nested at its lower bound held there (EffectParameter::
+  // nested_at_lower: the effect is then a simpler one, a point mass without
+  // its rotary inertia), so that the fit ends no worse than the simpler
+  // effect's from that start: freeing such a parameter from its bound gives
+  // the solver no gradient to follow (the inertia m r^2 is flat in ln r there).
+  struct Start {
+    Eigen::VectorXd x;
+    bool nested = false;  // the nested parameters held at their lower bounds
   };
-  std::vector<Eigen::VectorXd> starts = effect->Starts();
+  std::vector<Start> starts;
+  for (const Eigen::VectorXd& x : effect->Starts()) starts.push_back({x, false});
+  if (!starts.empty()) {
+    Start nested{starts.front().x, true};
+    bool any = false;
+    for (std::size_t i = 0; i < params.size(); ++i) {
+      if (!params[i].nested_at_lower) continue;
+      nested.x[static_cast<Eigen::Index>(i)] = params[i].lower;
+      any = true;
+    }
+    if (any) starts.push_back(nested);
+  }
+  auto solve = [&](const Start& start, const EigenSensitivityOptions& o,
+                   NonlinearSolution* sol) {
+    const NonlinearProblem data =
+        BuildModelEffectFitProblem(structure, {effect}, states, o, start.x);
+    NonlinearProblem problem = WithPriorResiduals(data, params);
+    for (std::size_t i = 0; start.nested && i < params.size(); ++i) {
+      if (params[i].nested_at_lower)
+        problem.fixed.emplace_back(static_cast<int>(i),
+                                   start.x[static_cast<Eigen::Index>(i)]);
+    }
+    *sol = solver.Solve(problem);
+    return sol->residual.size() == problem.num_residuals && sol->residual.allFinite() &&
+                   sol->jacobian.rows() == problem.num_residuals
+               ? data.num_residuals
+               : -1;
+  };
   if (ritz) {
     // The searches, on the reduced models; a start whose basis cannot be built
     // (its pencil does not solve) is searched on the full model.
-    std::vector<std::pair<double, Eigen::VectorXd>> ends;
-    std::vector<Eigen::VectorXd> unsearched;  // fitted on the full model as they are
+    std::vector<std::pair<double, Start>> ends;
+    std::vector<Start> unsearched;  // fitted on the full model as they are
     const ModelEffectPencil pencil(structure, {effect});
     // A search that ends where the reduced model no longer matches the full
     // one (their misfits differ by more than 1 + 1e-3 of it: the basis was
     // built too far away) is searched again on a basis built where it ended,
     // up to kRebases times; then the full fit takes over from there anyway.
     constexpr int kRebases = 3;
-    const NonlinearProblem full_data =
-        BuildModelEffectFitProblem(structure, {effect}, states, options, starts.front());
+    const NonlinearProblem full_data = BuildModelEffectFitProblem(
+        structure, {effect}, states, options, starts.front().x);
     const NonlinearProblem full = WithPriorResiduals(full_data, params);
-    for (const Eigen::VectorXd& start : starts) {
-      Eigen::VectorXd from = start;
+    for (const Start& start : starts) {
+      Start from = start;
       double misfit = 0;
       bool searched = false;
       for (int round = 0; round <= kRebases; ++round) {
         EigenSensitivityOptions reduced = options;
         try {
-          reduced.ritz = BuildRitzBasis(pencil, states, options, from);
+          reduced.ritz = BuildRitzBasis(pencil, states, options, from.x);
         } catch (const InputError&) {
           break;
         } catch (const NumericalError&) {
@@ -110,12 +118,12 @@ Fit FitInstance(const std::shared_ptr<const Structure>& structure,
         }
         NonlinearSolution sol;
         if (solve(from, reduced, &sol) < 0) break;
-        from = sol.x;
+        from.x = sol.x;
         misfit = sol.residual.squaredNorm();
         searched = true;
         Eigen::VectorXd r;
         std::string why;
-        if (!full.evaluate(from, &r, nullptr, &why)) break;
+        if (!full.evaluate(from.x, &r, nullptr, &why)) break;
         if (std::abs(r.squaredNorm() - misfit) <= 1 + 1e-3 * misfit) break;
         misfit = r.squaredNorm();
       }
@@ -125,19 +133,20 @@ Fit FitInstance(const std::shared_ptr<const Structure>& structure,
         unsearched.push_back(from);
       }
     }
-    std::sort(ends.begin(), ends.end(),
-              [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::stable_sort(ends.begin(), ends.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
     starts.clear();
-    for (const auto& [misfit, x] : ends) {
+    for (const auto& [misfit, end] : ends) {
       if (!starts.empty() && misfit > ends.front().first + 10) break;
       bool same = false;
-      for (const Eigen::VectorXd& s : starts)
-        same = same || (s - x).lpNorm<Eigen::Infinity>() <= 1e-3;
-      if (!same) starts.push_back(x);
+      for (const Start& s : starts)
+        same = same || (s.nested == end.nested &&
+                        (s.x - end.x).lpNorm<Eigen::Infinity>() <= 1e-3);
+      if (!same) starts.push_back(end);
     }
     starts.insert(starts.end(), unsearched.begin(), unsearched.end());
   }
-  for (const Eigen::VectorXd& start : starts) {
+  for (const Start& start : starts) {
     NonlinearSolution sol;
     const int rows = solve(start, options, &sol);
     if (rows < 0) continue;

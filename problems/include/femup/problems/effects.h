@@ -21,7 +21,7 @@
 //                       ln(3 EI / (k_t L^3)).
 //   attached_mass       a point mass at a height: ln(m / (rho A L)), x, and
 //                       its rotary inertia m r^2: ln(r / L) from a negligible
-//                       1e-3 to 0.3 (EffectOptions::rotary_inertia).
+//                       1e-3 to 0.1 (EffectOptions::rotary_inertia).
 //   stiffness_loss      EI reduced by a fraction over a short region (2 % to 40 %
 //                       of the length) centred at x: ln(loss fraction), x,
 //                       ln(width / L).
@@ -84,9 +84,8 @@ struct EffectParameter {
   double normal_mean = 0;
   double normal_sigma = 0;
   // At its lower bound the effect is a simpler, nested one (a mass's radius of
-  // gyration there: no rotary inertia to speak of). A fit that starts there
-  // first fits the other parameters with this one held, then frees it, so it
-  // ends no worse than the simpler effect's fit from the same start.
+  // gyration there: no rotary inertia to speak of). The fits also start once
+  // with it held there, so that they end no worse than the simpler effect's.
   bool nested_at_lower = false;
 };
 
@@ -99,8 +98,11 @@ EffectParameter LinearQuantity(EffectParameter p, const std::string& key, double
 
 // An attached mass's radius of gyration r as the parameter ln(r / extent),
 // measuring the quantity "radius_of_gyration_m" (r = extent exp(theta)); its
-// prior range from a negligible 1e-3 of the structure's extent to 0.3 (a deck
-// module of 8 m on a 30 m jacket has about 0.11). The one definition the
+// prior range from a negligible 1e-3 of the structure's extent to 0.1 (a deck
+// module of 7 m on a 30 m jacket: r = 7 / sqrt(6) m, about 0.1). A wider range
+// let a point attachment take radii of 0.1-0.3 of a frame's extent (a body
+// 0.25-0.7 of the frame across) and stand in for local stiffness losses at the
+// joints (docs/diagnosis.md, "Session 61"). The one definition the
 // cantilever's attached mass and the structures' share.
 EffectParameter RadiusOfGyrationParameter(double extent);
 

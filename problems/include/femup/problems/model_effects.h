@@ -49,7 +49,7 @@
 //                       the mass also carries a rotary inertia m r^2 about
 //                       each of the model's rotation axes (equipment, a deck
 //                       module), its radius of gyration r = l_ref exp(theta)
-//                       fitted from a negligible 1e-3 l_ref to 0.3 l_ref
+//                       fitted from a negligible 1e-3 l_ref to 0.1 l_ref
 //                       (l_ref: the structure's extent, ReferenceLength); at
 //                       a point between nodes the rotation is the element's
 //                       (the slope of its transverse field, its twist).

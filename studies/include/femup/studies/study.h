@@ -208,7 +208,7 @@ struct DiagnosisSpec {
   // are fitted (-1: all); EffectRankingOptions::members_fitted.
   int members_fitted = 12;
   // Attached masses carry a fitted rotary inertia (a radius of gyration, from
-  // a negligible one to 0.3 of the structure's extent) where the model has
+  // a negligible one to 0.1 of the structure's extent) where the model has
   // rotations and node coordinates; false: translational point masses only.
   // EffectRankingOptions::rotary_inertia; on a cantilever,
   // EffectOptions::rotary_inertia.
