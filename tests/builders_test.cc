@@ -102,6 +102,50 @@ TEST(BuildSpringMassChain, MatricesMatchHandWritten) {
   }
 }
 
+// A chain that idealises a building (shear_building) carries the flexural
+// part of a building's deformation as two form variants: springs on the change
+// of drift between adjacent storeys, 0.1 of their mean storey stiffness in
+// all, shared along the height as 1 - z and z (z = j / n at the floor between
+// storeys j and j + 1). Neither resists a uniform drift (x_j = j + 1: every
+// storey drifts 1); on drifts that alternate (x = 1, 0, 1: drifts 1, -1, 1)
+// their energies are sum_j w_j c_j (d_j - d_{j-1})^2, c_j = 0.1 (k_j +
+// k_{j+1}) / 2, (d_j - d_{j-1})^2 = 4. A chain of springs and masses alone
+// carries none.
+TEST(BuildSpringMassChain, AShearBuildingCarriesItsFlexuralFormVariants) {
+  ChainSpec spec;
+  spec.masses = {2.0, 3.0, 5.0};
+  spec.springs = {7.0, 11.0, 13.0};
+  EXPECT_TRUE(BuildSpringMassChain(spec).form_variants.empty());
+  spec.shear_building = true;
+  const Structure s = BuildSpringMassChain(spec);
+  ASSERT_EQ(s.form_variants.size(), 2u);
+  const double c1 = 0.1 * (7 + 11) / 2, c2 = 0.1 * (11 + 13) / 2;
+  const double z1 = 1.0 / 3, z2 = 2.0 / 3;
+  const double expected[2] = {(1 - z1) * c1 * 4 + (1 - z2) * c2 * 4,
+                              z1 * c1 * 4 + z2 * c2 * 4};
+  const Eigen::Vector3d uniform(1, 2, 3), alternating(1, 0, 1);
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> nominal(
+      Dense(s.stiffness), Dense(s.mass));
+  for (int k = 0; k < 2; ++k) {
+    const FormVariant& v = s.form_variants[static_cast<std::size_t>(k)];
+    EXPECT_NE(v.name.find("flexural"), std::string::npos) << v.name;
+    EXPECT_TRUE(v.dofs.empty());
+    EXPECT_EQ(Dense(v.mass), Dense(s.mass));
+    const Eigen::MatrixXd c = Dense(v.stiffness) - Dense(s.stiffness);
+    EXPECT_NEAR((c - c.transpose()).norm(), 0.0, 1e-14);
+    EXPECT_NEAR((c * uniform).norm(), 0.0, 1e-13) << k;
+    EXPECT_NEAR(alternating.dot(c * alternating), expected[k], 1e-12) << k;
+    // Every mode stiffens, the higher ones more than the first.
+    const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> variant(
+        Dense(v.stiffness), Dense(s.mass));
+    const Eigen::VectorXd ratio =
+        variant.eigenvalues().cwiseQuotient(nominal.eigenvalues()).array() - 1;
+    EXPECT_GT(ratio(0), 0) << k;
+    EXPECT_GT(ratio(1), 3 * ratio(0)) << k;
+    EXPECT_GT(ratio(2), ratio(0)) << k;
+  }
+}
+
 TEST(BuildSpringMassChain, BadInputsNameTheField) {
   ChainSpec spec;
   spec.masses = {1.0, 1.0};

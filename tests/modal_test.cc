@@ -567,7 +567,10 @@ TEST(SolveModes, SparseShiftAndAutoOnLongChainMatchAnalytic) {
 // bundled air-and-water example's model), lambda_max / lambda_1 ~ 8e7. The
 // dense path's eigenvalues are its vectors' Rayleigh quotients (modal.cc):
 // each of the 8 lowest within 2e-12 of a long-double solution of the same
-// pencil (measured: 5.5e-13 on mode 1, below 1e-13 from mode 2 on).
+// pencil (measured: 5.5e-13 on mode 1, below 1e-13 from mode 2 on, with
+// OpenBLAS's SkylakeX kernels; 5.7e-12 on mode 1 with its Haswell kernels,
+// which it picks on an AMD EPYC: the bound is 1e-11, against ~1e-7 of
+// lambda_1 for Eigen's full decomposition before).
 TEST(SolveModes, DenseEigenvaluesOfAStiffBeamAreRayleighQuotients) {
   CantileverSpec spec = fixtures::PaperCantilever(UniformHeights(2.0, 20));
   spec.section = {210e9, 9.0e-4, 1.6875e-8, 7850};
@@ -585,7 +588,7 @@ TEST(SolveModes, DenseEigenvaluesOfAStiffBeamAreRayleighQuotients) {
   EXPECT_GT(spread, 1e7L);
   for (int j = 0; j < 8; ++j) {
     const double ref = static_cast<double>(reference.eigenvalues()[j]);
-    EXPECT_NEAR(dense.eigenvalues[j], ref, 2e-12 * ref) << "mode " << j + 1;
+    EXPECT_NEAR(dense.eigenvalues[j], ref, 1e-11 * ref) << "mode " << j + 1;
   }
 }
 

@@ -377,6 +377,30 @@ TEST(Study, ParseStudyReadsTextAndNamesThePath) {
   }
 }
 
+// model.shear_building: the chain idealises a building, and its structure
+// carries the flexural form variants; a value that is not a boolean is refused
+// naming the key.
+TEST(Study, AChainStatedAsAShearBuildingCarriesItsFormVariant) {
+  const Study plain =
+      ParseStudyModel("model: {type: chain, masses: [1, 2, 3], springs: [10, 20, 30]}\n",
+                      "in_memory/a.json");
+  EXPECT_TRUE(plain.structure.form_variants.empty());
+  const Study building = ParseStudyModel(
+      "model: {type: chain, masses: [1, 2, 3], springs: [10, 20, 30], shear_building: "
+      "true}\n",
+      "in_memory/b.json");
+  EXPECT_EQ(building.structure.form_variants.size(), 2u);
+  try {
+    ParseStudyModel(
+        "model: {type: chain, masses: [1, 2], springs: [10, 20], shear_building: 3}\n",
+        "in_memory/c.json");
+    ADD_FAILURE() << "no error for shear_building: 3";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("model.shear_building"), std::string::npos)
+        << e.what();
+  }
+}
+
 // A model and its factors alone (the Python module's model_from_dict): no
 // measurements needed, the same checks and messages as a whole study, and the
 // keys of the other sections refused.

@@ -41,12 +41,15 @@ from ._femup import InputError, NumericalError, build_chain, parse_study, parse_
 __version__ = "0.1.0"
 
 
-def chain(masses, springs, wet=()):
+def chain(masses, springs, wet=(), shear_building=False):
     """The paper's spring-mass chain, fixed at mass 1's end.
 
     masses (kg) and springs (N/m, spring 1 joins the ground and mass 1) have
     one entry per element; ``wet`` lists the 1-based masses in water, as the
-    study's ``model.wet``. Returns a :class:`Structure`; DOF k is ``x<k>``.
+    study's ``model.wet``; ``shear_building`` says, as the study's
+    ``model.shear_building``, that the chain idealises a building's storeys
+    (its flexural deformation is then carried as two form variants). Returns a
+    :class:`Structure`; DOF k is ``x<k>``.
     """
     spec = ChainSpec()  # noqa: F405
     spec.masses = [float(m) for m in masses]
@@ -58,6 +61,7 @@ def chain(masses, springs, wet=()):
                 f"model.wet: mass {k!r} is not one of 1..{len(flags)}")
         flags[k - 1] = True
     spec.wet = flags
+    spec.shear_building = bool(shear_building)
     return build_chain(spec)
 
 

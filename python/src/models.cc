@@ -345,7 +345,10 @@ void BindBuilders(py::module_& m) {
       .def_readwrite("masses", &femup::ChainSpec::masses, "kg")
       .def_readwrite("springs", &femup::ChainSpec::springs,
                      "N/m, spring 1 = ground to mass 1")
-      .def_readwrite("wet", &femup::ChainSpec::wet, "per mass: in water");
+      .def_readwrite("wet", &femup::ChainSpec::wet, "per mass: in water")
+      .def_readwrite("shear_building", &femup::ChainSpec::shear_building,
+                     "the chain idealises a building's storeys: its flexural "
+                     "deformation is carried as form variants");
   m.def("build_chain", &femup::BuildSpringMassChain, py::arg("spec"),
         "The paper's spring-mass chain fixed at mass 1's end.");
 

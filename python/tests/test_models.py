@@ -24,6 +24,13 @@ def test_chain_matrices_by_hand():
     assert e2.stiffness.toarray()[0, 0] == 20.0
 
 
+def test_a_chain_idealising_a_building_carries_its_flexural_variants():
+    assert femup.chain([1.0, 2.0, 3.0], [10.0, 20.0, 30.0]).form_variant_names == []
+    s = femup.chain([1.0, 2.0, 3.0], [10.0, 20.0, 30.0], shear_building=True)
+    names = s.form_variant_names
+    assert len(names) == 2 and all("flexural" in n for n in names)
+
+
 def test_chain_errors_name_the_field():
     with pytest.raises(femup.InputError, match=r"model\.masses\[2\]"):
         femup.chain([1.0, -1.0], [1.0, 1.0])

@@ -42,8 +42,9 @@ constexpr int kMaxDiagnosedSpaceFrameDofs = 60000;
 }  // namespace
 
 Structure ReadChain(const Field& m) {
-  m.ExpectKeys({"type", "masses", "springs", "wet"});
+  m.ExpectKeys({"type", "masses", "springs", "wet", "shear_building"});
   ChainSpec spec;
+  if (m.Has("shear_building")) spec.shear_building = m["shear_building"].Bool();
   spec.masses = m["masses"].Numbers();
   spec.springs = m["springs"].Numbers();
   if (spec.springs.size() != spec.masses.size()) {

@@ -351,6 +351,10 @@ def main():
                     help="the relative frequency error the engineer states for the model's "
                     "idealisation (e.g. 0.01), added in quadrature to the stated frequency "
                     "noise of every study file (the noise drawn stays the measurement's)")
+    ap.add_argument("--chain-as-building", action="store_true",
+                    help="shear_building: the chain models say `shear_building: true` (the "
+                    "engineer states that the chain idealises a building; femup allows for "
+                    "the building's flexural deformation as model form error)")
     ap.add_argument("--diagnosis", action="append", default=[], metavar="KEY=VALUE",
                     help="a key of the study files' diagnosis section, e.g. "
                     "members_fitted=-1 (repeatable), to compare settings on the same cases")
@@ -360,6 +364,8 @@ def main():
     args = ap.parse_args()
     if args.cases < 1:
         ap.error("--cases must be at least 1")
+    if args.chain_as_building and args.suite != "shear_building":
+        ap.error("--chain-as-building: only the shear_building suite has chain models")
     if args.foundation != "clamped" and args.suite not in ("plane_frame", "jacket"):
         ap.error("--foundation %s: only the plane_frame and jacket suites have "
                  "column bases" % args.foundation)
@@ -388,6 +394,8 @@ def main():
         extra = dict(water=args.jacket_water) if args.suite == "jacket" else {}
         study, truth = gen.make_case(rng, name, args.design, args.noise_free, args.floors,
                                      args.foundation, **extra)
+        if args.chain_as_building:
+            study["shear_building"] = True
         if args.stated_model_error > 0:
             study["frequency_noise"] = math.hypot(study["frequency_noise"],
                                                   args.stated_model_error)

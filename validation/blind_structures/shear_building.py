@@ -343,8 +343,9 @@ def make_case(rng, name, design="mixed", noise_free=False, floors="flexible",
     return study, truth
 
 
-def chain_frequencies(masses, springs, count):
-    n = len(masses)
+def chain_stiffness(springs):
+    """The chain's stiffness matrix (spring 1 joins the ground and floor 1)."""
+    n = len(springs)
     K = np.zeros((n, n))
     for i, k in enumerate(springs):
         K[i, i] += k
@@ -352,6 +353,13 @@ def chain_frequencies(masses, springs, count):
             K[i - 1, i - 1] += k
             K[i - 1, i] -= k
             K[i, i - 1] -= k
+    return K
+
+
+def chain_frequencies(masses, springs, count, stiffness=None):
+    """The chain's lowest `count` frequencies (Hz), of `stiffness` in place of
+    its own where given."""
+    K = chain_stiffness(springs) if stiffness is None else stiffness
     w = sl.eigh(K, np.diag(masses), eigvals_only=True)
     return np.sqrt(w[:count]) / (2 * np.pi)
 
@@ -365,5 +373,5 @@ def study_yaml(s):
         "  type: chain",
         "  masses: %s" % yaml_list(s["masses"]),
         "  springs: %s" % yaml_list(s["springs"]),
-    ] + measurements_yaml(s)
+    ] + (["  shear_building: true"] if s.get("shear_building") else []) + measurements_yaml(s)
     return "\n".join(lines) + "\n"
