@@ -1652,6 +1652,25 @@ TEST(StructureDiagnosis, RunsOnAFinerMeshWhereTheModelsMovesTheModes) {
                          "diagnosis: {form_fit: true}\n",
                          "x.yaml")
                   .diagnosis->form_fit);
+  EXPECT_TRUE(ParseStudy("name: x\nmodel: {type: chain, masses: [1], springs: [1]}\n"
+                         "measurements:\n  - {state: a, frequencies_hz: [1]}\n"
+                         "diagnosis: {form_error_on_shapes: true}\n",
+                         "x.yaml")
+                  .diagnosis->form_error_on_shapes);
+  EXPECT_FALSE(ParseStudy("name: x\nmodel: {type: chain, masses: [1], springs: [1]}\n"
+                          "measurements:\n  - {state: a, frequencies_hz: [1]}\n"
+                          "diagnosis: {}\n",
+                          "x.yaml")
+                   .diagnosis->form_error_on_shapes);
+  testing::ExpectInputError(
+      [] {
+        ParseStudy(
+            "name: x\nmodel: {type: chain, masses: [1], springs: [1]}\n"
+            "measurements:\n  - {state: a, frequencies_hz: [1]}\n"
+            "diagnosis: {form_error_on_shapes: 2}\n",
+            "x.yaml");
+      },
+      {"form_error_on_shapes"});
   testing::ExpectInputError(
       [] {
         ParseStudy(

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/LU>
+#include <algorithm>
 #include <random>
 #include <string_view>
 
@@ -39,7 +40,7 @@ TEST(ModelFormError, WhitensByTheCovarianceOfOneDirection) {
   const ModelFormError form(kRows, {u});
   ASSERT_TRUE(form.Active());
   EXPECT_EQ(form.NumDirections(), 1);
-  EXPECT_EQ(form.frequency_rows(), (std::vector<int>{0, 2, 3}));
+  EXPECT_EQ(form.covered_rows(), (std::vector<int>{0, 2, 3}));
   const Eigen::VectorXd r = Random(5, &rng);
   Eigen::VectorXd w = r;
   form.Whiten(&w, nullptr);
@@ -152,7 +153,7 @@ TEST(ModelFormError, AllowsForNothingWithoutFrequencies) {
 TEST(ModelFormError, NamesWhatDoesNotFit) {
   testing::ExpectInputError(
       [] { (void)ModelFormError(kRows, {Eigen::VectorXd::Ones(2)}); },
-      {"form_error", "2 values", "3 frequency rows"});
+      {"form_error", "2 values", "3 covered rows"});
   Eigen::VectorXd nan = Eigen::VectorXd::Ones(3);
   nan[1] = std::nan("");
   testing::ExpectInputError([&] { (void)ModelFormError(kRows, {nan}); },
@@ -336,7 +337,7 @@ TEST(ModelFormError, MeasuresAPortalsShearDeformationToFirstOrder) {
   std::vector<FormErrorAllowance> allowances;
   const ModelFormError form =
       ModelFormError::Measure(model, model.form_variants, {d}, options, is_frequency,
-                              frequency_sigma, &allowances);
+                              false, frequency_sigma, &allowances);
   ASSERT_TRUE(form.Active());
   ASSERT_EQ(allowances.size(), model.form_variants.size());
   EXPECT_EQ(allowances[0].name, model.form_variants[0].name);
@@ -381,6 +382,98 @@ TEST(ModelFormError, MeasuresAPortalsShearDeformationToFirstOrder) {
 namespace femup {
 namespace {
 
+// An eight-storey shear building measured as its own lowest four modes, with
+// shapes at four floors: its flexural variants (BuildSpringMassChain's
+// shear_building) move the shapes at the sensors as well as the frequencies.
+// Each variant's change, to first order, against the residuals of the chain
+// built with the variant's stiffness (its own modes, paired with the data by
+// the engine); allowed for on the frequencies alone, the shapes' rows are left
+// as they were and the variant's change of them still costs its full square;
+// with shapes_too, every row is covered and the change costs less than one
+// unit of squared noise, as the covariance over all rows written out says.
+TEST(ModelFormError, AllowsForAShearBuildingsFlexureOnItsShapesToo) {
+  ChainSpec spec = fixtures::UniformChain(8, 1e5, 2e8);
+  spec.shear_building = true;
+  const Structure chain = BuildSpringMassChain(spec);
+  ASSERT_EQ(chain.form_variants.size(), 2u);
+  const Modes nominal = SolveModes(chain.stiffness, chain.mass);
+  ModalData d;
+  d.state = "air";
+  d.frequencies_hz = nominal.FrequenciesHz().head(4);
+  d.sensor_dofs = {1, 3, 5, 7};
+  d.shapes.resize(4, 4);
+  for (int s = 0; s < 4; ++s)
+    d.shapes.row(s) =
+        nominal.shapes.row(d.sensor_dofs[static_cast<std::size_t>(s)]).head(4);
+  EigenSensitivityOptions options;
+  const double frequency_sigma = 0.002;
+  options.frequency_sigma = 2 * frequency_sigma;
+  const NonlinearProblem problem = NominalOutputErrorProblem(chain, {}, {d}, options);
+  std::vector<char> is_frequency;
+  for (const std::string& label : problem.residual_labels) {
+    const std::string_view suffix = " lambda";
+    is_frequency.push_back(
+        label.size() >= suffix.size() &&
+        label.compare(label.size() - suffix.size(), suffix.size(), suffix) == 0);
+  }
+  const auto rows = static_cast<Eigen::Index>(is_frequency.size());
+  ASSERT_EQ(std::count(is_frequency.begin(), is_frequency.end(), 1), 4);
+  ASSERT_GT(rows, 4);
+
+  std::vector<Eigen::VectorXd> changes;
+  for (const FormVariant& v : chain.form_variants) {
+    const Eigen::VectorXd change = FormVariantChange(chain, v, {d}, options);
+    ASSERT_EQ(change.size(), rows);
+    Structure varied = chain;
+    varied.stiffness = v.stiffness;
+    Eigen::VectorXd exact;
+    std::string why;
+    ASSERT_TRUE(NominalOutputErrorProblem(varied, {}, {d}, options)
+                    .evaluate(Eigen::VectorXd::Zero(1), &exact, nullptr, &why))
+        << why;
+    // A stiffening of up to a tenth of a storey's: first order to within a
+    // tenth of the change, frequencies and shapes alike.
+    EXPECT_LT((change - exact).norm(), 0.1 * exact.norm()) << v.name;
+    // It moves the shapes at the sensors by more than their noise.
+    double shape_change = 0;
+    for (Eigen::Index r = 0; r < rows; ++r)
+      if (!is_frequency[static_cast<std::size_t>(r)]) shape_change += exact[r] * exact[r];
+    EXPECT_GT(shape_change, 2.0) << v.name;
+    changes.push_back(change);
+  }
+
+  const ModelFormError on_frequencies =
+      ModelFormError::Measure(chain, chain.form_variants, {d}, options, is_frequency,
+                              false, frequency_sigma, nullptr);
+  std::vector<FormErrorAllowance> allowances;
+  const ModelFormError on_all =
+      ModelFormError::Measure(chain, chain.form_variants, {d}, options, is_frequency,
+                              true, frequency_sigma, &allowances);
+  std::vector<int> frequency_rows, shape_rows;
+  for (int r = 0; r < static_cast<int>(rows); ++r)
+    (is_frequency[static_cast<std::size_t>(r)] ? frequency_rows : shape_rows)
+        .push_back(r);
+  EXPECT_EQ(on_frequencies.covered_rows(), frequency_rows);
+  EXPECT_EQ(on_all.covered_rows().size(), static_cast<std::size_t>(rows));
+  // The report's sizes are the frequencies' either way.
+  ASSERT_EQ(allowances.size(), 2u);
+  EXPECT_NEAR(allowances[0].noise_units, changes[0](frequency_rows).norm(), 1e-12);
+
+  Eigen::MatrixXd c = Eigen::MatrixXd::Identity(rows, rows);
+  for (const Eigen::VectorXd& u : changes) c += u * u.transpose();
+  const Eigen::MatrixXd c_inv = c.fullPivLu().inverse();
+  for (const Eigen::VectorXd& u : changes) {
+    Eigen::VectorXd w = u;
+    on_frequencies.Whiten(&w, nullptr);
+    EXPECT_EQ(w(shape_rows), u(shape_rows));
+    EXPECT_GT(w.squaredNorm(), 1.0);
+    w = u;
+    on_all.Whiten(&w, nullptr);
+    EXPECT_NEAR(w.squaredNorm(), u.dot(c_inv * u), 1e-9 * u.squaredNorm());
+    EXPECT_LT(w.squaredNorm(), 1.0);
+  }
+}
+
 // A stated uncertainty of the model's overall stiffness (or mass) scales every
 // eigenvalue by (1 + s) exactly: each frequency row (a lambda row, in units of
 // 2 sigma_f relative) moves by s / (2 sigma_f), the same on every mode, and the
@@ -411,7 +504,7 @@ TEST(StatedUncertaintyVariants, MoveEveryFrequencyAlike) {
   }
   std::vector<FormErrorAllowance> allowances;
   const ModelFormError form = ModelFormError::Measure(
-      chain, both, {d}, options, is_frequency, frequency_sigma, &allowances);
+      chain, both, {d}, options, is_frequency, false, frequency_sigma, &allowances);
   ASSERT_TRUE(form.Active());
   EXPECT_EQ(form.NumDirections(), 1);  // both along the uniform change
   ASSERT_EQ(allowances.size(), 2u);

@@ -49,6 +49,7 @@ void BindSpecs(py::module_& m) {
       .def_readwrite("use_shapes", &femup::DiagnosisSpec::use_shapes)
       .def_readwrite("mesh_error", &femup::DiagnosisSpec::mesh_error)
       .def_readwrite("formulation_error", &femup::DiagnosisSpec::formulation_error)
+      .def_readwrite("form_error_on_shapes", &femup::DiagnosisSpec::form_error_on_shapes)
       .def_readwrite("form_step", &femup::DiagnosisSpec::form_step)
       .def_readwrite("form_fit", &femup::DiagnosisSpec::form_fit)
       .def_readwrite("stiffness_uncertainty",

@@ -739,9 +739,9 @@ EffectRanking RankModelEffects(const Structure& structure_in,
   for (FormVariant& v : StatedUncertaintyVariants(
            *structure, options.stiffness_uncertainty, options.mass_uncertainty))
     variants.push_back(std::move(v));
-  const ModelFormError form =
-      ModelFormError::Measure(*structure, variants, states, fit, is_frequency,
-                              options.frequency_sigma, &out.form_errors);
+  const ModelFormError form = ModelFormError::Measure(
+      *structure, variants, states, fit, is_frequency, options.form_error_on_shapes,
+      options.frequency_sigma, &out.form_errors);
   const bool whitened = form.Active();
   // Each fitted class's fit to the whitened misfit's mode (form_fit), kept per
   // instance, and done again only where the instance's raw fit changed (a

@@ -64,28 +64,28 @@ Eigen::VectorXd FormVariantChange(const Structure& structure, const FormVariant&
   return j.col(0) + j.col(1);
 }
 
-ModelFormError::ModelFormError(std::vector<char> is_frequency,
+ModelFormError::ModelFormError(std::vector<char> covered,
                                const std::vector<Eigen::VectorXd>& directions)
-    : num_rows_(is_frequency.size()) {
-  for (std::size_t r = 0; r < is_frequency.size(); ++r)
-    if (is_frequency[r]) frequency_rows_.push_back(static_cast<int>(r));
-  const auto rows = static_cast<Eigen::Index>(frequency_rows_.size());
+    : num_rows_(covered.size()) {
+  for (std::size_t r = 0; r < covered.size(); ++r)
+    if (covered[r]) covered_rows_.push_back(static_cast<int>(r));
+  const auto rows = static_cast<Eigen::Index>(covered_rows_.size());
   for (std::size_t k = 0; k < directions.size(); ++k) {
     if (directions[k].size() != rows || !directions[k].allFinite()) {
       throw InputError("form_error", "direction " + std::to_string(k) + " has " +
                                          std::to_string(directions[k].size()) +
                                          " values, expected one finite value for "
                                          "each of the " +
-                                         std::to_string(rows) + " frequency rows");
+                                         std::to_string(rows) + " covered rows");
     }
   }
   if (rows == 0) return;
-  // The frequency rows' covariance I + sum_j u_j u_j' (the identity when there
+  // The covered rows' covariance I + sum_j u_j u_j' (the identity when there
   // is no direction), as its symmetric square root and that root's inverse.
   // Any W with W' W = C^-1 gives every class the same chi2 and Laplace
   // evidence, but the bagged posterior resamples the whitened rows one by
   // one: a Cholesky factor would put nearly all of a residual along a
-  // direction shared by every row into the first frequency row, and the
+  // direction shared by every row into the first covered row, and the
   // copies that do not draw that row (a third of them) would see none of it.
   // C^-1/2 is the whitening nearest the identity and the same whatever the
   // rows' order: a residual along u_j stays spread over the rows as u_j is.
@@ -101,7 +101,7 @@ ModelFormError::ModelFormError(std::vector<char> is_frequency,
   for (std::size_t j = 0; j < directions.size(); ++j)
     u.col(static_cast<Eigen::Index>(j)) = directions[j];
   const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(u);
-  // No column where the variants change no frequency (rank 0): then no class
+  // No column where the variants change no covered row (rank 0): then no class
   // lies along them.
   basis_ = qr.householderQ() * Eigen::MatrixXd::Identity(rows, qr.rank());
 }
@@ -137,11 +137,17 @@ ModelFormError ModelFormError::Measure(const Structure& structure,
                                        const std::vector<ModalData>& states,
                                        const EigenSensitivityOptions& options,
                                        const std::vector<char>& is_frequency,
-                                       double frequency_sigma,
+                                       bool shapes_too, double frequency_sigma,
                                        std::vector<FormErrorAllowance>* allowances) {
   const bool any_frequency =
       std::any_of(is_frequency.begin(), is_frequency.end(), [](char f) { return f; });
   if (variants.empty() || !any_frequency) return {};
+  const std::vector<char> covered =
+      shapes_too ? std::vector<char>(is_frequency.size(), 1) : is_frequency;
+  const auto count = [](const std::vector<char>& rows) {
+    return static_cast<Eigen::Index>(
+        std::count_if(rows.begin(), rows.end(), [](char f) { return f != 0; }));
+  };
   std::vector<Eigen::VectorXd> directions;
   for (const FormVariant& v : variants) {
     const Eigen::VectorXd change = FormVariantChange(structure, v, states, options);
@@ -151,19 +157,24 @@ ModelFormError ModelFormError::Measure(const Structure& structure,
                                            " residuals, the nominal model " +
                                            std::to_string(is_frequency.size()));
     }
-    Eigen::VectorXd u(std::count_if(is_frequency.begin(), is_frequency.end(),
-                                    [](char f) { return f != 0; }));
+    Eigen::VectorXd u(count(covered));
+    double largest = 0, squared = 0;  // on the frequency rows
     Eigen::Index k = 0;
-    for (std::size_t r = 0; r < is_frequency.size(); ++r)
-      if (is_frequency[r]) u[k++] = change[static_cast<Eigen::Index>(r)];
+    for (std::size_t r = 0; r < covered.size(); ++r) {
+      const double c = change[static_cast<Eigen::Index>(r)];
+      if (is_frequency[r]) {
+        largest = std::max(largest, std::abs(c));
+        squared += c * c;
+      }
+      if (covered[r]) u[k++] = c;
+    }
     if (allowances != nullptr) {
       // Relative frequency change: a lambda row is in units of 2 sigma_f.
-      allowances->push_back(
-          {v.name, u.cwiseAbs().maxCoeff() * frequency_sigma, u.norm()});
+      allowances->push_back({v.name, largest * frequency_sigma, std::sqrt(squared)});
     }
     directions.push_back(std::move(u));
   }
-  return ModelFormError(is_frequency, directions);
+  return ModelFormError(covered, directions);
 }
 
 void ModelFormError::Transform(Eigen::VectorXd* r, Eigen::MatrixXd* j, bool back) const {
@@ -177,19 +188,19 @@ void ModelFormError::Transform(Eigen::VectorXd* r, Eigen::MatrixXd* j, bool back
                                      ", expected " + std::to_string(num_rows_));
   }
   const Eigen::Index cols = j != nullptr ? j->cols() : 0;
-  const auto rows = static_cast<Eigen::Index>(frequency_rows_.size());
+  const auto rows = static_cast<Eigen::Index>(covered_rows_.size());
   Eigen::VectorXd rf(rows);
   Eigen::MatrixXd jf(rows, cols);
   for (Eigen::Index k = 0; k < rows; ++k) {
-    rf[k] = (*r)[frequency_rows_[static_cast<std::size_t>(k)]];
-    if (cols > 0) jf.row(k) = j->row(frequency_rows_[static_cast<std::size_t>(k)]);
+    rf[k] = (*r)[covered_rows_[static_cast<std::size_t>(k)]];
+    if (cols > 0) jf.row(k) = j->row(covered_rows_[static_cast<std::size_t>(k)]);
   }
   const Eigen::MatrixXd& w = back ? root_ : inverse_root_;
   rf = w * rf;
   if (cols > 0) jf = w * jf;
   for (Eigen::Index k = 0; k < rows; ++k) {
-    (*r)[frequency_rows_[static_cast<std::size_t>(k)]] = rf[k];
-    if (cols > 0) j->row(frequency_rows_[static_cast<std::size_t>(k)]) = jf.row(k);
+    (*r)[covered_rows_[static_cast<std::size_t>(k)]] = rf[k];
+    if (cols > 0) j->row(covered_rows_[static_cast<std::size_t>(k)]) = jf.row(k);
   }
 }
 
@@ -208,9 +219,9 @@ double ModelFormError::ShareAlongVariants(const Eigen::MatrixXd& raw_jacobian) c
     throw InputError("jacobian", std::to_string(j.rows()) + " rows, expected " +
                                      std::to_string(num_rows_));
   }
-  Eigen::MatrixXd jf(static_cast<Eigen::Index>(frequency_rows_.size()), j.cols());
-  for (std::size_t k = 0; k < frequency_rows_.size(); ++k)
-    jf.row(static_cast<Eigen::Index>(k)) = j.row(frequency_rows_[k]);
+  Eigen::MatrixXd jf(static_cast<Eigen::Index>(covered_rows_.size()), j.cols());
+  for (std::size_t k = 0; k < covered_rows_.size(); ++k)
+    jf.row(static_cast<Eigen::Index>(k)) = j.row(covered_rows_[k]);
   return (basis_.transpose() * jf).squaredNorm() / j.squaredNorm();
 }
 

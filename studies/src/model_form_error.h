@@ -2,9 +2,11 @@
 // for it (effect_ranking.h, EffectRankingOptions::formulation_error): where the
 // structure's builder knows a richer formulation of it
 // (Structure::form_variants: a frame of shear-deformable members, a finer
-// mesh), each variant moves the nominal model's frequency residuals by u_j, in
-// noise units, to first order through the engine's own eigenvalue derivatives
-// at the nominal model's paired modes. The frequency rows' covariance is then
+// mesh, a shear building's flexural deformation), each variant moves the
+// nominal model's residuals by u_j, in noise units, to first order through the
+// engine's own eigen-derivatives at the nominal model's paired modes. The
+// covariance of the rows it covers (the frequencies; with
+// EffectRankingOptions::form_error_on_shapes the shapes too) is then
 // I + sum_j u_j u_j' (one standard deviation of form error along each
 // variant's change), and a class is judged on its residuals and Jacobian
 // whitened by it (by its symmetric inverse square root).
@@ -70,45 +72,49 @@ class ModelFormError {
   // every residual as it is.
   ModelFormError() = default;
 
-  // From the residuals' rows (is_frequency: which are eigenvalue rows) and the
-  // variants' changes of the frequency rows (each of the frequency rows'
-  // count, in noise units). Active where there is at least one frequency row,
-  // even with no direction (the covariance is then the identity). Throws
-  // InputError("form_error", ...) for a direction of another length or with a
-  // value that is not finite.
-  ModelFormError(std::vector<char> is_frequency,
+  // From the residuals' rows (covered: which rows the form error is allowed
+  // for on, the eigenvalue rows or every row) and the variants' changes of the
+  // covered rows (each of the covered rows' count, in noise units). Active
+  // where at least one row is covered, even with no direction (the covariance
+  // is then the identity). Throws InputError("form_error", ...) for a direction
+  // of another length or with a value that is not finite.
+  ModelFormError(std::vector<char> covered,
                  const std::vector<Eigen::VectorXd>& directions);
 
   // Measured on the data: every one of `variants` (FormVariantChange; the
-  // structure's form_variants, StatedUncertaintyVariants) on the frequency rows of the
-  // nominal model's residuals (is_frequency), and for the report each variant's size
-  // (`allowances`, appended: the largest relative frequency change, a lambda row being in
-  // units of 2 frequency_sigma, and the change's norm in noise units). Not
-  // Active, and nothing appended, where there is no variant or the data no
-  // frequency.
+  // structure's form_variants, StatedUncertaintyVariants) on the frequency rows
+  // of the nominal model's residuals (is_frequency), and on every row where
+  // `shapes_too` (a variant that moves the shapes at the sensors, as a chain's
+  // flexural deformation does in a tall building, is then allowed for there
+  // too). For the report, each variant's size (`allowances`, appended: the
+  // largest relative frequency change, a lambda row being in units of
+  // 2 frequency_sigma, and the change's norm on the frequency rows in noise
+  // units). Not Active, and nothing appended, where there is no variant or the
+  // data no frequency.
   static ModelFormError Measure(const Structure& structure,
                                 const std::vector<FormVariant>& variants,
                                 const std::vector<ModalData>& states,
                                 const EigenSensitivityOptions& options,
-                                const std::vector<char>& is_frequency,
+                                const std::vector<char>& is_frequency, bool shapes_too,
                                 double frequency_sigma,
                                 std::vector<FormErrorAllowance>* allowances);
 
   bool Active() const { return root_.size() > 0; }
-  const std::vector<int>& frequency_rows() const { return frequency_rows_; }
+  // The rows the form error is allowed for on, in order.
+  const std::vector<int>& covered_rows() const { return covered_rows_; }
   // The rank of the variants' changes (columns of an orthonormal basis).
   int NumDirections() const { return static_cast<int>(basis_.cols()); }
 
-  // The frequency rows of a residual, and of its Jacobian where `j` is not
+  // The covered rows of a residual, and of its Jacobian where `j` is not
   // null, whitened (C^-1/2 r, C^-1/2 the covariance's symmetric inverse square
   // root, the same whatever the rows' order), or turned back into raw ones
-  // (C^1/2 r). Rows of the shapes are left as they are.
+  // (C^1/2 r). Rows not covered are left as they are.
   // Throws InputError("residual", ...) for a residual of another length than
-  // the is_frequency flags, or a Jacobian whose rows do not match it.
+  // the covered flags, or a Jacobian whose rows do not match it.
   void Whiten(Eigen::VectorXd* r, Eigen::MatrixXd* j) const;
   void Unwhiten(Eigen::VectorXd* r, Eigen::MatrixXd* j) const;
 
-  // The share of a raw Jacobian's squared norm (every row) whose frequency
+  // The share of a raw Jacobian's squared norm (every row) whose covered
   // rows lie along the variants' changes: 1 for a class that can change the
   // data only as the model's own form error does; 0 where there is no
   // direction or the Jacobian is zero.
@@ -118,7 +124,7 @@ class ModelFormError {
   void Transform(Eigen::VectorXd* r, Eigen::MatrixXd* j, bool back) const;
 
   std::size_t num_rows_ = 0;
-  std::vector<int> frequency_rows_;
+  std::vector<int> covered_rows_;
   Eigen::MatrixXd root_;          // symmetric square root of I + sum_j u_j u_j'
   Eigen::MatrixXd inverse_root_;  // and its inverse
   Eigen::MatrixXd basis_;         // orthonormal basis of the u_j

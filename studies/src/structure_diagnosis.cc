@@ -148,6 +148,7 @@ StructureDiagnosisResult RunStructureDiagnosis(const Study& study) {
   options.solver = spec.solver;
   options.priors = spec.priors;
   options.formulation_error = spec.formulation_error;
+  options.form_error_on_shapes = spec.form_error_on_shapes;
   options.form_step = spec.form_step;
   options.form_fit = spec.form_fit;
   options.bagging_copies = spec.bagging_copies;

@@ -186,6 +186,7 @@ DiagnosisSpec ReadDiagnosis(const Field& f, const Study& study) {
                 "use_shapes",
                 "mesh_error",
                 "formulation_error",
+                "form_error_on_shapes",
                 "refine_mesh",
                 "bagging_copies",
                 "max_members",
@@ -294,6 +295,8 @@ DiagnosisSpec ReadDiagnosis(const Field& f, const Study& study) {
   if (f.Has("use_shapes")) d.use_shapes = f["use_shapes"].Bool();
   if (f.Has("mesh_error")) d.mesh_error = f["mesh_error"].Bool();
   if (f.Has("formulation_error")) d.formulation_error = f["formulation_error"].Bool();
+  if (f.Has("form_error_on_shapes"))
+    d.form_error_on_shapes = f["form_error_on_shapes"].Bool();
   if (f.Has("form_step")) d.form_step = f["form_step"].Bool();
   if (f.Has("form_fit")) d.form_fit = f["form_fit"].Bool();
   if (f.Has("rotary_inertia")) d.rotary_inertia = f["rotary_inertia"].Bool();

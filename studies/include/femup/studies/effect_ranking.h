@@ -90,6 +90,12 @@ struct EffectRankingOptions {
   // Allow for the model's form error where the structure carries form
   // variants (above); false: judge the classes on the stated noise alone.
   bool formulation_error = true;
+  // Allow for the model's form error on the mode shapes at the sensors as well
+  // as on the frequencies (model_form_error.h): every row's covariance gains
+  // the variants' changes. For a structure whose form variants move its shapes
+  // too (a tall shear building's flexural deformation); false: on the
+  // frequencies alone.
+  bool form_error_on_shapes = false;
   // Where the model's form error is allowed for, move each class to the mode
   // of the misfit its evidence is taken on (one Gauss-Newton step on the
   // whitened misfit) before its evidence; false: each class at its raw fit

@@ -174,6 +174,9 @@ struct DiagnosisSpec {
   // formulation (a plane frame's members with shear deformation;
   // effect_ranking.h). Not used by the cantilever's own pipeline.
   bool formulation_error = true;
+  // Allow for it on the mode shapes too, not the frequencies alone.
+  // EffectRankingOptions::form_error_on_shapes.
+  bool form_error_on_shapes = false;
   // Where the form error is allowed for, each class moved to the mode of the
   // misfit its evidence is taken on; false: at its raw fit (for comparison).
   // EffectRankingOptions::form_step. Not used by the cantilever's own pipeline.

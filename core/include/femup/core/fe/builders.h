@@ -17,8 +17,9 @@ struct ChainSpec {
   std::vector<double> springs;  // N/m, > 0, same count as masses
   std::vector<bool> wet;        // which masses are in water (empty: none)
   // The chain idealises a building's storeys (a shear building): its
-  // Structure then carries the flexural part of a building's deformation as a
-  // form variant (the diagnosis allows for it as model form error).
+  // Structure then carries the flexural part of a building's deformation as
+  // two form variants, falling from the base and rising to the roof (the
+  // diagnosis allows for them as model form error).
   bool shear_building = false;
 };
 Structure BuildSpringMassChain(const ChainSpec& spec);
