@@ -620,10 +620,11 @@ TEST(EffectRanking, AllowsForAShearBuildingsFlexureOnItsShapes) {
     flexural += v.stiffness - model.stiffness;
   const ModalData d = measured(flexural, 8);
 
-  EffectRankingOptions on_shapes = Options();
-  on_shapes.form_error_on_shapes = true;
-  EXPECT_FALSE(EffectRankingOptions().form_error_on_shapes);
-  const EffectRanking f = RankModelEffects(model, {d}, Options());
+  EffectRankingOptions on_frequencies = Options();
+  on_frequencies.form_error_on_shapes = false;
+  const EffectRankingOptions on_shapes = Options();
+  EXPECT_TRUE(on_shapes.form_error_on_shapes);  // by default
+  const EffectRanking f = RankModelEffects(model, {d}, on_frequencies);
   const EffectRanking s = RankModelEffects(model, {d}, on_shapes);
   ASSERT_EQ(f.form_errors.size(), 2u);
   ASSERT_EQ(s.form_errors.size(), 2u);
@@ -638,7 +639,7 @@ TEST(EffectRanking, AllowsForAShearBuildingsFlexureOnItsShapes) {
   SparseMatrix damaged = flexural;
   damaged -= 0.25 * model.elements[2].stiffness;
   const ModalData dd = measured(damaged, 8);
-  for (const EffectRankingOptions& o : {Options(), on_shapes}) {
+  for (const EffectRankingOptions& o : {on_frequencies, on_shapes}) {
     const EffectRanking found = RankModelEffects(model, {dd}, o);
     EXPECT_EQ(found.classes[0].kind, "stiffness_loss");
     EXPECT_EQ(found.classes[0].region, "element 3");
@@ -1714,12 +1715,12 @@ TEST(StructureDiagnosis, RunsOnAFinerMeshWhereTheModelsMovesTheModes) {
                   .diagnosis->form_fit);
   EXPECT_TRUE(ParseStudy("name: x\nmodel: {type: chain, masses: [1], springs: [1]}\n"
                          "measurements:\n  - {state: a, frequencies_hz: [1]}\n"
-                         "diagnosis: {form_error_on_shapes: true}\n",
+                         "diagnosis: {}\n",
                          "x.yaml")
                   .diagnosis->form_error_on_shapes);
   EXPECT_FALSE(ParseStudy("name: x\nmodel: {type: chain, masses: [1], springs: [1]}\n"
                           "measurements:\n  - {state: a, frequencies_hz: [1]}\n"
-                          "diagnosis: {}\n",
+                          "diagnosis: {form_error_on_shapes: false}\n",
                           "x.yaml")
                    .diagnosis->form_error_on_shapes);
   testing::ExpectInputError(

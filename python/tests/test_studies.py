@@ -119,9 +119,9 @@ def test_noise_and_diagnosis_settings_are_changed_in_place():
     study.diagnosis.form_step = False
     assert not study.diagnosis.form_step
     assert not study.diagnosis.form_fit
-    assert not study.diagnosis.form_error_on_shapes
-    study.diagnosis.form_error_on_shapes = True
     assert study.diagnosis.form_error_on_shapes
+    study.diagnosis.form_error_on_shapes = False
+    assert not study.diagnosis.form_error_on_shapes
     assert study.diagnosis.stiffness_uncertainty == 0
     study.diagnosis.stiffness_uncertainty = 0.02
     study.diagnosis.mass_uncertainty = 0.01

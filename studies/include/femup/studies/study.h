@@ -176,7 +176,7 @@ struct DiagnosisSpec {
   bool formulation_error = true;
   // Allow for it on the mode shapes too, not the frequencies alone.
   // EffectRankingOptions::form_error_on_shapes.
-  bool form_error_on_shapes = false;
+  bool form_error_on_shapes = true;
   // Where the form error is allowed for, each class moved to the mode of the
   // misfit its evidence is taken on; false: at its raw fit (for comparison).
   // EffectRankingOptions::form_step. Not used by the cantilever's own pipeline.
