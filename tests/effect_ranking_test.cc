@@ -40,9 +40,9 @@ ChainSpec ShearBuilding() { return fixtures::UniformChain(6, 1e5, 2e8); }
 
 // The lowest four modes with shapes at every floor, noise 0.2 % on frequencies
 // and 2 % of the largest entry on shapes.
-ModalData Measured(const ChainSpec& truth, unsigned seed) {
-  const Structure s = BuildSpringMassChain(truth);
-  const Modes modes = SolveModes(s.stiffness, s.mass);
+ModalData Measured(const SparseMatrix& stiffness, const SparseMatrix& mass,
+                   unsigned seed) {
+  const Modes modes = SolveModes(stiffness, mass);
   std::mt19937 rng(seed);
   std::normal_distribution<double> normal(0.0, 1.0);
   ModalData d;
@@ -52,9 +52,14 @@ ModalData Measured(const ChainSpec& truth, unsigned seed) {
   d.shapes = modes.shapes.leftCols(4);
   for (int j = 0; j < 4; ++j) {
     const double peak = d.shapes.col(j).cwiseAbs().maxCoeff();
-    for (int i = 0; i < 6; ++i) d.shapes(i, j) += 0.02 * peak * normal(rng);
+    for (Eigen::Index i = 0; i < d.shapes.rows(); ++i)
+      d.shapes(i, j) += 0.02 * peak * normal(rng);
   }
   return d;
+}
+ModalData Measured(const ChainSpec& truth, unsigned seed) {
+  const Structure s = BuildSpringMassChain(truth);
+  return Measured(s.stiffness, s.mass, seed);
 }
 
 EffectRankingOptions Options() {
@@ -600,25 +605,10 @@ TEST(EffectRanking, AllowsForAShearBuildingsFlexureOnItsShapes) {
   spec.shear_building = true;
   const Structure model = BuildSpringMassChain(spec);
   ASSERT_EQ(model.form_variants.size(), 2u);
-  const auto measured = [&](const SparseMatrix& stiffness, unsigned seed) {
-    const Modes modes = SolveModes(stiffness, model.mass);
-    std::mt19937 rng(seed);
-    std::normal_distribution<double> normal(0.0, 1.0);
-    ModalData d;
-    d.state = "air";
-    d.frequencies_hz = modes.FrequenciesHz().head(4);
-    for (int j = 0; j < 4; ++j) d.frequencies_hz[j] *= 1 + 0.002 * normal(rng);
-    d.shapes = modes.shapes.leftCols(4);
-    for (int j = 0; j < 4; ++j) {
-      const double peak = d.shapes.col(j).cwiseAbs().maxCoeff();
-      for (int i = 0; i < 6; ++i) d.shapes(i, j) += 0.02 * peak * normal(rng);
-    }
-    return d;
-  };
   SparseMatrix flexural = model.stiffness;
   for (const FormVariant& v : model.form_variants)
     flexural += v.stiffness - model.stiffness;
-  const ModalData d = measured(flexural, 8);
+  const ModalData d = Measured(flexural, model.mass, 8);
 
   EffectRankingOptions on_frequencies = Options();
   on_frequencies.form_error_on_shapes = false;
@@ -638,7 +628,7 @@ TEST(EffectRanking, AllowsForAShearBuildingsFlexureOnItsShapes) {
   // Storey 3 at 75 % of its spring, on the same building.
   SparseMatrix damaged = flexural;
   damaged -= 0.25 * model.elements[2].stiffness;
-  const ModalData dd = measured(damaged, 8);
+  const ModalData dd = Measured(damaged, model.mass, 8);
   for (const EffectRankingOptions& o : {on_frequencies, on_shapes}) {
     const EffectRanking found = RankModelEffects(model, {dd}, o);
     EXPECT_EQ(found.classes[0].kind, "stiffness_loss");

@@ -321,13 +321,7 @@ TEST(ModelFormError, MeasuresAPortalsShearDeformationToFirstOrder) {
   const double frequency_sigma = 0.002;
   options.frequency_sigma = 2 * frequency_sigma;  // of lambda
   const NonlinearProblem problem = NominalOutputErrorProblem(model, {}, {d}, options);
-  std::vector<char> is_frequency;
-  for (const std::string& label : problem.residual_labels) {
-    const std::string_view suffix = " lambda";
-    is_frequency.push_back(
-        label.size() >= suffix.size() &&
-        label.compare(label.size() - suffix.size(), suffix.size(), suffix) == 0);
-  }
+  const std::vector<char> is_frequency = FrequencyRows(problem);
   ASSERT_EQ(is_frequency, std::vector<char>(4, 1));
   Eigen::VectorXd r;
   std::string why;
@@ -409,13 +403,7 @@ TEST(ModelFormError, AllowsForAShearBuildingsFlexureOnItsShapesToo) {
   const double frequency_sigma = 0.002;
   options.frequency_sigma = 2 * frequency_sigma;
   const NonlinearProblem problem = NominalOutputErrorProblem(chain, {}, {d}, options);
-  std::vector<char> is_frequency;
-  for (const std::string& label : problem.residual_labels) {
-    const std::string_view suffix = " lambda";
-    is_frequency.push_back(
-        label.size() >= suffix.size() &&
-        label.compare(label.size() - suffix.size(), suffix.size(), suffix) == 0);
-  }
+  const std::vector<char> is_frequency = FrequencyRows(problem);
   const auto rows = static_cast<Eigen::Index>(is_frequency.size());
   ASSERT_EQ(std::count(is_frequency.begin(), is_frequency.end(), 1), 4);
   ASSERT_GT(rows, 4);

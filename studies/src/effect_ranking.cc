@@ -225,14 +225,7 @@ Nominal NominalResidual(const Structure& structure, const std::vector<ModalData>
     throw InputError("measurements",
                      "the nominal model cannot be compared with the data: " + why);
   }
-  Nominal out{r, {}};
-  for (const std::string& label : problem.residual_labels) {
-    const std::string_view suffix = " lambda";
-    out.is_frequency.push_back(
-        label.size() >= suffix.size() &&
-        label.compare(label.size() - suffix.size(), suffix.size(), suffix) == 0);
-  }
-  return out;
+  return Nominal{r, FrequencyRows(problem)};
 }
 
 // How many two of kind k's places (the first `singles` effects) lie apart:

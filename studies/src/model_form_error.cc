@@ -7,6 +7,7 @@
 #include <iomanip>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <utility>
 
 #include "femup/core/errors.h"
@@ -32,6 +33,17 @@ NonlinearProblem NominalOutputErrorProblem(const Structure& structure,
   for (Parameter& p : unknowns) model.AddParameter(std::move(p));
   return BuildOutputErrorProblem(std::make_shared<const ModelPencil>(std::move(model)),
                                  states, options, Eigen::VectorXd::Zero(n));
+}
+
+std::vector<char> FrequencyRows(const NonlinearProblem& problem) {
+  std::vector<char> out;
+  for (const std::string& label : problem.residual_labels) {
+    const std::string_view suffix = " lambda";
+    out.push_back(label.size() >= suffix.size() &&
+                  label.compare(label.size() - suffix.size(), suffix.size(), suffix) ==
+                      0);
+  }
+  return out;
 }
 
 Eigen::VectorXd FormVariantChange(const Structure& structure, const FormVariant& variant,

@@ -42,6 +42,10 @@ NonlinearProblem NominalOutputErrorProblem(const Structure& structure,
                                            const std::vector<ModalData>& states,
                                            const EigenSensitivityOptions& options);
 
+// Which of an output-error problem's residual rows are eigenvalue rows (their
+// labels end in " lambda"; the others are shape entries and priors).
+std::vector<char> FrequencyRows(const NonlinearProblem& problem);
+
 // A form variant's change of the nominal model's residuals, to first order:
 // the nominal model moved along (K_v - K, M_v - M) by the engine's own
 // eigen-derivatives at the nominal modes. The variant's own modes are not
