@@ -711,9 +711,10 @@ EffectRanking RankModelEffects(const Structure& structure_in,
   }
 
   // The model's own form error (Structure::form_variants, model_form_error.h):
-  // the frequencies' noise becomes I + sum_j u_j u_j', one standard deviation
-  // of model-form error along each variant's change u_j, and every class's
-  // frequency residuals and Jacobian rows are whitened by it. A change the
+  // the noise of the frequencies (and of the shapes, form_error_on_shapes)
+  // becomes I + sum_j u_j u_j', one standard deviation of model-form error
+  // along each variant's change u_j, and every class's residuals and Jacobian
+  // rows are whitened by it. A change the
   // model's own formulation can make (all modes softer alike, for shear
   // deformation) then costs little, and no family is named for it alone.
   // What the user states of the model's overall stiffness and mass joins them

@@ -25,9 +25,10 @@
 // The model's own form error: where the model's builder knows a richer
 // formulation of it (Structure::form_variants: a frame of Euler-Bernoulli
 // members with shear deformation), the change that formulation makes to the
-// nominal frequencies, u (in noise units), is allowed for as correlated noise:
-// the frequencies' covariance is I + u u' (one standard deviation of form
-// error along u, every variant alike), and every class is judged with it. An
+// nominal frequencies (and shapes: form_error_on_shapes), u (in noise units),
+// is allowed for as correlated noise: their covariance is I + u u' (one
+// standard deviation of form error along u, every variant alike), and every
+// class is judged with it. An
 // effect that only mimics the model's own form error (an E scaling making
 // every mode softer as shear deformation does) then earns little evidence over
 // "none", and a real effect larger than the form error is still found. This
