@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <algorithm>
 #include <random>
@@ -84,6 +85,33 @@ TEST(ModelFormError, WhitensTheSameWhateverTheRowsOrder) {
   EXPECT_NEAR(pw[0], w[2], 1e-12);
   EXPECT_NEAR(pw[1], w[0], 1e-12);
   EXPECT_NEAR(pw[2], w[1], 1e-12);
+}
+
+// The whitening is C^-1/2 itself, not merely a W with W'W = C^-1: applied to
+// the identity's columns it gives the symmetric inverse square root that a
+// dense eigendecomposition of C gives (and the unwhitening its square root),
+// here on 120 covered rows, with three directions of which one repeats
+// another (rank 2) as a frame's variants can.
+TEST(ModelFormError, WhitensByTheCovariancesSymmetricInverseRoot) {
+  std::mt19937 rng(14);
+  const Eigen::Index n = 120;
+  const Eigen::VectorXd u1 = 3 * Random(n, &rng), u2 = Random(n, &rng);
+  const ModelFormError form(std::vector<char>(n, 1), {u1, u2, -2 * u1});
+  EXPECT_EQ(form.NumDirections(), 2);
+  const Eigen::MatrixXd c =
+      Eigen::MatrixXd::Identity(n, n) + 5 * u1 * u1.transpose() + u2 * u2.transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(c);
+  const Eigen::MatrixXd& v = eig.eigenvectors();
+  const Eigen::MatrixXd root =
+      v * eig.eigenvalues().cwiseSqrt().asDiagonal() * v.transpose();
+  const Eigen::MatrixXd inverse_root =
+      v * eig.eigenvalues().cwiseSqrt().cwiseInverse().asDiagonal() * v.transpose();
+  Eigen::VectorXd r = Eigen::VectorXd::Zero(n);
+  Eigen::MatrixXd w = Eigen::MatrixXd::Identity(n, n), b = w;
+  form.Whiten(&r, &w);
+  form.Unwhiten(&r, &b);
+  EXPECT_LT((w - inverse_root).norm(), 1e-12 * inverse_root.norm());
+  EXPECT_LT((b - root).norm(), 1e-12 * root.norm());
 }
 
 TEST(ModelFormError, WhitensResidualAndJacobianAlikeAndUnwhitensBack) {

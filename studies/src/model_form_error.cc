@@ -91,9 +91,20 @@ ModelFormError::ModelFormError(std::vector<char> covered,
                                          std::to_string(rows) + " covered rows");
     }
   }
-  if (rows == 0) return;
-  // The covered rows' covariance I + sum_j u_j u_j' (the identity when there
-  // is no direction), as its symmetric square root and that root's inverse.
+  if (rows == 0 || directions.empty()) return;
+  Eigen::MatrixXd u(rows, static_cast<Eigen::Index>(directions.size()));
+  for (std::size_t j = 0; j < directions.size(); ++j)
+    u.col(static_cast<Eigen::Index>(j)) = directions[j];
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(u);
+  // No column where the variants change no covered row (rank 0): then no class
+  // lies along them, and the covariance is the identity.
+  basis_ = qr.householderQ() * Eigen::MatrixXd::Identity(rows, qr.rank());
+  if (basis_.cols() == 0) return;
+  // The covered rows' covariance C = I + U U' = I + Q S Q' (Q the basis, S =
+  // Q'U U'Q, a square of the variants' count), and with S = V L V' its powers
+  // C^p = I + (Q V) ((1 + L)^p - 1) (Q V)': the symmetric square root and its
+  // inverse without a square of the rows' count (a jacket has a thousand of
+  // them once the shapes are covered).
   // Any W with W' W = C^-1 gives every class the same chi2 and Laplace
   // evidence, but the bagged posterior resamples the whitened rows one by
   // one: a Cholesky factor would put nearly all of a residual along a
@@ -101,21 +112,12 @@ ModelFormError::ModelFormError(std::vector<char> covered,
   // copies that do not draw that row (a third of them) would see none of it.
   // C^-1/2 is the whitening nearest the identity and the same whatever the
   // rows' order: a residual along u_j stays spread over the rows as u_j is.
-  Eigen::MatrixXd cov = Eigen::MatrixXd::Identity(rows, rows);
-  for (const Eigen::VectorXd& u : directions) cov += u * u.transpose();
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(cov);
-  const Eigen::VectorXd root = eig.eigenvalues().cwiseSqrt();
-  root_ = eig.eigenvectors() * root.asDiagonal() * eig.eigenvectors().transpose();
-  inverse_root_ = eig.eigenvectors() * root.cwiseInverse().asDiagonal() *
-                  eig.eigenvectors().transpose();
-  if (directions.empty()) return;
-  Eigen::MatrixXd u(rows, static_cast<Eigen::Index>(directions.size()));
-  for (std::size_t j = 0; j < directions.size(); ++j)
-    u.col(static_cast<Eigen::Index>(j)) = directions[j];
-  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(u);
-  // No column where the variants change no covered row (rank 0): then no class
-  // lies along them.
-  basis_ = qr.householderQ() * Eigen::MatrixXd::Identity(rows, qr.rank());
+  const Eigen::MatrixXd qu = basis_.transpose() * u;
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(qu * qu.transpose());
+  const Eigen::VectorXd spread = eig.eigenvalues().cwiseMax(0.0).array() + 1.0;
+  eigenbasis_ = basis_ * eig.eigenvectors();
+  root_shift_ = spread.cwiseSqrt().array() - 1.0;
+  inverse_root_shift_ = spread.cwiseSqrt().cwiseInverse().array() - 1.0;
 }
 
 std::vector<FormVariant> StatedUncertaintyVariants(const Structure& structure,
@@ -156,10 +158,8 @@ ModelFormError ModelFormError::Measure(const Structure& structure,
   if (variants.empty() || !any_frequency) return {};
   const std::vector<char> covered =
       shapes_too ? std::vector<char>(is_frequency.size(), 1) : is_frequency;
-  const auto count = [](const std::vector<char>& rows) {
-    return static_cast<Eigen::Index>(
-        std::count_if(rows.begin(), rows.end(), [](char f) { return f != 0; }));
-  };
+  const auto num_covered = static_cast<Eigen::Index>(
+      std::count_if(covered.begin(), covered.end(), [](char f) { return f != 0; }));
   std::vector<Eigen::VectorXd> directions;
   for (const FormVariant& v : variants) {
     const Eigen::VectorXd change = FormVariantChange(structure, v, states, options);
@@ -169,7 +169,7 @@ ModelFormError ModelFormError::Measure(const Structure& structure,
                                            " residuals, the nominal model " +
                                            std::to_string(is_frequency.size()));
     }
-    Eigen::VectorXd u(count(covered));
+    Eigen::VectorXd u(num_covered);
     double largest = 0, squared = 0;  // on the frequency rows
     Eigen::Index k = 0;
     for (std::size_t r = 0; r < covered.size(); ++r) {
@@ -199,6 +199,7 @@ void ModelFormError::Transform(Eigen::VectorXd* r, Eigen::MatrixXd* j, bool back
                                                    : std::string()) +
                                      ", expected " + std::to_string(num_rows_));
   }
+  if (eigenbasis_.cols() == 0) return;  // the identity: no direction
   const Eigen::Index cols = j != nullptr ? j->cols() : 0;
   const auto rows = static_cast<Eigen::Index>(covered_rows_.size());
   Eigen::VectorXd rf(rows);
@@ -207,9 +208,10 @@ void ModelFormError::Transform(Eigen::VectorXd* r, Eigen::MatrixXd* j, bool back
     rf[k] = (*r)[covered_rows_[static_cast<std::size_t>(k)]];
     if (cols > 0) jf.row(k) = j->row(covered_rows_[static_cast<std::size_t>(k)]);
   }
-  const Eigen::MatrixXd& w = back ? root_ : inverse_root_;
-  rf = w * rf;
-  if (cols > 0) jf = w * jf;
+  // C^p x = x + P ((1 + L)^p - 1) P'x.
+  const Eigen::VectorXd& shift = back ? root_shift_ : inverse_root_shift_;
+  rf += eigenbasis_ * shift.asDiagonal() * (eigenbasis_.transpose() * rf);
+  if (cols > 0) jf += eigenbasis_ * shift.asDiagonal() * (eigenbasis_.transpose() * jf);
   for (Eigen::Index k = 0; k < rows; ++k) {
     (*r)[covered_rows_[static_cast<std::size_t>(k)]] = rf[k];
     if (cols > 0) j->row(covered_rows_[static_cast<std::size_t>(k)]) = jf.row(k);

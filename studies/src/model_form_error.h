@@ -103,7 +103,7 @@ class ModelFormError {
                                 double frequency_sigma,
                                 std::vector<FormErrorAllowance>* allowances);
 
-  bool Active() const { return root_.size() > 0; }
+  bool Active() const { return !covered_rows_.empty(); }
   // The rows the form error is allowed for on, in order.
   const std::vector<int>& covered_rows() const { return covered_rows_; }
   // The rank of the variants' changes (columns of an orthonormal basis).
@@ -129,9 +129,12 @@ class ModelFormError {
 
   std::size_t num_rows_ = 0;
   std::vector<int> covered_rows_;
-  Eigen::MatrixXd root_;          // symmetric square root of I + sum_j u_j u_j'
-  Eigen::MatrixXd inverse_root_;  // and its inverse
-  Eigen::MatrixXd basis_;         // orthonormal basis of the u_j
+  Eigen::MatrixXd basis_;  // orthonormal basis Q of the u_j
+  // I + sum_j u_j u_j' = I + P L P' (P = Q V, orthonormal columns): its
+  // symmetric square root is I + P diag(root_shift_) P', and that root's
+  // inverse I + P diag(inverse_root_shift_) P'.
+  Eigen::MatrixXd eigenbasis_;
+  Eigen::VectorXd root_shift_, inverse_root_shift_;
 };
 
 // A class's parameter box and its stated normal priors linearised at its theta
