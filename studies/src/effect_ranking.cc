@@ -1,8 +1,6 @@
 #include "femup/studies/effect_ranking.h"
 
-#include <Eigen/QR>
 #include <algorithm>
-#include <boost/math/special_functions/gamma.hpp>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
@@ -10,10 +8,9 @@
 #include <memory>
 #include <numeric>
 #include <optional>
-#include <string_view>
 
+#include "effect_ranking_steps.h"
 #include "femup/core/errors.h"
-#include "femup/core/linalg/node_ordering.h"
 #include "femup/core/parallel.h"
 #include "femup/problems/effect_priors.h"
 #include "femup/problems/model_effect_pair.h"
@@ -25,345 +22,23 @@
 
 namespace femup {
 
-namespace {
-
-// One instance's best fit over its starts.
-struct Fit {
-  bool ok = false;
-  bool converged = false;
-  Eigen::VectorXd theta;
-  Eigen::MatrixXd jacobian;
-  Eigen::VectorXd residual;
-  double chi2 = 0;
-  bool fitted = true;  // false: one linearised step's end (ScreenInstance)
-};
-
-// The best start is the one with the least misfit, the stated normal priors'
-// residuals included (the posterior's mode); chi2, the residual and the
-// Jacobian kept are the data's alone. With `ritz`, each start is searched on a
-// Ritz basis built there, and the full model's fits start where the searches
-// ended (the best, and any other that ended elsewhere within 10 of its misfit).
-Fit FitInstance(const std::shared_ptr<const Structure>& structure,
-                const std::shared_ptr<const ModelEffect>& effect,
-                const std::vector<ModalData>& states,
-                const EigenSensitivityOptions& options, const NonlinearSolver& solver,
-                bool ritz) {
-  Fit best;
-  double best_misfit = 0;
-  const std::vector<EffectParameter> params = effect->Parameters();
-  // Besides the effect's starts, one from its first start with every
-  // parameter nested at its lower bound held there (EffectParameter::
-  // nested_at_lower: the effect is then a simpler one, a point mass without
-  // its rotary inertia), so that the fit ends no worse than the simpler
-  // effect's from that start: freeing such a parameter from its bound gives
-  // the solver no gradient to follow (the inertia m r^2 is flat in ln r there).
-  struct Start {
-    Eigen::VectorXd x;
-    bool nested = false;  // the nested parameters held at their lower bounds
-  };
-  std::vector<Start> starts;
-  for (const Eigen::VectorXd& x : effect->Starts()) starts.push_back({x, false});
-  if (!starts.empty()) {
-    Start nested{starts.front().x, true};
-    bool any = false;
-    for (std::size_t i = 0; i < params.size(); ++i) {
-      if (!params[i].nested_at_lower) continue;
-      nested.x[static_cast<Eigen::Index>(i)] = params[i].lower;
-      any = true;
-    }
-    if (any) starts.push_back(nested);
-  }
-  auto solve = [&](const Start& start, const EigenSensitivityOptions& o,
-                   NonlinearSolution* sol) {
-    const NonlinearProblem data =
-        BuildModelEffectFitProblem(structure, {effect}, states, o, start.x);
-    NonlinearProblem problem = WithPriorResiduals(data, params);
-    for (std::size_t i = 0; start.nested && i < params.size(); ++i) {
-      if (params[i].nested_at_lower)
-        problem.fixed.emplace_back(static_cast<int>(i),
-                                   start.x[static_cast<Eigen::Index>(i)]);
-    }
-    *sol = solver.Solve(problem);
-    return sol->residual.size() == problem.num_residuals && sol->residual.allFinite() &&
-                   sol->jacobian.rows() == problem.num_residuals
-               ? data.num_residuals
-               : -1;
-  };
-  if (ritz) {
-    // The searches, on the reduced models; a start whose basis cannot be built
-    // (its pencil does not solve) is searched on the full model.
-    std::vector<std::pair<double, Start>> ends;
-    std::vector<Start> unsearched;  // fitted on the full model as they are
-    const ModelEffectPencil pencil(structure, {effect});
-    // A search that ends where the reduced model no longer matches the full
-    // one (their misfits differ by more than 1 + 1e-3 of it: the basis was
-    // built too far away) is searched again on a basis built where it ended,
-    // up to kRebases times; then the full fit takes over from there anyway.
-    constexpr int kRebases = 3;
-    const NonlinearProblem full_data = BuildModelEffectFitProblem(
-        structure, {effect}, states, options, starts.front().x);
-    const NonlinearProblem full = WithPriorResiduals(full_data, params);
-    for (const Start& start : starts) {
-      Start from = start;
-      double misfit = 0;
-      bool searched = false;
-      for (int round = 0; round <= kRebases; ++round) {
-        EigenSensitivityOptions reduced = options;
-        try {
-          reduced.ritz = BuildRitzBasis(pencil, states, options, from.x);
-        } catch (const InputError&) {
-          break;
-        } catch (const NumericalError&) {
-          break;
-        }
-        NonlinearSolution sol;
-        if (solve(from, reduced, &sol) < 0) break;
-        from.x = sol.x;
-        misfit = sol.residual.squaredNorm();
-        searched = true;
-        Eigen::VectorXd r;
-        std::string why;
-        if (!full.evaluate(from.x, &r, nullptr, &why)) break;
-        if (std::abs(r.squaredNorm() - misfit) <= 1 + 1e-3 * misfit) break;
-        misfit = r.squaredNorm();
-      }
-      if (searched) {
-        ends.emplace_back(misfit, from);
-      } else {
-        unsearched.push_back(from);
-      }
-    }
-    std::stable_sort(ends.begin(), ends.end(),
-                     [](const auto& a, const auto& b) { return a.first < b.first; });
-    starts.clear();
-    for (const auto& [misfit, end] : ends) {
-      if (!starts.empty() && misfit > ends.front().first + 10) break;
-      bool same = false;
-      for (const Start& s : starts)
-        same = same || (s.nested == end.nested &&
-                        (s.x - end.x).lpNorm<Eigen::Infinity>() <= 1e-3);
-      if (!same) starts.push_back(end);
-    }
-    starts.insert(starts.end(), unsearched.begin(), unsearched.end());
-  }
-  for (const Start& start : starts) {
-    NonlinearSolution sol;
-    const int rows = solve(start, options, &sol);
-    if (rows < 0) continue;
-    const double misfit = sol.residual.squaredNorm();
-    if (!best.ok || misfit < best_misfit) {
-      const Eigen::VectorXd residual = sol.residual.head(rows);
-      best = {true,     sol.summary.usable(),   sol.x, sol.jacobian.topRows(rows),
-              residual, residual.squaredNorm(), true};
-      best_misfit = misfit;
-    }
-  }
-  return best;
-}
-
-// One linearised step from each of the instance's starts, kept inside the
-// parameters' ranges: a screen of the instance in one evaluation per start.
-// `misfit` is the least misfit (data and stated priors) the steps predict,
-// infinite where no start can be evaluated; `fit` is that step's end, with the
-// data's predicted residual and the Jacobian at its start (not fitted).
-struct Screen {
-  double misfit = std::numeric_limits<double>::infinity();
-  Fit fit;
-};
-
-Screen ScreenInstance(const std::shared_ptr<const Structure>& structure,
-                      const std::shared_ptr<const ModelEffect>& effect,
-                      const std::vector<ModalData>& states,
-                      const EigenSensitivityOptions& options) {
-  const std::vector<EffectParameter> params = effect->Parameters();
-  Screen best;
-  for (const Eigen::VectorXd& start : effect->Starts()) {
-    const NonlinearProblem data =
-        BuildModelEffectFitProblem(structure, {effect}, states, options, start);
-    const NonlinearProblem problem = WithPriorResiduals(data, params);
-    Eigen::VectorXd r;
-    Eigen::MatrixXd j;
-    std::string why;
-    if (!problem.evaluate(start, &r, &j, &why) || !r.allFinite() || !j.allFinite())
-      continue;
-    // The fit problem's own ranges (the effect pencil's), kept by the priors.
-    const Eigen::VectorXd step = j.completeOrthogonalDecomposition().solve(-r);
-    const Eigen::VectorXd to =
-        (start + step).cwiseMax(problem.lower).cwiseMin(problem.upper);
-    const Eigen::VectorXd predicted = r + j * (to - start);
-    const double misfit = std::min(r.squaredNorm(), predicted.squaredNorm());
-    if (!(misfit < best.misfit)) continue;
-    best.misfit = misfit;
-    const bool stepped = predicted.squaredNorm() < r.squaredNorm();
-    const Eigen::Index rows = data.num_residuals;
-    const Eigen::VectorXd residual = (stepped ? predicted : r).head(rows);
-    best.fit = {true,
-                false,
-                stepped ? to : start,
-                j.topRows(rows),
-                residual,
-                residual.squaredNorm(),
-                false};
-  }
-  return best;
-}
-
-// The residuals of the nominal model (no effect), and which of them are
-// eigenvalue (frequency) rows, from the engine's own row labels.
-struct Nominal {
-  Eigen::VectorXd residual;
-  std::vector<char> is_frequency;
-};
-
-Nominal NominalResidual(const Structure& structure, const std::vector<ModalData>& states,
-                        const EigenSensitivityOptions& options) {
-  const NonlinearProblem problem =
-      NominalOutputErrorProblem(structure, {}, states, options);
-  Eigen::VectorXd r;
-  std::string why;
-  if (!problem.evaluate(Eigen::VectorXd::Zero(1), &r, nullptr, &why)) {
-    throw InputError("measurements",
-                     "the nominal model cannot be compared with the data: " + why);
-  }
-  return Nominal{r, FrequencyRows(problem)};
-}
-
-// How many two of kind k's places (the first `singles` effects) lie apart:
-// the pairs of places one family can form (RegionsOverlap).
-double PlacesApart(const std::vector<std::shared_ptr<const ModelEffect>>& effects,
-                   const std::vector<std::size_t>& effect_kind, std::size_t singles,
-                   std::size_t k) {
-  std::vector<const EffectRegion*> of;
-  for (std::size_t e = 0; e < singles; ++e)
-    if (effect_kind[e] == k) of.push_back(&effects[e]->region());
-  double apart = 0;
-  for (std::size_t i = 0; i < of.size(); ++i)
-    for (std::size_t j = i + 1; j < of.size(); ++j)
-      if (!RegionsOverlap(*of[i], *of[j])) apart += 1;
-  return apart;
-}
-
-// A class's evidence integrated over the frequencies' noise temperature
-// (EffectRankingOptions::FrequencyTemperature::kMarginal): T = exp(u) on a
-// grid of u in [0, log kMaxFrequencyTemperature], half the prior at T = 1 and
-// half uniform in u; at each T the frequency rows' variances are T times
-// their stated ones (the likelihood's normalisation, -n_f / 2 log T, with
-// them) and the shapes' t_s. Returns the log of the integral, the evidence at
-// the grid's most probable T (its Occam factor and covariance), and the
-// posterior's harmonic mean temperature 1 / E[1 / T].
-struct MarginalTemperature {
-  ModelEvidence evidence;
-  double log_evidence = 0;
-  double temperature = 1;
-};
-
-constexpr double kMaxFrequencyTemperature = 1e4;  // 100 noise units a mode
-constexpr int kTemperatureGrid = 41;
-
-MarginalTemperature MarginalFrequencyTemperature(
-    const Eigen::VectorXd& residual, const Eigen::MatrixXd& jacobian,
-    const std::vector<char>& is_frequency, int num_frequencies, double shape_temperature,
-    const Eigen::VectorXd& theta, const ClassPriors& priors) {
-  const Eigen::Index n = residual.size();
-  double chi2_f = 0, chi2_s = 0;  // at the stated noise
-  for (Eigen::Index r = 0; r < n; ++r)
-    (is_frequency[r] ? chi2_f : chi2_s) += residual[r] * residual[r];
-  const double span = std::log(kMaxFrequencyTemperature);
-  const double du = span / (kTemperatureGrid - 1);
-  std::vector<double> log_term(kTemperatureGrid), precision(kTemperatureGrid);
-  std::vector<ModelEvidence> evidences(kTemperatureGrid);
-  Eigen::VectorXd scale(n);
-  for (int g = 0; g < kTemperatureGrid; ++g) {
-    const double t = std::exp(g * du);
-    for (Eigen::Index r = 0; r < n; ++r)
-      scale[r] = 1.0 / std::sqrt(is_frequency[r] ? t : shape_temperature);
-    const double chi2 = chi2_f / t + chi2_s / shape_temperature;
-    const Eigen::MatrixXd jac = scale.asDiagonal() * jacobian;
-    evidences[g] = LaplaceEvidence(chi2, jac, theta, priors.lower, priors.upper, 1.0,
-                                   priors.mean, priors.sigma);
-    // Trapezoid weights of the uniform half, plus the point mass at T = 1.
-    const double w =
-        0.5 * du / span * ((g == 0 || g == kTemperatureGrid - 1) ? 0.5 : 1.0) +
-        (g == 0 ? 0.5 : 0.0);
-    log_term[g] =
-        evidences[g].log_evidence - 0.5 * num_frequencies * std::log(t) + std::log(w);
-    precision[g] = 1.0 / t;
-  }
-  const auto most = std::max_element(log_term.begin(), log_term.end());
-  double sum = 0, mean_precision = 0;
-  for (int g = 0; g < kTemperatureGrid; ++g) {
-    const double e = std::exp(log_term[g] - *most);
-    sum += e;
-    mean_precision += e * precision[g];
-  }
-  MarginalTemperature m;
-  m.evidence = evidences[most - log_term.begin()];
-  m.log_evidence = *most + std::log(sum);
-  m.evidence.log_evidence = m.log_evidence;
-  m.temperature = sum / mean_precision;
-  return m;
-}
-
-// The verdict (or, where it is none, the most probable effect) fitted again
-// without the held-out modes (held[state][mode] != 0), and both that fit's and
-// the nominal model's predictions of them (EffectRankingOptions::held_out).
-HeldOutCheck CheckOnHeldOutModes(
-    const EffectRanking& ranking, const std::shared_ptr<const Structure>& structure,
-    const std::vector<std::shared_ptr<const ModelEffect>>& effects,
-    const std::vector<ModalData>& states, const std::vector<std::vector<char>>& held,
-    const EigenSensitivityOptions& fit, const NonlinearSolver& solver, bool ritz) {
-  HeldOutCheck check;
-  const RankedClass* target = GapClass(ranking);
-  const RankedClass* none = NoneClass(ranking);
-  if (target == nullptr || none == nullptr) {
-    check.why = "no effect to check";
-    return check;
-  }
-  check.kind = target->kind;
-  check.region = target->region;
-  const auto effect = std::find_if(effects.begin(), effects.end(), [&](const auto& e) {
-    return e->kind() == target->kind && e->region().name == target->region;
-  });
-  if (effect == effects.end()) {
-    check.why = "the class's place is not among those fitted";
-    return check;
-  }
-  auto is_held = [&](const PairedModeMisfit& m) {
-    return held[static_cast<std::size_t>(m.state)][static_cast<std::size_t>(m.mode)] != 0;
-  };
-  for (const PairedModeMisfit& m : none->modes)
-    if (is_held(m)) check.nominal.push_back(m);
-  // The states without the held-out modes (a state left without a mode is
-  // dropped).
-  std::vector<ModalData> kept;
-  for (std::size_t i = 0; i < states.size(); ++i) {
-    std::vector<int> keep;
-    for (int j = 0; j < states[i].num_modes(); ++j)
-      if (!held[i][static_cast<std::size_t>(j)]) keep.push_back(j);
-    if (keep.empty()) continue;
-    ModalData d = states[i];
-    d.frequencies_hz = states[i].frequencies_hz(keep);
-    if (d.HasShapes()) d.shapes = states[i].shapes(Eigen::all, keep);
-    kept.push_back(std::move(d));
-  }
-  const Fit f = FitInstance(structure, *effect, kept, fit, solver, ritz);
-  if (!f.ok) {
-    check.why = "the fit without the held-out modes failed";
-    return check;
-  }
-  check.theta = f.theta;
-  // Its predictions of every measured mode, paired as the ranking's fits are.
-  const NonlinearProblem all =
-      BuildModelEffectFitProblem(structure, {*effect}, states, fit, f.theta);
-  Eigen::VectorXd r;
-  if (!all.evaluate(f.theta, &r, nullptr, &check.why)) return check;
-  for (const PairedModeMisfit& m : PairedModeMisfits(states, fit, r))
-    if (is_held(m)) check.refit.push_back(m);
-  check.ok = true;
-  return check;
-}
-
-}  // namespace
+using effect_ranking_steps::CheckOnHeldOutModes;
+using effect_ranking_steps::Families;
+using effect_ranking_steps::Fit;
+using effect_ranking_steps::FitInstance;
+using effect_ranking_steps::FitOptions;
+using effect_ranking_steps::HeldOutModes;
+using effect_ranking_steps::MarginalFrequencyTemperature;
+using effect_ranking_steps::MarginalTemperature;
+using effect_ranking_steps::NoiseTemperatures;
+using effect_ranking_steps::NoiseTemperaturesOf;
+using effect_ranking_steps::Nominal;
+using effect_ranking_steps::NominalResidual;
+using effect_ranking_steps::PlacesApart;
+using effect_ranking_steps::PutInOrder;
+using effect_ranking_steps::Screen;
+using effect_ranking_steps::ScreenInstance;
+using effect_ranking_steps::TriedFamilies;
 
 std::string ToString(EffectRankingOptions::FrequencyTemperature t) {
   switch (t) {
@@ -422,25 +97,7 @@ EffectRanking RankModelEffects(const Structure& structure_in,
                                const std::vector<ModalData>& states,
                                const EffectRankingOptions& options) {
   ThrowIfInvalid(options.Validate(), "diagnosis");
-  // The held-out modes must be measured, and leave a mode to fit.
-  std::vector<std::vector<char>> held(states.size());
-  for (std::size_t i = 0; i < states.size(); ++i)
-    held[i].assign(static_cast<std::size_t>(states[i].num_modes()), 0);
-  for (const auto& [state, mode] : options.held_out) {
-    if (state < 0 || state >= static_cast<int>(states.size()) || mode < 0 ||
-        mode >= states[static_cast<std::size_t>(state)].num_modes()) {
-      throw InputError("diagnosis.held_out", "state " + std::to_string(state + 1) +
-                                                 " mode " + std::to_string(mode + 1) +
-                                                 " is not measured");
-    }
-    held[static_cast<std::size_t>(state)][static_cast<std::size_t>(mode)] = 1;
-  }
-  if (!options.held_out.empty() &&
-      std::all_of(held.begin(), held.end(), [](const std::vector<char>& h) {
-        return std::all_of(h.begin(), h.end(), [](char c) { return c != 0; });
-      })) {
-    throw InputError("diagnosis.held_out", "every measured mode is held out; none left");
-  }
+  const std::vector<std::vector<char>> held = HeldOutModes(states, options.held_out);
   auto structure = std::make_shared<const Structure>(structure_in);
   const bool any_wet = std::any_of(states.begin(), states.end(), [](const ModalData& d) {
     return d.immersion == Immersion::kWet;
@@ -449,86 +106,11 @@ EffectRanking RankModelEffects(const Structure& structure_in,
   effect_options.wet_only_added_mass = any_wet;
 
   EffectRanking out;
-  std::vector<std::string> kinds = options.kinds;
-  if (kinds.empty()) {
-    for (const FamilyApplicability& a : ApplicableModelEffects(*structure)) {
-      if (!a.by_default) continue;  // tried where named
-      if (a.why_not.empty()) {
-        kinds.push_back(a.kind);
-      } else {
-        out.skipped.push_back(a.kind + ": " + a.why_not);
-      }
-    }
-  }
+  Families tried = TriedFamilies(*structure, options, effect_options, &out);
+  const std::vector<std::string>& kinds = tried.kinds;
+  std::vector<std::vector<std::unique_ptr<ModelEffect>>>& instances = tried.instances;
 
-  // Stated priors for families not tried are the study's error, before any fit.
-  auto tried = [&](const std::string& kind) {
-    return std::find(kinds.begin(), kinds.end(), kind) != kinds.end();
-  };
-  auto not_tried = [&](const std::string& kind) {
-    std::string why = "is not among the families tried (";
-    for (std::size_t i = 0; i < kinds.size(); ++i) why += (i ? ", " : "") + kinds[i];
-    why += ")";
-    for (const std::string& s : out.skipped)
-      if (s.rfind(kind + ": ", 0) == 0)
-        why = "does not apply: " + s.substr(kind.size() + 2);
-    return why;
-  };
-  for (const FamilyPrior& f : options.priors.families)
-    if (!tried(f.kind)) throw InputError("diagnosis.priors." + f.kind, not_tried(f.kind));
-  for (const auto& [kind, w] : options.priors.weights)
-    if (kind != "none" && !tried(kind))
-      throw InputError("diagnosis.weights." + kind, not_tried(kind));
-  // Every family's instances with their stated priors, made (and checked)
-  // before any fit.
-  std::vector<std::vector<std::unique_ptr<ModelEffect>>> instances;
-  effect_options.max_members = options.max_members;
-  effect_options.rotary_inertia = options.rotary_inertia;
-  for (const std::string& kind : kinds) {
-    const FamilyPrior* prior = options.priors.Find(kind);
-    // Stated regions pick their places among every member.
-    ModelEffectOptions kind_options = effect_options;
-    if (prior && !prior->regions.empty()) kind_options.max_members = -1;
-    std::vector<std::unique_ptr<ModelEffect>> made =
-        CreateModelEffects(kind, *structure, kind_options);
-    if (kind == "stiffness_loss" && kind_options.max_members >= 0 &&
-        static_cast<int>(structure->members.size()) > kind_options.max_members) {
-      out.notes.push_back("stiffness_loss was tried on the " +
-                          std::to_string(structure->elements.size()) +
-                          " groups, not on each of the " +
-                          std::to_string(structure->members.size()) +
-                          " members (more than diagnosis.max_members = " +
-                          std::to_string(kind_options.max_members) +
-                          "); name the groups or members to look in under "
-                          "diagnosis.priors.stiffness_loss.regions");
-    }
-    if (prior) {
-      const std::string field = "diagnosis.priors." + kind;
-      try {
-        made = KeepStatedRegions(std::move(made), *structure, *prior);
-        for (auto& m : made) m = WithFamilyPrior(std::move(m), *prior);
-      } catch (const InputError& e) {
-        const std::string what = e.what();
-        throw InputError(field + "." + e.where(), what.substr(e.where().size() + 2));
-      }
-    }
-    instances.push_back(std::move(made));
-  }
-
-  EigenSensitivityOptions fit;
-  fit.frequency_sigma = 2 * options.frequency_sigma;  // of lambda = (2 pi f)^2
-  fit.shape_sigma = options.shape_sigma;
-  fit.use_shapes = options.use_shapes;
-  // A space frame's few lowest modes, at every size, and any other model's from
-  // kSparseFitMinDofs DOFs (a plane frame on its finer mesh), by sparse
-  // shift-invert: a dense solve of all its modes (kAuto up to 1500 DOF) costs
-  // 0.1 s per evaluation at 600 DOF, and every fit evaluates hundreds of times.
-  constexpr std::size_t kSparseFitMinDofs = 100;
-  if (structure->type == "space_frame" ||
-      structure->dof_labels.size() >= kSparseFitMinDofs)
-    fit.eigen.method = EigenOptions::Method::kSparseShiftInvert;
-  // A frame's sparse solves order its node graph (node_ordering.h).
-  fit.eigen = WithNodeOrdering(fit.eigen, structure->dof_labels);
+  const EigenSensitivityOptions fit = FitOptions(*structure, options);
   // The fits stop when the misfit changes by less than 1e-10 of itself: the
   // eigen-solver's tolerance (1e-10) puts a noise of about 1e-12 of the misfit
   // on every evaluation, so the solvers' default 1e-14 was never met and a
@@ -865,37 +447,18 @@ EffectRanking RankModelEffects(const Structure& structure_in,
       }
     }
 
-    // Noise temperatures from the best fit, one for the frequencies and one for
-    // the shapes: a model's form error shows in its frequencies first, and one
-    // temperature for both would be diluted by shape residuals that fit. A
-    // screened class's residual is a linear prediction, not a fit: not used.
+    // Noise temperatures from the best fit (NoiseTemperaturesOf). A screened
+    // class's residual is a linear prediction, not a fit: not used.
     std::size_t best = 0;
     for (std::size_t i = 1; i < classes.size(); ++i)
       if (classes[i].fitted && residuals[i].squaredNorm() < residuals[best].squaredNorm())
         best = i;
-    int num_frequencies = 0;
-    double chi2_f = 0, chi2_s = 0;
-    for (int r = 0; r < out.num_residuals; ++r) {
-      const double v = residuals[best][r] * residuals[best][r];
-      if (is_frequency[r]) {
-        chi2_f += v;
-        ++num_frequencies;
-      } else {
-        chi2_s += v;
-      }
-    }
-    const int num_params = static_cast<int>(classes[best].theta.size());
-    const int dof_f = std::max(1, num_frequencies - num_params);
-    const int dof_s = std::max(1, out.num_residuals - num_frequencies - shape_modes);
-    const int dof = std::max(1, out.num_residuals - shape_modes - num_params);
-    out.best_chi2_p_value =
-        boost::math::gamma_q(0.5 * dof, 0.5 * residuals[best].squaredNorm());
-    const double p_f = boost::math::gamma_q(0.5 * dof_f, 0.5 * chi2_f);
-    const double p_s = out.num_residuals > num_frequencies
-                           ? boost::math::gamma_q(0.5 * dof_s, 0.5 * chi2_s)
-                           : 1.0;
-    const double t_f = p_f < 0.01 ? std::max(1.0, chi2_f / dof_f) : 1.0;
-    const double t_s = p_s < 0.01 ? std::max(1.0, chi2_s / dof_s) : 1.0;
+    const NoiseTemperatures noise =
+        NoiseTemperaturesOf(residuals[best], static_cast<int>(classes[best].theta.size()),
+                            is_frequency, shape_modes);
+    out.best_chi2_p_value = noise.best_chi2_p_value;
+    const int num_frequencies = noise.num_frequencies;
+    const double t_f = noise.frequency, t_s = noise.shape;
     out.temperature = t_f;
     out.shape_temperature = t_s;
     row_scale.resize(out.num_residuals);
@@ -1022,64 +585,7 @@ EffectRanking RankModelEffects(const Structure& structure_in,
         NameFormErrorAlikeAsNone(form, residuals, raw_jacobians, row_scale, &classes);
     if (!note.empty()) out.notes.push_back(note);
   }
-  // The most probable family first ("none" is a family of one class), and
-  // within it the most probable class: the verdict answers which effect before
-  // where, so a family whose probability is shared among many places is not
-  // outranked by a single class that has less. Within a family the fitted
-  // classes come before the screened ones, whose place and size are one
-  // linearised step's: screened classes more probable than every fitted one
-  // of their family are said in one note per family, the most probable named.
-  std::map<std::string, double> best_fitted;
-  for (const RankedClass& c : classes)
-    if (c.fitted) best_fitted[c.kind] = std::max(best_fitted[c.kind], c.probability);
-  std::map<std::string, std::pair<int, const RankedClass*>> above;  // kind -> count, most
-  for (const RankedClass& c : classes) {
-    if (c.fitted || !(c.probability > best_fitted[c.kind])) continue;
-    auto& [count, most] = above[c.kind];
-    ++count;
-    if (most == nullptr || c.probability > most->probability) most = &c;
-  }
-  for (const auto& [kind, a] : above) {
-    out.notes.push_back(
-        std::to_string(a.first) + " screened, unfitted places of " + kind +
-        " are more probable than every fitted one (the most: " + ClassLabel(*a.second) +
-        ", " + std::to_string(a.second->probability) +
-        "); raise diagnosis.members_fitted to fit them");
-  }
-  // No gap is named unless one is probable at the stated confidence: "none"
-  // then comes first whatever the families' shares.
-  const auto none_it = by_kind.find("none");
-  out.gap_probability = none_it == by_kind.end() ? 1.0 : 1.0 - none_it->second;
-  out.gap_below_confidence =
-      none_it != by_kind.end() && out.gap_probability < options.gap_confidence;
-  const bool none_first = out.gap_below_confidence;
-  std::stable_sort(classes.begin(), classes.end(),
-                   [&by_kind, none_first](const RankedClass& a, const RankedClass& b) {
-                     if (none_first && (a.kind == "none") != (b.kind == "none"))
-                       return a.kind == "none";
-                     const double ka = by_kind.at(a.kind), kb = by_kind.at(b.kind);
-                     if (ka != kb) return ka > kb;
-                     if (a.kind != b.kind) return a.kind < b.kind;
-                     if (a.fitted != b.fitted) return a.fitted;
-                     return a.probability > b.probability;
-                   });
-  // No effect is named the gap's cause unless it explains enough of it.
-  if (classes.front().kind != "none" &&
-      classes.front().explained < options.gap_explained) {
-    out.gap_unexplained = true;
-    std::stable_sort(classes.begin(), classes.end(),
-                     [](const RankedClass& a, const RankedClass& b) {
-                       return a.kind == "none" && b.kind != "none";
-                     });
-  }
-  out.classes = std::move(classes);
-  if (out.frequency_temperature ==
-          EffectRankingOptions::FrequencyTemperature::kMarginal &&
-      !out.classes.empty())
-    out.temperature = out.classes[0].frequency_temperature;
-  out.kind_probabilities.assign(by_kind.begin(), by_kind.end());
-  std::stable_sort(out.kind_probabilities.begin(), out.kind_probabilities.end(),
-                   [](const auto& a, const auto& b) { return a.second > b.second; });
+  PutInOrder(std::move(classes), by_kind, options, &out);
   if (!options.held_out.empty())
     out.held_out =
         CheckOnHeldOutModes(out, structure, effects, states, held, fit, *solver, ritz);
