@@ -15,7 +15,6 @@
 #include "femup/problems/effect_priors.h"
 #include "femup/problems/model_effect_pair.h"
 #include "femup/problems/model_effect_pencil.h"
-#include "femup/solvers/bagged_posterior.h"
 #include "femup/solvers/nonlinear_solver.h"
 #include "model_form_error.h"
 #include "observational_equivalence.h"
@@ -28,13 +27,12 @@ using effect_ranking_steps::Fit;
 using effect_ranking_steps::FitInstance;
 using effect_ranking_steps::FitOptions;
 using effect_ranking_steps::HeldOutModes;
-using effect_ranking_steps::MarginalFrequencyTemperature;
-using effect_ranking_steps::MarginalTemperature;
 using effect_ranking_steps::NoiseTemperatures;
 using effect_ranking_steps::NoiseTemperaturesOf;
 using effect_ranking_steps::Nominal;
 using effect_ranking_steps::NominalResidual;
 using effect_ranking_steps::PlacesApart;
+using effect_ranking_steps::Probabilities;
 using effect_ranking_steps::PutInOrder;
 using effect_ranking_steps::Screen;
 using effect_ranking_steps::ScreenInstance;
@@ -465,59 +463,12 @@ EffectRanking RankModelEffects(const Structure& structure_in,
     for (int r = 0; r < out.num_residuals; ++r)
       row_scale[r] = 1.0 / std::sqrt(is_frequency[r] ? t_f : t_s);
 
-    Eigen::VectorXd log_evidence(classes.size()), prior(classes.size());
-    // Each class's rows as its evidence weighs them (the bagged posterior
-    // resamples them): row_scale, or with a marginal temperature the class's
-    // own mean precision on the frequencies.
-    std::vector<Eigen::VectorXd> class_scale(classes.size(), row_scale);
     const bool marginal = out.frequency_temperature ==
                               EffectRankingOptions::FrequencyTemperature::kMarginal &&
                           num_frequencies > 0;
-    for (std::size_t i = 0; i < classes.size(); ++i) {
-      prior[i] = std::exp(classes[i].log_prior);
-      if (marginal) {
-        const MarginalTemperature m = MarginalFrequencyTemperature(
-            residuals[i], jacobians[i], is_frequency, num_frequencies, t_s,
-            classes[i].theta, priors[i]);
-        classes[i].evidence = m.evidence;
-        classes[i].frequency_temperature = m.temperature;
-        log_evidence[i] = m.log_evidence;
-        for (int r = 0; r < out.num_residuals; ++r)
-          if (is_frequency[r]) class_scale[i][r] = 1.0 / std::sqrt(m.temperature);
-        continue;
-      }
-      const double chi2 = residuals[i].cwiseProduct(row_scale).squaredNorm();
-      const Eigen::MatrixXd jac = row_scale.asDiagonal() * jacobians[i];
-      classes[i].evidence =
-          LaplaceEvidence(chi2, jac, classes[i].theta, priors[i].lower, priors[i].upper,
-                          1.0, priors[i].mean, priors[i].sigma);
-      classes[i].frequency_temperature = t_f;
-      log_evidence[i] = classes[i].evidence.log_evidence;
-    }
-    const Eigen::VectorXd laplace = PosteriorProbabilities(log_evidence, prior);
-    Eigen::VectorXd p = laplace;
-    if (options.bagging_copies > 0) {
-      std::vector<ClassFit> fits_for_bagging(classes.size());
-      for (std::size_t i = 0; i < classes.size(); ++i) {
-        ClassFit& b = fits_for_bagging[i];
-        b.residual = residuals[i].cwiseProduct(class_scale[i]);
-        b.log_evidence = log_evidence[static_cast<Eigen::Index>(i)];
-        b.prior = prior[static_cast<Eigen::Index>(i)];
-      }
-      BaggingOptions bagging;
-      bagging.copies = options.bagging_copies;
-      // Frequencies are drawn among the frequencies and shape entries among
-      // the shape entries: a copy has the measured design.
-      std::vector<int> strata(is_frequency.begin(), is_frequency.end());
-      p = BaggedPosteriorProbabilities(fits_for_bagging, bagging, strata);
-    }
+    by_kind = Probabilities(residuals, jacobians, priors, is_frequency, noise, row_scale,
+                            marginal, options.bagging_copies, &classes);
     out.bagging_copies = options.bagging_copies;
-    by_kind.clear();
-    for (std::size_t i = 0; i < classes.size(); ++i) {
-      classes[i].probability = p[i];
-      classes[i].laplace_probability = laplace[i];
-      by_kind[classes[i].kind] += p[i];
-    }
 
     if (round == kRefitRounds) break;
     std::map<std::string, double> most_fitted;

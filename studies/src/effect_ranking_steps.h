@@ -1,9 +1,9 @@
 // Private to femup_studies: the steps of RankModelEffects (effect_ranking.cc),
 // each defined in the effect_ranking_*.cc file of its concept: the families
 // and their instances (effect_ranking_families.cc), an instance's fit and
-// screen (effect_ranking_fit.cc), the noise temperatures
-// (effect_ranking_temperature.cc) and the ranked classes' order
-// (effect_ranking_order.cc).
+// screen (effect_ranking_fit.cc), the noise temperatures and the classes'
+// evidence and probabilities (effect_ranking_evidence.cc), and the ranked
+// classes' order (effect_ranking_order.cc).
 #pragma once
 
 #include <Eigen/Core>
@@ -115,7 +115,7 @@ HeldOutCheck CheckOnHeldOutModes(
     const std::vector<ModalData>& states, const std::vector<std::vector<char>>& held,
     const EigenSensitivityOptions& fit, const NonlinearSolver& solver, bool ritz);
 
-// effect_ranking_temperature.cc ---------------------------------------------
+// effect_ranking_evidence.cc ------------------------------------------------
 
 // A class's evidence integrated over the frequencies' noise temperature
 // (EffectRankingOptions::FrequencyTemperature::kMarginal): T = exp(u) on a
@@ -151,6 +151,22 @@ NoiseTemperatures NoiseTemperaturesOf(const Eigen::VectorXd& best_residual,
                                       int num_params,
                                       const std::vector<char>& is_frequency,
                                       int shape_modes);
+
+// Every class's evidence (Laplace at the noise temperatures, or with
+// `marginal` integrated over the frequencies' temperature:
+// MarginalFrequencyTemperature) and probability (bagged over
+// `bagging_copies` copies of the rows, frequencies drawn among frequencies
+// and shape entries among shape entries, or the Laplace one where 0), into
+// each class; returns each family's probability. row_scale is 1 / sqrt of
+// each row's noise temperature.
+std::map<std::string, double> Probabilities(const std::vector<Eigen::VectorXd>& residuals,
+                                            const std::vector<Eigen::MatrixXd>& jacobians,
+                                            const std::vector<ClassPriors>& priors,
+                                            const std::vector<char>& is_frequency,
+                                            const NoiseTemperatures& noise,
+                                            const Eigen::VectorXd& row_scale,
+                                            bool marginal, int bagging_copies,
+                                            std::vector<RankedClass>* classes);
 
 // effect_ranking_order.cc ---------------------------------------------------
 

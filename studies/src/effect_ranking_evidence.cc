@@ -1,9 +1,12 @@
 #include <algorithm>
 #include <boost/math/special_functions/gamma.hpp>
 #include <cmath>
+#include <map>
+#include <string>
 #include <vector>
 
 #include "effect_ranking_steps.h"
+#include "femup/solvers/bagged_posterior.h"
 
 namespace femup::effect_ranking_steps {
 
@@ -81,6 +84,67 @@ NoiseTemperatures NoiseTemperaturesOf(const Eigen::VectorXd& best_residual,
   t.frequency = p_f < 0.01 ? std::max(1.0, chi2_f / dof_f) : 1.0;
   t.shape = p_s < 0.01 ? std::max(1.0, chi2_s / dof_s) : 1.0;
   return t;
+}
+
+std::map<std::string, double> Probabilities(const std::vector<Eigen::VectorXd>& residuals,
+                                            const std::vector<Eigen::MatrixXd>& jacobians,
+                                            const std::vector<ClassPriors>& priors,
+                                            const std::vector<char>& is_frequency,
+                                            const NoiseTemperatures& noise,
+                                            const Eigen::VectorXd& row_scale,
+                                            bool marginal, int bagging_copies,
+                                            std::vector<RankedClass>* classes) {
+  std::vector<RankedClass>& c = *classes;
+  Eigen::VectorXd log_evidence(c.size()), prior(c.size());
+  // Each class's rows as its evidence weighs them (the bagged posterior
+  // resamples them): row_scale, or with a marginal temperature the class's
+  // own mean precision on the frequencies.
+  std::vector<Eigen::VectorXd> class_scale(c.size(), row_scale);
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    prior[i] = std::exp(c[i].log_prior);
+    if (marginal) {
+      const MarginalTemperature m = MarginalFrequencyTemperature(
+          residuals[i], jacobians[i], is_frequency, noise.num_frequencies, noise.shape,
+          c[i].theta, priors[i]);
+      c[i].evidence = m.evidence;
+      c[i].frequency_temperature = m.temperature;
+      log_evidence[i] = m.log_evidence;
+      for (Eigen::Index r = 0; r < residuals[i].size(); ++r)
+        if (is_frequency[r]) class_scale[i][r] = 1.0 / std::sqrt(m.temperature);
+      continue;
+    }
+    const double chi2 = residuals[i].cwiseProduct(row_scale).squaredNorm();
+    const Eigen::MatrixXd jac = row_scale.asDiagonal() * jacobians[i];
+    c[i].evidence =
+        LaplaceEvidence(chi2, jac, c[i].theta, priors[i].lower, priors[i].upper, 1.0,
+                        priors[i].mean, priors[i].sigma);
+    c[i].frequency_temperature = noise.frequency;
+    log_evidence[i] = c[i].evidence.log_evidence;
+  }
+  const Eigen::VectorXd laplace = PosteriorProbabilities(log_evidence, prior);
+  Eigen::VectorXd p = laplace;
+  if (bagging_copies > 0) {
+    std::vector<ClassFit> fits_for_bagging(c.size());
+    for (std::size_t i = 0; i < c.size(); ++i) {
+      ClassFit& b = fits_for_bagging[i];
+      b.residual = residuals[i].cwiseProduct(class_scale[i]);
+      b.log_evidence = log_evidence[static_cast<Eigen::Index>(i)];
+      b.prior = prior[static_cast<Eigen::Index>(i)];
+    }
+    BaggingOptions bagging;
+    bagging.copies = bagging_copies;
+    // Frequencies are drawn among the frequencies and shape entries among
+    // the shape entries: a copy has the measured design.
+    std::vector<int> strata(is_frequency.begin(), is_frequency.end());
+    p = BaggedPosteriorProbabilities(fits_for_bagging, bagging, strata);
+  }
+  std::map<std::string, double> by_kind;
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    c[i].probability = p[i];
+    c[i].laplace_probability = laplace[i];
+    by_kind[c[i].kind] += p[i];
+  }
+  return by_kind;
 }
 
 }  // namespace femup::effect_ranking_steps
