@@ -460,6 +460,9 @@ void BindDiagnosis(py::module_& m) {
       .def_readonly("gap_probability", &femup::EffectRanking::gap_probability)
       .def_readonly("gap_below_confidence", &femup::EffectRanking::gap_below_confidence)
       .def_readonly("gap_unexplained", &femup::EffectRanking::gap_unexplained)
+      .def_readonly("gap_within_noise", &femup::EffectRanking::gap_within_noise)
+      .def_readonly("nominal_misfit", &femup::EffectRanking::nominal_misfit)
+      .def_readonly("noise_misfit", &femup::EffectRanking::noise_misfit)
       .def_readonly("temperature", &femup::EffectRanking::temperature)
       .def_readonly("shape_temperature", &femup::EffectRanking::shape_temperature)
       .def_property_readonly("frequency_temperature",

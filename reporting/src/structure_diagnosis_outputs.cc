@@ -81,6 +81,9 @@ void WriteStructureDiagnosisOutputs(const StructureDiagnosisResult& r, bool plot
                   {"gap_probability", k.gap_probability},
                   {"gap_below_confidence", k.gap_below_confidence},
                   {"gap_unexplained", k.gap_unexplained},
+                  {"gap_within_noise", k.gap_within_noise},
+                  {"nominal_misfit", k.nominal_misfit},
+                  {"noise_misfit", k.noise_misfit},
                   {"separated", top.probability >= r.confidence},
                   {"equivalent", top.equivalent},
                   {"group_probability", top.group_probability}};
@@ -217,6 +220,16 @@ std::string StructureDiagnosisReport(const StructureDiagnosisResult& r) {
       << r.gap_confidence << " (none P " << top.probability;
     if (family != "none") o << "; the most probable family " << family << " P " << p;
     o << ")\n";
+  } else if (top.kind == "none" && k.gap_unexplained && k.gap_within_noise &&
+             GapClass(k) != nullptr) {
+    const RankedClass& best = *GapClass(k);
+    o << "verdict: no gap beyond the noise: the nominal model's misfit, chi2 "
+      << std::fixed << std::setprecision(1) << k.nominal_misfit
+      << ", is within the noise's " << k.noise_misfit
+      << (k.form_errors.empty() ? "" : " (the model's form error allowed for)")
+      << "; the most probable effect, " << Label(best) << " (P " << std::setprecision(2)
+      << best.probability << "; a gap of any kind P " << k.gap_probability
+      << "), would fit noise, and is not named\n";
   } else if (top.kind == "none" && k.gap_unexplained && GapClass(k) != nullptr) {
     const RankedClass& best = *GapClass(k);
     o << "verdict: no effect explains the gap: the most probable, " << Label(best)

@@ -520,16 +520,18 @@ EffectRanking RankModelEffects(const Structure& structure_in,
   // How much of the nominal misfit beyond the noise each class removes, at the
   // stated noise, in the misfit the classes were ranked in: the raw one, or
   // where the model's form error is allowed for the whitened one (the form
-  // error is not part of the gap to explain).
-  const double noise_chi2 = static_cast<double>(out.num_residuals - shape_modes);
-  const double gap_chi2 = residuals.front().squaredNorm() - noise_chi2;  // none's
+  // error is not part of the gap to explain). Where none's misfit is within
+  // the noise's expectation there is no gap, and no class explains any of it.
+  out.noise_misfit = static_cast<double>(out.num_residuals - shape_modes);
+  out.nominal_misfit = residuals.front().squaredNorm();
+  out.gap_within_noise = !(out.nominal_misfit > out.noise_misfit);
+  const double gap_chi2 = out.nominal_misfit - out.noise_misfit;
   for (std::size_t i = 0; i < classes.size(); ++i) {
     classes[i].modes = PairedModeMisfits(states, fit, raw_residuals[i]);
-    if (i == 0) continue;  // none explains nothing
+    if (i == 0 || out.gap_within_noise) continue;  // none explains nothing
     const double left = residuals[i].squaredNorm() -
-                        (noise_chi2 - static_cast<double>(classes[i].theta.size()));
-    classes[i].explained =
-        gap_chi2 > 0 ? std::clamp(1 - std::max(0.0, left) / gap_chi2, 0.0, 1.0) : 1.0;
+                        (out.noise_misfit - static_cast<double>(classes[i].theta.size()));
+    classes[i].explained = std::clamp(1 - std::max(0.0, left) / gap_chi2, 0.0, 1.0);
   }
   if (whitened) {
     const std::string note =

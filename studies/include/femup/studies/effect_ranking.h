@@ -259,8 +259,8 @@ struct RankedClass {
   std::vector<PairedModeMisfit> modes;
   // The share of the nominal model's misfit beyond the noise that the class
   // removes, in [0, 1]: 1 - max(0, chi2 - (n - s - k)) / (chi2_none - (n - s)), with n
-  // residuals, s modes whose shapes are scaled to fit and k parameters (1
-  // where the nominal misfit is within the noise; 0 for none); chi2 at the
+  // residuals, s modes whose shapes are scaled to fit and k parameters (0
+  // where the nominal misfit is within the noise: no gap; 0 for none); chi2 at the
   // stated noise, whitened where the model's form error is allowed for
   // (form_errors: that error is not part of the gap).
   double explained = 0;
@@ -304,6 +304,17 @@ struct EffectRanking {
   // EffectRankingOptions::gap_explained of the gap, so that "none" is the
   // verdict (the class that did not explain enough is the first of the rest).
   bool gap_unexplained = false;
+  // None's misfit in the misfit the classes were ranked in (at the stated
+  // noise; whitened where the model's form error is allowed for), and what
+  // the noise alone gives it (its expectation: the residuals less one scale
+  // per shape mode). Where the first is no larger (gap_within_noise) there is
+  // no gap to explain: every class explains none of it (RankedClass::explained
+  // 0), and "none" is the verdict wherever gap_explained is positive
+  // (gap_unexplained), however the probabilities fall: a family whose places
+  // can each fit a little of the noise (every family holds effects too small to
+  // tell from none) is not named for it.
+  double nominal_misfit = 0, noise_misfit = 0;
+  bool gap_within_noise = false;
   // Of the frequencies' noise: the one every class was judged at, or with a
   // marginal temperature the verdict's own (RankedClass::frequency_temperature).
   double temperature = 1;
