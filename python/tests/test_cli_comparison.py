@@ -158,6 +158,12 @@ def test_structure_diagnosis_matches_diagnosis_json(run_cli):
     assert expected["verdict"]["gap_unexplained"] is False
     assert expected["gap_explained"] == pytest.approx(1 / 3, rel=1e-15)
     assert classes[0].explained >= 1 / 3
+    # A gap beyond the noise: none's misfit above what the noise gives.
+    assert result.ranking.gap_within_noise is False
+    assert expected["verdict"]["gap_within_noise"] is False
+    close(result.ranking.nominal_misfit, expected["verdict"]["nominal_misfit"], rel=1e-9)
+    close(result.ranking.noise_misfit, expected["verdict"]["noise_misfit"], rel=1e-15)
+    assert result.ranking.nominal_misfit > result.ranking.noise_misfit
     # How far the gap shrinks: the nominal model's and the verdict's predictions
     # of each measured mode, as diagnosis.json's gap states them.
     none = next(c for c in classes if c.kind == "none")
