@@ -521,17 +521,29 @@ EffectRanking RankModelEffects(const Structure& structure_in,
   // stated noise, in the misfit the classes were ranked in: the raw one, or
   // where the model's form error is allowed for the whitened one (the form
   // error is not part of the gap to explain). Where none's misfit is within
-  // the noise's expectation there is no gap, and no class explains any of it.
+  // the noise's expectation and the most probable class gains less than
+  // kNoiseGain over it, there is no gap, and no class explains any of it. A
+  // class that gains more has found a gap that sits in a few rows (a
+  // frequency shifted by 5 sigma among a hundred shape entries) and hides in
+  // the spread of the noise's chi2 (sqrt(2 n)): the gap's shares are then
+  // not defined, and every class is taken to explain it.
+  constexpr double kNoiseGain = 9;  // 3 noise standard deviations
   out.noise_misfit = static_cast<double>(out.num_residuals - shape_modes);
   out.nominal_misfit = residuals.front().squaredNorm();
-  out.gap_within_noise = !(out.nominal_misfit > out.noise_misfit);
+  std::size_t top = 0;  // the most probable effect (none is class 0)
+  for (std::size_t i = 1; i < classes.size(); ++i)
+    if (top == 0 || classes[i].probability > classes[top].probability) top = i;
+  out.gap_within_noise =
+      !(out.nominal_misfit > out.noise_misfit) &&
+      !(top > 0 && out.nominal_misfit - residuals[top].squaredNorm() >= kNoiseGain);
   const double gap_chi2 = out.nominal_misfit - out.noise_misfit;
   for (std::size_t i = 0; i < classes.size(); ++i) {
     classes[i].modes = PairedModeMisfits(states, fit, raw_residuals[i]);
     if (i == 0 || out.gap_within_noise) continue;  // none explains nothing
     const double left = residuals[i].squaredNorm() -
                         (out.noise_misfit - static_cast<double>(classes[i].theta.size()));
-    classes[i].explained = std::clamp(1 - std::max(0.0, left) / gap_chi2, 0.0, 1.0);
+    classes[i].explained =
+        gap_chi2 > 0 ? std::clamp(1 - std::max(0.0, left) / gap_chi2, 0.0, 1.0) : 1.0;
   }
   if (whitened) {
     const std::string note =

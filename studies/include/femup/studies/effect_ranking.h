@@ -260,7 +260,9 @@ struct RankedClass {
   // The share of the nominal model's misfit beyond the noise that the class
   // removes, in [0, 1]: 1 - max(0, chi2 - (n - s - k)) / (chi2_none - (n - s)), with n
   // residuals, s modes whose shapes are scaled to fit and k parameters (0
-  // where the nominal misfit is within the noise: no gap; 0 for none); chi2 at the
+  // where there is no gap beyond the noise, EffectRanking::gap_within_noise;
+  // 1 where the nominal misfit is within the noise's expectation but the gap
+  // sits in a few rows; 0 for none); chi2 at the
   // stated noise, whitened where the model's form error is allowed for
   // (form_errors: that error is not part of the gap).
   double explained = 0;
@@ -307,12 +309,15 @@ struct EffectRanking {
   // None's misfit in the misfit the classes were ranked in (at the stated
   // noise; whitened where the model's form error is allowed for), and what
   // the noise alone gives it (its expectation: the residuals less one scale
-  // per shape mode). Where the first is no larger (gap_within_noise) there is
-  // no gap to explain: every class explains none of it (RankedClass::explained
-  // 0), and "none" is the verdict wherever gap_explained is positive
-  // (gap_unexplained), however the probabilities fall: a family whose places
-  // can each fit a little of the noise (every family holds effects too small to
-  // tell from none) is not named for it.
+  // per shape mode). Where the first is no larger and the most probable effect
+  // gains less than 9 (3 noise standard deviations) over none
+  // (gap_within_noise) there is no gap to explain: every class explains none
+  // of it (RankedClass::explained 0), and "none" is the verdict wherever
+  // gap_explained is positive (gap_unexplained), however the probabilities
+  // fall: a family whose places can each fit a little of the noise (every
+  // family holds effects too small to tell from none) is not named for it.
+  // A gain of 9 or more is a gap in a few rows that the noise's spread over
+  // many rows hides (the effect is then named as before).
   double nominal_misfit = 0, noise_misfit = 0;
   bool gap_within_noise = false;
   // Of the frequencies' noise: the one every class was judged at, or with a
